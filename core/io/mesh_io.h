@@ -1,0 +1,36 @@
+#pragma once
+// Reading and writing volume meshes and closed surfaces. The format is chosen from the file name.
+//
+// Volume meshes (tets, or hex-dominant hex + wedge):
+//   read : .vtu, .vtk (legacy), .node/.ele (TetGen; either name), .msh (Gmsh 2.2 and 4.1, ASCII),
+//          .node/.elem (ANSYS: see ansys_io.h; chosen when a sibling .elem exists)
+//   write: .vtu (all point/cell data attached), .vtk (legacy), .msh (Gmsh 4.1 ASCII)
+// Closed triangle surfaces (.stl, .obj, .ply, .vtp) given where a volume mesh is expected are tetrahedralized with
+// TetGen at MeshReadOptions::target_edge_length.
+//
+// Every failure is a facehex::Error whose message names the file and the problem (unknown extension, missing file,
+// truncated or malformed content, out-of-range node ids, unsupported cell types). Writers never leave a partial
+// file (see atomic_file.h).
+#include "core/mesh.h"
+
+#include <string>
+#include <vector>
+
+namespace facehex {
+
+struct MeshReadOptions {
+  double target_edge_length = 2.0;  // mm, for surfaces that get tetrahedralized
+};
+
+VolumeMesh read_volume_mesh(const std::string& path, const MeshReadOptions& options = {});
+void write_volume_mesh(const std::string& path, const VolumeMesh& mesh);
+
+// Reads a triangle surface (.stl, .obj, .ply, .vtp). Polygons are triangulated.
+SurfaceMesh read_surface_mesh(const std::string& path);
+void write_surface_mesh(const std::string& path, const SurfaceMesh& surface);  // .vtp, .stl, .ply, .obj
+
+bool is_surface_file(const std::string& path);
+std::vector<std::string> readable_volume_extensions();
+std::vector<std::string> writable_volume_extensions();
+
+}  // namespace facehex

@@ -1,0 +1,27 @@
+#pragma once
+// The one wrapper around TetGen 1.5 (libtet, linked as a library).
+#include "core/mesh.h"
+
+#include <Eigen/Core>
+
+namespace facehex {
+
+struct TetrahedralizeOptions {
+  double target_edge_length = 2.0;  // mm; gives TetGen's maximum tet volume (that of a regular tet of this edge)
+  double max_radius_edge_ratio = 1.5;  // TetGen -q quality bound
+  double min_dihedral_deg = 10.0;      // TetGen -q/… second bound
+  bool preserve_surface = false;       // TetGen -Y: no Steiner points on the boundary
+};
+
+struct TetrahedralizeResult {
+  VolumeMesh mesh;               // positively oriented tets (see mesh.h)
+  Eigen::MatrixXi boundary_faces;  // #B x 3 boundary triangles of the tet mesh, outward oriented
+  Eigen::VectorXi boundary_labels; // #B label of the input face each boundary triangle lies on (0 if unlabelled)
+};
+
+// Tetrahedralizes a closed, manifold, outward-oriented triangle surface. Face labels of the surface (if any,
+// values >= 1) are carried to the boundary triangles of the result. Throws facehex::Error("tetgen", ...) when the
+// surface is not closed, self-intersects, or TetGen fails.
+TetrahedralizeResult tetrahedralize(const SurfaceMesh& surface, const TetrahedralizeOptions& options = {});
+
+}  // namespace facehex

@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages FaceHex needs to build, test and run, only those missing.
+set -euo pipefail
+packages=(
+  cmake g++ make pkg-config
+  libeigen3-dev libsuitesparse-dev libtet1.5-dev nlohmann-json3-dev
+  libvtk9-dev libvtk9-qt-dev qtbase5-dev libqt5opengl5-dev
+  libgtest-dev
+  xvfb xauth libgl1-mesa-dri
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+echo "facehex: installing missing Debian packages: ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+$SUDO apt-get update -q
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
