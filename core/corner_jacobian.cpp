@@ -1,0 +1,92 @@
+#include "core/corner_jacobian.h"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+
+namespace facehex {
+
+namespace {
+
+// Each row (k; a, b, c). The orders follow from mesh.h: hex bottom (0,1,2,3) turns counter-clockwise seen from the
+// top, so at a bottom node (next, previous, up) is right-handed and at a top node (previous, next, down) is. The
+// wedge bottom (0,1,2) turns clockwise seen from the top, hence the mirrored pattern. Tet corners are the even
+// permutations of (0,1,2,3) that start with k.
+constexpr std::array<std::array<int, 4>, 8> kHexCorners = {{{0, 1, 3, 4},
+                                                           {1, 2, 0, 5},
+                                                           {2, 3, 1, 6},
+                                                           {3, 0, 2, 7},
+                                                           {4, 7, 5, 0},
+                                                           {5, 4, 6, 1},
+                                                           {6, 5, 7, 2},
+                                                           {7, 6, 4, 3}}};
+constexpr std::array<std::array<int, 4>, 6> kWedgeCorners = {
+    {{0, 2, 1, 3}, {1, 0, 2, 4}, {2, 1, 0, 5}, {3, 4, 5, 0}, {4, 5, 3, 1}, {5, 3, 4, 2}}};
+constexpr std::array<std::array<int, 4>, 4> kTetCorners = {{{0, 1, 2, 3}, {1, 2, 0, 3}, {2, 0, 1, 3}, {3, 0, 2, 1}}};
+
+double scaled_jacobian_factor(CellType type) {
+  switch (type) {
+    case CellType::Tet: return std::sqrt(2.0);
+    case CellType::Wedge: return 2.0 / std::sqrt(3.0);
+    case CellType::Hex: return 1.0;
+  }
+  return 1.0;
+}
+
+}  // namespace
+
+CellNodes cell_nodes(const VolumeMesh& mesh, int cell) {
+  CellNodes X = CellNodes::Zero();
+  for (int i = 0; i < node_count(mesh.types[cell]); ++i) X.row(i) = mesh.V.row(mesh.C(cell, i));
+  return X;
+}
+
+const std::array<int, 4>& corner_nodes(CellType type, int k) {
+  assert(k >= 0 && k < node_count(type));
+  switch (type) {
+    case CellType::Tet: return kTetCorners[k];
+    case CellType::Wedge: return kWedgeCorners[k];
+    case CellType::Hex: break;
+  }
+  return kHexCorners[k];
+}
+
+Eigen::Matrix3d corner_jacobian(CellType type, const CellNodes& X, int k) {
+  const std::array<int, 4>& n = corner_nodes(type, k);
+  Eigen::Matrix3d A;
+  for (int i = 0; i < 3; ++i) A.col(i) = (X.row(n[i + 1]) - X.row(n[0])).transpose();
+  return A;
+}
+
+CornerValues corner_determinants(CellType type, const CellNodes& X) {
+  CornerValues d = CornerValues::Zero();
+  for (int k = 0; k < node_count(type); ++k) d(k) = corner_jacobian(type, X, k).determinant();
+  return d;
+}
+
+double min_corner_determinant(CellType type, const CellNodes& X) {
+  return corner_determinants(type, X).head(node_count(type)).minCoeff();
+}
+
+double scaled_jacobian(CellType type, const CellNodes& X) {
+  double lowest = 1;
+  for (int k = 0; k < node_count(type); ++k) {
+    const Eigen::Matrix3d A = corner_jacobian(type, X, k);
+    const double lengths = A.col(0).norm() * A.col(1).norm() * A.col(2).norm();
+    lowest = std::min(lowest, lengths > 0 ? A.determinant() / lengths : 0.0);
+  }
+  return scaled_jacobian_factor(type) * lowest;
+}
+
+CornerJacobianCheck check_corner_jacobians(const VolumeMesh& mesh) {
+  CornerJacobianCheck check;
+  check.min_determinant.resize(mesh.num_cells());
+  for (int c = 0; c < mesh.num_cells(); ++c) {
+    check.min_determinant(c) = min_corner_determinant(mesh.types[c], cell_nodes(mesh, c));
+    if (check.min_determinant(c) <= 0) check.inverted.push_back(c);
+  }
+  return check;
+}
+
+}  // namespace facehex

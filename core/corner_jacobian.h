@@ -1,0 +1,61 @@
+#pragma once
+// Corner Jacobians of linear tets, wedges and hexes (VTK node order, see mesh.h): the inversion test of the mapped
+// mesh, the wedge scaled Jacobian, and the per-corner terms an untangling optimizer works on.
+//
+// Corner k of a cell is its node k. Its corner matrix A_k (3 x 3) has as COLUMNS the three edge vectors leaving
+// node k, A_k = [x_a - x_k, x_b - x_k, x_c - x_k], with (k; a, b, c) = corner_nodes(type, k) ordered so that
+//
+//     det(A_k) > 0  <=>  the cell is positively oriented at that corner (mesh.h conventions);
+//
+// the unit cube hex gives A_k a signed permutation of the identity and det(A_k) = +1 at every corner. A mirrored
+// (negatively oriented) cell gives det(A_k) < 0 at every corner; a cell with a node pushed through the opposite face
+// gives det(A_k) <= 0 at some corners. A cell is INVERTED if any corner has det(A_k) <= 0.
+//
+// Corners per type: hex 8 (the three edges of the node), wedge 6 (two triangle edges, then the edge to the other
+// triangle), tet 4 (det(A_k) = 6 * volume at every corner, but the edge lengths, hence the scaled Jacobian, differ).
+#include "core/mesh.h"
+
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+namespace facehex {
+
+// Node positions of one cell: rows 0 .. node_count(type)-1 used, in VTK order. Fixed size so per-cell work does not
+// allocate.
+using CellNodes = Eigen::Matrix<double, 8, 3>;
+// Per-corner values of one cell: entries 0 .. node_count(type)-1 used.
+using CornerValues = Eigen::Matrix<double, 8, 1>;
+
+// Gathers the nodes of `cell` (an index into mesh.C) from mesh.V.
+CellNodes cell_nodes(const VolumeMesh& mesh, int cell);
+
+// Local node ids (k, a, b, c) of corner k: A_k = [x_a - x_k, x_b - x_k, x_c - x_k]. k < node_count(type).
+const std::array<int, 4>& corner_nodes(CellType type, int k);
+
+// A_k, 3 x 3, edge vectors as columns.
+Eigen::Matrix3d corner_jacobian(CellType type, const CellNodes& X, int k);
+
+// det(A_k) for k = 0 .. node_count(type)-1.
+CornerValues corner_determinants(CellType type, const CellNodes& X);
+
+double min_corner_determinant(CellType type, const CellNodes& X);
+
+// Scaled Jacobian: s * min over corners of det(A_k) / (|a_1| |a_2| |a_3|), a_i the columns of A_k, in [-1, 1].
+// The factor s makes the ideal element score exactly 1:
+//   hex   s = 1        (any box; a corner with three orthogonal edges gives 1),
+//   wedge s = 2/sqrt(3) (the EQUILATERAL-triangle prism with edges orthogonal to the triangles; a right-triangle
+//                        prism scores sqrt(2/3) ~ 0.816 because of its two 45 degree corners),
+//   tet   s = sqrt(2)   (the regular tet), as Verdict does for tets.
+// A corner with a zero-length edge counts as 0 (degenerate).
+double scaled_jacobian(CellType type, const CellNodes& X);
+
+// Corner Jacobian check of a whole mesh.
+struct CornerJacobianCheck {
+  Eigen::VectorXd min_determinant;  // #C, minimum corner det(A_k) of each cell (mm^3)
+  std::vector<int> inverted;        // ascending ids of the cells with a corner det(A_k) <= 0
+};
+
+CornerJacobianCheck check_corner_jacobians(const VolumeMesh& mesh);
+
+}  // namespace facehex

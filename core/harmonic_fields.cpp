@@ -1,0 +1,72 @@
+#include "core/harmonic_fields.h"
+
+#include "core/error.h"
+#include "core/stopwatch.h"
+
+#include <set>
+
+namespace facehex {
+
+HarmonicFields::HarmonicFields(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T,
+                               const ResolvedConstraints& constraints, const HarmonicFieldsOptions& options,
+                               const ProgressCallback& progress)
+    : options_(options) {
+  const std::set<int> order(options.order.begin(), options.order.end());
+  if (order != std::set<int>{0, 1, 2}) throw Error("harmonic fields", "the field order must be a permutation of u, v, w");
+  if (options.orthogonality_iterations < 0) throw Error("harmonic fields", "negative number of iterations");
+  Stopwatch clock;
+  report_progress(progress, "assembling the Laplacian", 0.0);
+  K_ = cotangent_stiffness(V, T);
+  G_ = gradient_operator(V, T);
+  volumes_ = tet_volumes(V, T);
+  setup_seconds_["laplacian_assembly"] = clock.lap();
+  for (int f = 0; f < 3; ++f) {
+    report_progress(progress, std::string("factoring the ") + kFieldNames[f] + " system", f / 3.0);
+    solvers_[f] = std::make_unique<HarmonicSolver>(K_, constraints.fields[f], HarmonicSolver::Options{kFieldNames[f]});
+  }
+  setup_seconds_["factorization"] = clock.lap();
+}
+
+HarmonicFields::~HarmonicFields() = default;
+
+GradientFields HarmonicFields::gradients_of(const Eigen::MatrixXd& uvw) const {
+  GradientFields g;
+  for (int f = 0; f < 3; ++f) g[f] = tet_gradients(G_, uvw.col(f));
+  return g;
+}
+
+HarmonicFieldsResult HarmonicFields::compute(const ProgressCallback& progress) const {
+  HarmonicFieldsResult r;
+  r.seconds = setup_seconds_;
+  Stopwatch clock;
+  const Eigen::Index n = K_.rows();
+  r.uvw_initial.resize(n, 3);
+  for (int f = 0; f < 3; ++f) r.uvw_initial.col(f) = solvers_[f]->solve_laplace();
+  r.seconds["harmonic_solves"] = clock.lap();
+  r.gradients_initial = gradients_of(r.uvw_initial);
+  r.angles_initial = angle_statistics(gradient_angles(r.gradients_initial));
+
+  r.uvw = r.uvw_initial;
+  r.gradients = r.gradients_initial;
+  // Right-hand side G^T M g* of eq. 6, with M the tet volumes repeated per gradient component.
+  Eigen::VectorXd mass(3 * volumes_.size());
+  for (Eigen::Index t = 0; t < volumes_.size(); ++t) mass.segment<3>(3 * t).setConstant(std::abs(volumes_(t)));
+  const int basic = options_.order[0];
+  for (int it = 0; it < options_.orthogonality_iterations; ++it) {
+    report_progress(progress, "orthogonality improvement", static_cast<double>(it) / options_.orthogonality_iterations);
+    const GradientFields targets = orthogonal_targets(r.gradients, options_.order);
+    for (int f = 0; f < 3; ++f) {
+      if (f == basic) continue;  // its target is its own gradient: the Poisson solve would return it unchanged
+      const Eigen::VectorXd g = Eigen::Map<const Eigen::VectorXd>(
+          Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>(targets[f]).data(), 3 * targets[f].rows());
+      r.uvw.col(f) = solvers_[f]->solve(G_.transpose() * mass.cwiseProduct(g));
+    }
+    r.gradients = gradients_of(r.uvw);
+  }
+  r.seconds["orthogonality_improvement"] = clock.lap();
+  r.angles = angle_statistics(gradient_angles(r.gradients));
+  report_progress(progress, "orthogonality improvement", 1.0);
+  return r;
+}
+
+}  // namespace facehex

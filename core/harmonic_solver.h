@@ -1,0 +1,53 @@
+#pragma once
+// Dirichlet problems K u = b on a tet mesh, with one sparse Cholesky factorization (CHOLMOD) kept and reused for
+// every right-hand side: the Laplace solve of a harmonic field (b = 0, paper eq. 4) and each Poisson re-solve of the
+// orthogonality improvement (b = G^T M g*, eq. 6).
+#include "core/tet_laplacian.h"
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace facehex {
+
+// Vertices whose value is fixed, and those values (same length). Vertex ids are row indices of V.
+struct DirichletConditions {
+  std::vector<int> vertices;
+  std::vector<double> values;
+};
+
+class HarmonicSolver {
+ public:
+  struct Options {
+    std::string name = "field";  // used in error messages, e.g. "u"
+  };
+
+  // Factors the free-free block of K. Throws facehex::Error(name, ...) when the conditions are empty, name a vertex
+  // out of range or twice, or leave a part of the mesh with no fixed vertex (the block is then singular).
+  HarmonicSolver(const SparseMatrix& K, const DirichletConditions& conditions, const Options& options);
+  HarmonicSolver(const SparseMatrix& K, const DirichletConditions& conditions)
+      : HarmonicSolver(K, conditions, Options{}) {}
+  ~HarmonicSolver();
+  HarmonicSolver(const HarmonicSolver&) = delete;
+  HarmonicSolver& operator=(const HarmonicSolver&) = delete;
+
+  // Solves K u = rhs at the free vertices with u = the fixed values at the fixed vertices (rhs is #V; its entries
+  // at fixed vertices are ignored). solve_laplace() is solve(0).
+  Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
+  Eigen::VectorXd solve_laplace() const;
+
+  int num_free() const { return static_cast<int>(free_.size()); }
+  int num_fixed() const { return static_cast<int>(fixed_.size()); }
+
+ private:
+  struct Factorization;
+  std::unique_ptr<Factorization> factorization_;
+  std::vector<int> free_, fixed_;
+  Eigen::VectorXd fixed_values_;
+  SparseMatrix K_free_fixed_;
+  int n_ = 0;
+  std::string name_;
+};
+
+}  // namespace facehex

@@ -1,0 +1,111 @@
+#include "core/tet_topology.h"
+
+#include <algorithm>
+#include <array>
+#include <numeric>
+
+namespace facehex {
+namespace {
+
+// Face opposite vertex i of a positively oriented tet (a,b,c,d), ordered so its right-hand normal points out.
+constexpr int kOppositeFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+
+struct FaceRecord {
+  std::array<int, 3> key;  // sorted vertex ids
+  int tet, local;          // owner tet and the local index of the vertex opposite the face
+};
+
+// All tet faces sorted by vertex set, so equal faces are adjacent: O(#T log #T), no hashing of vertex pairs.
+std::vector<FaceRecord> sorted_faces(const Eigen::MatrixXi& T) {
+  std::vector<FaceRecord> faces;
+  faces.reserve(static_cast<size_t>(T.rows()) * 4);
+  for (int t = 0; t < T.rows(); ++t)
+    for (int i = 0; i < 4; ++i) {
+      std::array<int, 3> k = {T(t, kOppositeFace[i][0]), T(t, kOppositeFace[i][1]), T(t, kOppositeFace[i][2])};
+      std::sort(k.begin(), k.end());
+      faces.push_back({k, t, i});
+    }
+  std::sort(faces.begin(), faces.end(), [](const FaceRecord& a, const FaceRecord& b) { return a.key < b.key; });
+  return faces;
+}
+
+// Calls visit(first, last) for each run of equal faces.
+template <class Visit>
+void for_each_face_group(const std::vector<FaceRecord>& faces, Visit visit) {
+  for (size_t i = 0; i < faces.size();) {
+    size_t j = i + 1;
+    while (j < faces.size() && faces[j].key == faces[i].key) ++j;
+    visit(i, j);
+    i = j;
+  }
+}
+
+}  // namespace
+
+BoundaryFaces boundary_faces(const Eigen::MatrixXi& T) {
+  const auto faces = sorted_faces(T);
+  std::vector<std::array<int, 4>> found;  // three vertices + owner tet
+  BoundaryFaces out;
+  for_each_face_group(faces, [&](size_t first, size_t last) {
+    if (last - first == 1) {
+      const FaceRecord& f = faces[first];
+      const int* o = kOppositeFace[f.local];
+      found.push_back({T(f.tet, o[0]), T(f.tet, o[1]), T(f.tet, o[2]), f.tet});
+    } else if (last - first > 2) {
+      ++out.nonmanifold_faces;
+    }
+  });
+  out.F.resize(static_cast<Eigen::Index>(found.size()), 3);
+  out.tet.resize(static_cast<Eigen::Index>(found.size()));
+  for (size_t i = 0; i < found.size(); ++i) {
+    for (int k = 0; k < 3; ++k) out.F(static_cast<Eigen::Index>(i), k) = found[i][k];
+    out.tet(static_cast<Eigen::Index>(i)) = found[i][3];
+  }
+  return out;
+}
+
+Eigen::MatrixXi tet_face_neighbors(const Eigen::MatrixXi& T) {
+  Eigen::MatrixXi N = Eigen::MatrixXi::Constant(T.rows(), 4, -1);
+  const auto faces = sorted_faces(T);
+  for_each_face_group(faces, [&](size_t first, size_t last) {
+    if (last - first != 2) return;
+    const FaceRecord &a = faces[first], &b = faces[first + 1];
+    N(a.tet, a.local) = b.tet;
+    N(b.tet, b.local) = a.tet;
+  });
+  return N;
+}
+
+int tet_components(const Eigen::MatrixXi& T, Eigen::VectorXi& component) {
+  const Eigen::MatrixXi N = tet_face_neighbors(T);
+  component = Eigen::VectorXi::Constant(T.rows(), -1);
+  int count = 0;
+  std::vector<int> stack;
+  for (int seed = 0; seed < T.rows(); ++seed) {
+    if (component(seed) != -1) continue;
+    component(seed) = count;
+    stack.push_back(seed);
+    while (!stack.empty()) {
+      const int t = stack.back();
+      stack.pop_back();
+      for (int i = 0; i < 4; ++i) {
+        const int n = N(t, i);
+        if (n >= 0 && component(n) == -1) {
+          component(n) = count;
+          stack.push_back(n);
+        }
+      }
+    }
+    ++count;
+  }
+  return count;
+}
+
+std::vector<char> boundary_vertex_flags(int num_vertices, const Eigen::MatrixXi& boundary_F) {
+  std::vector<char> flags(num_vertices, 0);
+  for (int f = 0; f < boundary_F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) flags[boundary_F(f, k)] = 1;
+  return flags;
+}
+
+}  // namespace facehex

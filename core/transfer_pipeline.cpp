@@ -1,0 +1,71 @@
+#include "core/transfer_pipeline.h"
+
+#include "core/error.h"
+#include "core/hex_to_tets.h"
+#include "core/stopwatch.h"
+
+namespace facehex {
+namespace {
+
+// Maps a sub-stage's progress into [lo, hi] of the whole run.
+ProgressCallback sub_progress(const ProgressCallback& progress, double lo, double hi) {
+  if (!progress) return {};
+  return [=](const std::string& stage, double f) { return progress(stage, lo + (hi - lo) * f); };
+}
+
+std::string health_problem(const ParamHealth& h) {
+  return std::to_string(h.inverted) + " of " + std::to_string(h.tets) + " parametric tets are inverted and " +
+         std::to_string(h.degenerate - h.flat_by_constraint) +
+         " degenerate (the fields fold); check the constraint set (sides, feature values) of this model";
+}
+
+}  // namespace
+
+ModelParameterization parameterize_model(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T,
+                                         const Eigen::VectorXi& side_mask, const ConstraintSet& constraints,
+                                         const std::string& source, const HarmonicFieldsOptions& options,
+                                         const ProgressCallback& progress) {
+  ModelParameterization m;
+  m.V = V;
+  m.T = T;
+  m.constraints = resolve_constraints(constraints, V, T, side_mask, source);
+  m.fixed = Eigen::MatrixXi::Zero(V.rows(), 3);
+  for (int f = 0; f < 3; ++f)
+    for (int v : m.constraints.fields[f].vertices) m.fixed(v, f) = 1;
+  const HarmonicFields fields(V, T, m.constraints, options, sub_progress(progress, 0.0, 0.3));
+  m.fields = fields.compute(sub_progress(progress, 0.3, 1.0));
+  // The unit cube is the common domain: round-off can leave values a hair outside it.
+  m.fields.uvw = m.fields.uvw.cwiseMax(0.0).cwiseMin(1.0);
+  m.health = parameterization_health(T, m.fields.uvw, m.fixed);
+  return m;
+}
+
+TransferRun run_transfer(const VolumeMesh& standard, const ConstraintSet& standard_constraints,
+                         const std::string& standard_source, const VolumeMesh& patient,
+                         const ConstraintSet& patient_constraints, const std::string& patient_source,
+                         const TransferOptions& options, const ProgressCallback& progress) {
+  TransferRun run;
+  Stopwatch clock;
+  const AuxiliaryTets aux = split_into_tets(standard);
+  run.standard_auxiliary_non_positive = aux.non_positive_tets;
+  run.standard = parameterize_model(standard.V, aux.T, side_mask_of(standard), standard_constraints, standard_source,
+                                    options.fields, sub_progress(progress, 0.0, 0.3));
+  run.seconds["standard_parameterization"] = clock.lap();
+  run.patient = parameterize_model(patient.V, patient.tets(), side_mask_of(patient), patient_constraints,
+                                   patient_source, options.fields, sub_progress(progress, 0.3, 0.85));
+  run.seconds["patient_parameterization"] = clock.lap();
+
+  if (!options.allow_inverted_parameterization) {
+    if (!run.patient.health.ok()) throw Error(patient_source, "parameterization: " + health_problem(run.patient.health));
+  }
+  if (run.standard.health.orientation != run.patient.health.orientation)
+    throw Error(patient_source,
+                "the model frame has the opposite handedness to the standard's (mirrored scan?): swap the u0 and u1 "
+                "sides of its constraint set");
+  run.patient_hex = transfer_hex_mesh(standard, run.standard.fields.uvw, run.patient.V, run.patient.T,
+                                      run.patient.fields.uvw, &run.transfer, sub_progress(progress, 0.85, 1.0));
+  run.seconds["mapping"] = clock.lap();
+  return run;
+}
+
+}  // namespace facehex

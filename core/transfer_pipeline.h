@@ -1,0 +1,53 @@
+#pragma once
+// The whole method on in-memory data, shared by the CLI and the GUI: parameterize the standard (through its
+// auxiliary tet mesh) and the patient, check both parameterizations, and map the standard hex mesh onto the patient.
+#include "core/constraint_set.h"
+#include "core/harmonic_fields.h"
+#include "core/hex_transfer.h"
+#include "core/mesh.h"
+#include "core/param_health.h"
+#include "core/progress.h"
+
+#include <map>
+#include <string>
+
+namespace facehex {
+
+// A model's parameterization: its tets (the patient's own, or the standard's auxiliary tets), the resolved
+// constraints, the fields and their health.
+struct ModelParameterization {
+  Eigen::MatrixXd V;   // #V x 3
+  Eigen::MatrixXi T;   // #T x 4
+  ResolvedConstraints constraints;
+  HarmonicFieldsResult fields;
+  ParamHealth health;
+  Eigen::MatrixXi fixed;  // #V x 3, nonzero where a field is fixed by a constraint
+};
+
+ModelParameterization parameterize_model(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T,
+                                         const Eigen::VectorXi& side_mask, const ConstraintSet& constraints,
+                                         const std::string& source, const HarmonicFieldsOptions& options,
+                                         const ProgressCallback& progress = {});
+
+struct TransferOptions {
+  HarmonicFieldsOptions fields;
+  // A parameterization with inverted tets is not a bijection: by default the run stops with an error naming them.
+  bool allow_inverted_parameterization = false;
+};
+
+struct TransferRun {
+  ModelParameterization standard, patient;
+  int standard_auxiliary_non_positive = 0;  // aux tets with non-positive volume (badly shaped standard cells)
+  VolumeMesh patient_hex;
+  TransferStatistics transfer;
+  std::map<std::string, double> seconds;  // stage timings
+};
+
+// standard: hex-dominant mesh with its constraint set; patient: checked tet model (see mesh_check.h) with its set.
+// Sources name the files in error messages.
+TransferRun run_transfer(const VolumeMesh& standard, const ConstraintSet& standard_constraints,
+                         const std::string& standard_source, const VolumeMesh& patient,
+                         const ConstraintSet& patient_constraints, const std::string& patient_source,
+                         const TransferOptions& options, const ProgressCallback& progress = {});
+
+}  // namespace facehex

@@ -1,0 +1,87 @@
+#include "core/hex_transfer.h"
+
+#include "core/hex_to_tets.h"
+#include "core/param_locator.h"
+#include "core/transfer_pipeline.h"
+#include "test_meshes.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+namespace facehex {
+namespace {
+
+TEST(ParamLocator, FindsTheContainingTetAndReproducesThePoint) {
+  VolumeMesh hex = test::hex_box(4, 4, 4);
+  test::jitter_interior(hex, 0.05);
+  const Eigen::MatrixXi T = split_into_tets(hex).T;
+  const ParamLocator locator(hex.V, T);  // identity "parameterization"
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> d(0, 1);
+  int hint = -1;
+  for (int i = 0; i < 500; ++i) {
+    const Eigen::Vector3d q(d(rng), d(rng), d(rng));
+    const auto hit = locator.locate(q, hint);
+    hint = hit.tet;
+    ASSERT_GE(hit.tet, 0);
+    EXPECT_EQ(hit.violation, 0.0);
+    EXPECT_GE(hit.bary.minCoeff(), -1e-12);
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 4; ++k) x += hit.bary(k) * hex.V.row(T(hit.tet, k)).transpose();
+    EXPECT_LT((x - q).norm(), 1e-12);
+  }
+  EXPECT_GT(locator.walk_hits(), 0);
+}
+
+TEST(ParamLocator, PointsOutsideGetTheNearestTet) {
+  const VolumeMesh hex = test::hex_box(2, 2, 2);
+  const Eigen::MatrixXi T = split_into_tets(hex).T;
+  const ParamLocator locator(hex.V, T);
+  const auto hit = locator.locate(Eigen::Vector3d(1.01, 0.5, 0.5));
+  ASSERT_GE(hit.tet, 0);
+  EXPECT_GT(hit.violation, 0);
+  EXPECT_LT(hit.violation, 0.1);
+}
+
+TransferOptions default_options() { return TransferOptions{}; }
+
+// The standard mapped onto its own auxiliary tet model is the identity.
+TEST(HexTransfer, StandardOntoItselfIsTheIdentity) {
+  VolumeMesh standard = test::hex_box(5, 3, 4, 50, 12, 40);
+  test::jitter_interior(standard, 1.0);
+  const VolumeMesh patient = VolumeMesh::from_tets(standard.V, split_into_tets(standard).T);
+  VolumeMesh patient_with_mask = patient;
+  patient_with_mask.point_data = standard.point_data;
+  const TransferRun run = run_transfer(standard, side_constraints(), "standard", patient_with_mask,
+                                       side_constraints(), "patient", default_options());
+  EXPECT_TRUE(run.patient.health.ok());
+  EXPECT_LT((run.patient_hex.V - standard.V).cwiseAbs().maxCoeff(), 1e-6);
+  EXPECT_EQ(run.patient_hex.C, standard.C);
+  EXPECT_EQ(run.transfer.located_nearest, 0);
+}
+
+// A box mapped onto an affinely stretched box: harmonic fields of an affine image are the affine images of the
+// fields, so the map is the affine map itself (and boundary vertices land exactly on the target's faces).
+TEST(HexTransfer, BoxOntoStretchedBoxIsTheAffineMap) {
+  const VolumeMesh standard = test::hex_box(4, 3, 5, 40, 10, 50);
+  VolumeMesh target_hex = test::hex_box(8, 5, 9, 40, 10, 50);
+  const Eigen::Vector3d scale(1.3, 0.7, 1.1);
+  target_hex.V = target_hex.V * scale.asDiagonal();
+  VolumeMesh patient = VolumeMesh::from_tets(target_hex.V, split_into_tets(target_hex).T);
+  patient.point_data = target_hex.point_data;
+  const TransferRun run =
+      run_transfer(standard, side_constraints(), "standard", patient, side_constraints(), "patient", default_options());
+  const Eigen::MatrixXd expected = standard.V * scale.asDiagonal();
+  EXPECT_LT((run.patient_hex.V - expected).cwiseAbs().maxCoeff(), 1e-6);
+  EXPECT_EQ(run.transfer.snap_failures, 0);
+  // Boundary vertices exactly on the target's faces.
+  for (int v = 0; v < standard.V.rows(); ++v)
+    for (int d = 0; d < 3; ++d)
+      if (standard.V(v, d) == 0.0) {
+        EXPECT_EQ(run.patient_hex.V(v, d), 0.0);
+      }
+}
+
+}  // namespace
+}  // namespace facehex
