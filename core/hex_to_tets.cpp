@@ -1,15 +1,13 @@
 #include "core/hex_to_tets.h"
 
+#include "core/cell_faces.h"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <vector>
 
 namespace facehex {
 namespace {
-
-// Faces of positively oriented VTK cells with right-hand normals pointing out (see mesh.h); -1 ends a triangle.
-constexpr int kHexFaces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
-constexpr int kWedgeFaces[5][4] = {{0, 1, 2, -1}, {3, 5, 4, -1}, {0, 3, 4, 1}, {1, 4, 5, 2}, {2, 5, 3, 0}};
 
 double signed_volume(const Eigen::MatrixXd& V, int a, int b, int c, int d) {
   const Eigen::Vector3d pa = V.row(a).transpose(), pb = V.row(b).transpose(), pc = V.row(c).transpose(),
@@ -30,15 +28,12 @@ AuxiliaryTets split_into_tets(const VolumeMesh& mesh) {
       parent.push_back(c);
       continue;
     }
-    const bool hex = mesh.types[c] == CellType::Hex;
-    const int nodes = hex ? 8 : 6, nfaces = hex ? 6 : 5;
     int apex = row(0);
-    for (int i = 1; i < nodes; ++i) apex = std::min(apex, row(i));
-    for (int f = 0; f < nfaces; ++f) {
-      const int* local = hex ? kHexFaces[f] : kWedgeFaces[f];
-      const int n = local[3] < 0 ? 3 : 4;
-      int q[4];
-      for (int k = 0; k < n; ++k) q[k] = row(local[k]);
+    for (int i = 1; i < node_count(mesh.types[c]); ++i) apex = std::min(apex, row(i));
+    for (const LocalFace& face : cell_faces(mesh.types[c])) {
+      const int n = face.size;
+      int q[4] = {-1, -1, -1, -1};
+      for (int k = 0; k < n; ++k) q[k] = row(face.node[k]);
       if (std::find(q, q + n, apex) != q + n) continue;
       if (n == 3) {
         tets.emplace_back(apex, q[0], q[1], q[2]);

@@ -1,5 +1,7 @@
 #include "core/tet_topology.h"
 
+#include "core/cell_faces.h"
+
 #include <algorithm>
 #include <array>
 #include <numeric>
@@ -7,8 +9,8 @@
 namespace facehex {
 namespace {
 
-// Face opposite vertex i of a positively oriented tet (a,b,c,d), ordered so its right-hand normal points out.
-constexpr int kOppositeFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+// Face i of a tet is the one opposite its vertex i, ordered so its right-hand normal points out (cell_faces.h).
+const int* opposite_face_nodes(int i) { return cell_faces(CellType::Tet)[i].node.data(); }
 
 struct FaceRecord {
   std::array<int, 3> key;  // sorted vertex ids
@@ -21,7 +23,8 @@ std::vector<FaceRecord> sorted_faces(const Eigen::MatrixXi& T) {
   faces.reserve(static_cast<size_t>(T.rows()) * 4);
   for (int t = 0; t < T.rows(); ++t)
     for (int i = 0; i < 4; ++i) {
-      std::array<int, 3> k = {T(t, kOppositeFace[i][0]), T(t, kOppositeFace[i][1]), T(t, kOppositeFace[i][2])};
+      const int* o = opposite_face_nodes(i);
+      std::array<int, 3> k = {T(t, o[0]), T(t, o[1]), T(t, o[2])};
       std::sort(k.begin(), k.end());
       faces.push_back({k, t, i});
     }
@@ -49,7 +52,7 @@ BoundaryFaces boundary_faces(const Eigen::MatrixXi& T) {
   for_each_face_group(faces, [&](size_t first, size_t last) {
     if (last - first == 1) {
       const FaceRecord& f = faces[first];
-      const int* o = kOppositeFace[f.local];
+      const int* o = opposite_face_nodes(f.local);
       found.push_back({T(f.tet, o[0]), T(f.tet, o[1]), T(f.tet, o[2]), f.tet});
     } else if (last - first > 2) {
       ++out.nonmanifold_faces;

@@ -1,0 +1,103 @@
+#include "app/cli_args.h"
+
+#include "core/error.h"
+
+#include <algorithm>
+#include <iostream>
+#include <sstream>
+
+namespace facehex::cli {
+
+Args& Args::positional(const std::string& name, const std::string& help, bool required) {
+  specs_.push_back({name, help, "", false, required, true});
+  return *this;
+}
+
+Args& Args::option(const std::string& name, const std::string& help, const std::string& default_value) {
+  specs_.push_back({name, help, default_value, false, false, false});
+  if (!default_value.empty()) values_[name] = default_value;
+  return *this;
+}
+
+Args& Args::flag(const std::string& name, const std::string& help) {
+  specs_.push_back({name, help, "", true, false, false});
+  return *this;
+}
+
+bool Args::parse(const std::vector<std::string>& argv) {
+  const std::string subject = "facehex " + command_;
+  std::vector<const Spec*> positionals;
+  for (const auto& s : specs_)
+    if (s.positional) positionals.push_back(&s);
+  size_t next_positional = 0;
+  for (size_t i = 0; i < argv.size(); ++i) {
+    const std::string& a = argv[i];
+    if (a == "--help" || a == "-h") {
+      std::cout << usage();
+      return false;
+    }
+    if (a.rfind("--", 0) == 0 || (a.size() == 2 && a[0] == '-' && a != "-")) {
+      const std::string name = a == "-o" ? "output" : a.substr(2);
+      const auto spec = std::find_if(specs_.begin(), specs_.end(),
+                                     [&](const Spec& s) { return !s.positional && s.name == name; });
+      if (spec == specs_.end()) throw Error(subject, "unknown option " + a + " (see --help)");
+      if (spec->is_flag) {
+        values_[name] = "1";
+        continue;
+      }
+      if (i + 1 >= argv.size()) throw Error(subject, "option " + a + " needs a value");
+      values_[name] = argv[++i];
+      continue;
+    }
+    if (next_positional < positionals.size())
+      values_[positionals[next_positional++]->name] = a;
+    else
+      rest_.push_back(a);
+  }
+  for (const auto* p : positionals)
+    if (p->required && !values_.count(p->name)) throw Error(subject, "missing " + p->name + " (see --help)");
+  return true;
+}
+
+std::string Args::usage() const {
+  std::ostringstream os;
+  os << "usage: facehex " << command_;
+  for (const auto& s : specs_)
+    if (s.positional) os << (s.required ? " " + s.name : " [" + s.name + "]");
+  os << " [options]\n\n" << summary_ << "\n";
+  for (const auto& s : specs_) {
+    std::string left = s.positional ? "  " + s.name : "  --" + s.name + (s.is_flag ? "" : " VALUE");
+    if (s.name == "output" && !s.positional) left = "  -o, --output VALUE";
+    os << left << std::string(left.size() < 30 ? 30 - left.size() : 1, ' ') << s.help;
+    if (!s.default_value.empty()) os << " (default: " << s.default_value << ")";
+    os << "\n";
+  }
+  return os.str();
+}
+
+bool Args::has(const std::string& name) const { return values_.count(name) > 0; }
+
+std::string Args::get(const std::string& name) const {
+  const auto it = values_.find(name);
+  return it == values_.end() ? std::string() : it->second;
+}
+
+double Args::number(const std::string& name) const {
+  const std::string v = get(name);
+  try {
+    size_t used = 0;
+    const double x = std::stod(v, &used);
+    if (used != v.size()) throw std::invalid_argument(v);
+    return x;
+  } catch (const std::exception&) {
+    throw Error("facehex " + command_, "--" + name + " expects a number, got '" + v + "'");
+  }
+}
+
+int Args::integer(const std::string& name) const {
+  const double x = number(name);
+  if (x != static_cast<int>(x)) throw Error("facehex " + command_, "--" + name + " expects an integer");
+  return static_cast<int>(x);
+}
+
+}  // namespace facehex::cli

@@ -1,0 +1,40 @@
+#pragma once
+// A small command-line parser: positionals and --name VALUE / --flag options, each documented for --help.
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace facehex::cli {
+
+class Args {
+ public:
+  Args(std::string command, std::string summary) : command_(std::move(command)), summary_(std::move(summary)) {}
+
+  Args& positional(const std::string& name, const std::string& help, bool required = true);
+  Args& option(const std::string& name, const std::string& help, const std::string& default_value = "");
+  Args& flag(const std::string& name, const std::string& help);
+
+  // Parses argv (without the program and command names). Returns false when --help was asked (usage printed);
+  // throws facehex::Error("facehex COMMAND", ...) on unknown options or missing values.
+  bool parse(const std::vector<std::string>& argv);
+
+  std::string usage() const;
+  bool has(const std::string& name) const;  // positional or option given (or flag set)
+  std::string get(const std::string& name) const;
+  double number(const std::string& name) const;
+  int integer(const std::string& name) const;
+  const std::vector<std::string>& rest() const { return rest_; }
+
+ private:
+  struct Spec {
+    std::string name, help, default_value;
+    bool is_flag = false, required = false, positional = false;
+  };
+  std::string command_, summary_;
+  std::vector<Spec> specs_;
+  std::map<std::string, std::string> values_;
+  std::vector<std::string> rest_;  // extra positionals
+};
+
+}  // namespace facehex::cli

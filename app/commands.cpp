@@ -1,0 +1,334 @@
+#include "app/commands.h"
+
+#include "app/cli_args.h"
+#include "app/report.h"
+#include "app/terminal_progress.h"
+#include "core/constraint_set.h"
+#include "core/error.h"
+#include "core/hex_to_tets.h"
+#include "core/io/mesh_io.h"
+#include "core/mesh_check.h"
+#include "core/resources.h"
+#include "core/shell_sides.h"
+#include "core/sides.h"
+#include "core/text_file.h"
+#include "core/transfer_pipeline.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <set>
+
+namespace facehex::cli {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+void add_field_options(Args& args) {
+  args.option("iterations", "orthogonality-improvement iterations (paper: 6)", "6")
+      .option("order", "orthogonalization order: basic, second, third field (e.g. wuv)", "wuv");
+}
+
+HarmonicFieldsOptions field_options(const Args& args) {
+  HarmonicFieldsOptions o;
+  o.orthogonality_iterations = args.integer("iterations");
+  const std::string order = args.get("order");
+  if (order.size() != 3 || std::set<char>(order.begin(), order.end()) != std::set<char>{'u', 'v', 'w'})
+    throw Error("--order", "expects a permutation of u, v, w such as wuv, got '" + order + "'");
+  for (int i = 0; i < 3; ++i) o.order[i] = order[i] - 'u';
+  return o;
+}
+
+// A patient (tet) model from a tet mesh or a closed surface, checked and positively oriented.
+VolumeMesh load_tet_model(const std::string& path, double edge_length) {
+  MeshReadOptions ro;
+  ro.target_edge_length = edge_length;
+  VolumeMesh mesh = read_volume_mesh(path, ro);
+  const TetMeshCheck check = check_and_orient_tet_mesh(mesh, path);
+  if (check.reoriented) std::cerr << "note: " << path << ": all tets were negatively oriented; flipped\n";
+  return mesh;
+}
+
+// The constraint set of a model: the given file, else the six sides from its "side_mask".
+ConstraintSet load_constraints(const std::string& path, const VolumeMesh& mesh, const std::string& mesh_path) {
+  if (!path.empty()) return read_constraint_set(path);
+  if (side_mask_of(mesh).size() == 0)
+    throw Error(mesh_path, "no constraint set given and the model has no \"side_mask\" array (use --constraints)");
+  return side_constraints();
+}
+
+void write_json(const std::string& path, const json& j) { write_text_file(path, j.dump(2) + "\n"); }
+
+void attach_quality(VolumeMesh& mesh) {
+  const ElementQuality q = element_quality(mesh);
+  mesh.cell_data["shape"] = q.shape;
+  mesh.cell_data["scaled_jacobian"] = q.scaled_jacobian;
+}
+
+void attach_fields(VolumeMesh& mesh, const ModelParameterization& p) {
+  mesh.point_data["u"] = p.fields.uvw.col(0);
+  mesh.point_data["v"] = p.fields.uvw.col(1);
+  mesh.point_data["w"] = p.fields.uvw.col(2);
+  mesh.point_data["uvw"] = p.fields.uvw;
+  mesh.point_data["uvw_initial"] = p.fields.uvw_initial;
+  Eigen::MatrixXd fixed = p.fixed.cast<double>();
+  mesh.point_data["fixed_uvw"] = fixed;
+}
+
+// Writes the tet model with its fields and per-tet gradients (before/after) and gradient angles.
+VolumeMesh parameterized_tet_mesh(const ModelParameterization& p, const VolumeMesh* source) {
+  VolumeMesh m = VolumeMesh::from_tets(p.V, p.T);
+  if (source && source->is_tet_mesh()) m.point_data = source->point_data;
+  attach_fields(m, p);
+  for (int f = 0; f < 3; ++f) {
+    m.cell_data[std::string("grad_") + kFieldNames[f]] = p.fields.gradients[f];
+    m.cell_data[std::string("grad_") + kFieldNames[f] + "_initial"] = p.fields.gradients_initial[f];
+  }
+  return m;
+}
+
+struct TransferInputs {
+  BundledModel standard;
+  std::string standard_constraints;  // empty: the standard's bundled/sibling constraints
+  std::string patient, patient_constraints;
+  double edge_length = 2.0;
+  TransferOptions options;
+};
+
+struct TransferOutputs {
+  VolumeMesh standard, patient;
+  TransferRun run;
+  MeshQualityReport standard_quality, patient_quality;
+  DistanceSummary distance;
+};
+
+TransferOutputs execute_transfer(const TransferInputs& in) {
+  TransferOutputs out;
+  TerminalProgress progress;
+  std::cerr << "reading the standard " << in.standard.mesh << "\n";
+  out.standard = read_volume_mesh(in.standard.mesh);
+  const std::string std_constraints = in.standard_constraints.empty() ? in.standard.constraints : in.standard_constraints;
+  const ConstraintSet standard_set = read_constraint_set(std_constraints);
+  std::cerr << "reading the patient " << in.patient << "\n";
+  out.patient = load_tet_model(in.patient, in.edge_length);
+  const ConstraintSet patient_set = load_constraints(in.patient_constraints, out.patient, in.patient);
+  out.run = run_transfer(out.standard, standard_set, std_constraints, out.patient, patient_set,
+                         in.patient_constraints.empty() ? in.patient : in.patient_constraints, in.options,
+                         progress.callback());
+  progress.finish();
+  out.standard_quality = quality_report(out.standard, nullptr);
+  out.patient_quality = quality_report(out.run.patient_hex, &out.standard);
+  out.distance = side_vertex_distances(out.run, out.standard);
+  return out;
+}
+
+void add_transfer_options(Args& args) {
+  args.option("standard", "bundled standard name or a hex mesh file", "artisynth-refface")
+      .option("standard-constraints", "constraint set of the standard (default: the one bundled with it)")
+      .option("edge-length", "target edge length (mm) when the patient is a closed surface", "2")
+      .flag("allow-inverted", "continue even if the patient parameterization has inverted tets");
+  add_field_options(args);
+}
+
+TransferInputs transfer_inputs(const Args& args, const std::string& patient, const std::string& patient_constraints) {
+  TransferInputs in;
+  in.standard = find_standard(args.get("standard"));
+  in.standard_constraints = args.get("standard-constraints");
+  in.patient = patient;
+  in.patient_constraints = patient_constraints;
+  in.edge_length = args.number("edge-length");
+  in.options.fields = field_options(args);
+  in.options.allow_inverted_parameterization = args.has("allow-inverted");
+  return in;
+}
+
+}  // namespace
+
+int cmd_info(const Argv& argv) {
+  Args args("info", "Prints sizes, cell types, bounding box, volume and side labels of a mesh.");
+  args.positional("MESH", "mesh file");
+  if (!args.parse(argv)) return 0;
+  const std::string path = args.get("MESH");
+  const VolumeMesh m = read_volume_mesh(path);
+  const Eigen::RowVector3d lo = m.V.colwise().minCoeff(), hi = m.V.colwise().maxCoeff();
+  std::cout << path << "\n  vertices " << m.num_vertices() << "\n  cells " << m.num_cells() << " (tet "
+            << m.count(CellType::Tet) << ", wedge " << m.count(CellType::Wedge) << ", hex " << m.count(CellType::Hex)
+            << ")\n  bounding box [" << lo << "] - [" << hi << "] mm\n";
+  const Eigen::VectorXi mask = side_mask_of(m);
+  if (mask.size() > 0) {
+    std::cout << "  side vertices:";
+    for (int s = 0; s < kNumSides; ++s)
+      std::cout << " " << kSideNames[s] << " "
+                << std::count_if(mask.data(), mask.data() + mask.size(),
+                                 [&](int m) { return (m & side_bit(static_cast<Side>(s))) != 0; });
+    std::cout << "\n";
+  }
+  std::cout << "  arrays:";
+  for (const auto& [name, a] : m.point_data) std::cout << " " << name << "(point," << a.cols() << ")";
+  for (const auto& [name, a] : m.cell_data) std::cout << " " << name << "(cell," << a.cols() << ")";
+  std::cout << "\n";
+  return 0;
+}
+
+int cmd_convert(const Argv& argv) {
+  Args args("convert", "Converts a mesh to another format (a closed surface is tetrahedralized first).");
+  args.positional("IN", "input mesh").positional("OUT", "output mesh (.vtu, .vtk, .msh)");
+  args.option("edge-length", "target edge length (mm) for surfaces", "2");
+  if (!args.parse(argv)) return 0;
+  MeshReadOptions ro;
+  ro.target_edge_length = args.number("edge-length");
+  const VolumeMesh m = read_volume_mesh(args.get("IN"), ro);
+  write_volume_mesh(args.get("OUT"), m);
+  std::cout << "wrote " << args.get("OUT") << " (" << m.num_vertices() << " vertices, " << m.num_cells() << " cells)\n";
+  return 0;
+}
+
+int cmd_sides(const Argv& argv) {
+  Args args("sides",
+            "Labels the six sides of a layered hex-dominant shell (a facial standard) from its element structure and "
+            "writes it with the point-data array side_mask. Frame: +x lateral, +y anterior, +z superior.");
+  args.positional("MESH", "hex-dominant mesh").option("output", "output .vtu");
+  args.option("max-layers", "most element layers through the thickness", "8");
+  if (!args.parse(argv)) return 0;
+  if (!args.has("output")) throw Error("facehex sides", "missing -o OUTPUT");
+  VolumeMesh m = read_volume_mesh(args.get("MESH"));
+  ShellFrame frame = default_shell_frame(m.V);
+  frame.max_layers = args.integer("max-layers");
+  const ShellSides sides = label_shell_sides(m, frame);
+  for (int s = 0; s < kNumSides; ++s)
+    if (sides.faces_per_side[s] == 0)
+      throw Error(args.get("MESH"), std::string("no boundary face found for side ") + kSideNames[s]);
+  m.point_data[kSideMaskArray] = sides.side_mask.cast<double>();
+  write_volume_mesh(args.get("output"), m);
+  std::cout << "boundary faces per side:";
+  for (int s = 0; s < kNumSides; ++s) std::cout << " " << kSideNames[s] << " " << sides.faces_per_side[s];
+  std::cout << ", openings " << sides.opening_faces << "; vertices on opposite sides left free "
+            << sides.conflicting_vertices << "\nwrote " << args.get("output") << "\n";
+  return 0;
+}
+
+int cmd_fields(const Argv& argv) {
+  Args args("fields",
+            "Computes the three harmonic fields u, v, w of a model with its constraint set, improves their "
+            "orthogonality, and writes the parameterized tet mesh (a hex mesh is split into its auxiliary tets).");
+  args.positional("MODEL", "tet model, closed surface, or hex-dominant mesh")
+      .option("constraints", "constraint-set JSON (default: the six sides from side_mask)")
+      .option("output", "output .vtu")
+      .option("edge-length", "target edge length (mm) when the model is a closed surface", "2");
+  add_field_options(args);
+  if (!args.parse(argv)) return 0;
+  if (!args.has("output")) throw Error("facehex fields", "missing -o OUTPUT");
+  const std::string path = args.get("MODEL");
+  MeshReadOptions ro;
+  ro.target_edge_length = args.number("edge-length");
+  VolumeMesh mesh = read_volume_mesh(path, ro);
+  Eigen::MatrixXi T;
+  if (mesh.is_tet_mesh()) {
+    check_and_orient_tet_mesh(mesh, path);
+    T = mesh.tets();
+  } else {
+    T = split_into_tets(mesh).T;
+  }
+  const ConstraintSet set = load_constraints(args.get("constraints"), mesh, path);
+  TerminalProgress progress;
+  const ModelParameterization p =
+      parameterize_model(mesh.V, T, side_mask_of(mesh), set, args.has("constraints") ? args.get("constraints") : path,
+                         field_options(args), progress.callback());
+  progress.finish();
+  write_volume_mesh(args.get("output"), parameterized_tet_mesh(p, &mesh));
+  std::cout << "parameterization: " << p.health.inverted << " inverted, "
+            << (p.health.degenerate - p.health.flat_by_constraint) << " degenerate of " << p.health.tets << " tets\n"
+            << "gradient angles, mean |90 - angle|: " << p.fields.angles_initial.mean_deviation_from_90
+            << " deg before, " << p.fields.angles.mean_deviation_from_90 << " deg after\n"
+            << "wrote " << args.get("output") << "\n";
+  return p.health.ok() ? 0 : 3;
+}
+
+int cmd_map(const Argv& argv) {
+  Args args("map", "Maps a standard hex mesh onto a patient tet model through their harmonic parameterizations.");
+  args.option("patient", "patient tet model or closed surface")
+      .option("patient-constraints", "constraint set of the patient (default: six sides from side_mask)")
+      .option("output", "output hex mesh (.vtu, .vtk, .msh)")
+      .option("report", "write the JSON report here too");
+  add_transfer_options(args);
+  if (!args.parse(argv)) return 0;
+  if (!args.has("patient") || !args.has("output")) throw Error("facehex map", "needs --patient and -o OUTPUT");
+  TransferOutputs out = execute_transfer(transfer_inputs(args, args.get("patient"), args.get("patient-constraints")));
+  attach_quality(out.run.patient_hex);
+  write_volume_mesh(args.get("output"), out.run.patient_hex);
+  if (args.has("report"))
+    write_json(args.get("report"), run_report(out.run, out.standard_quality, out.patient_quality, out.distance));
+  std::cout << run_summary_text(out.run, out.standard_quality, out.patient_quality, out.distance) << "wrote "
+            << args.get("output") << "\n";
+  return 0;
+}
+
+int cmd_quality(const Argv& argv) {
+  Args args("quality", "Element quality of a hex-dominant mesh; with --reference, the dihedral-angle distortion.");
+  args.positional("MESH", "hex-dominant mesh").option("reference", "the standard it was mapped from").flag("json", "print JSON");
+  if (!args.parse(argv)) return 0;
+  const VolumeMesh m = read_volume_mesh(args.get("MESH"));
+  VolumeMesh reference;
+  if (args.has("reference")) reference = read_volume_mesh(args.get("reference"));
+  const MeshQualityReport q = quality_report(m, args.has("reference") ? &reference : nullptr);
+  if (args.has("json"))
+    std::cout << to_json(q).dump(2) << "\n";
+  else
+    std::cout << args.get("MESH") << "\n" << quality_text(q);
+  return q.summary.inverted == 0 ? 0 : 3;
+}
+
+int cmd_run(const Argv& argv) {
+  Args args("run",
+            "End to end: the patient model (default: the bundled sample patient) is parameterized, the standard "
+            "mapped onto it, and OUT/ gets patient_model.vtu, standard_hex.vtu, patient_hex.vtu and report.json.");
+  args.positional("INPUT", "patient tet model or closed surface", false)
+      .option("output", "output folder")
+      .option("constraints", "constraint set of the patient (default: bundled, or six sides from side_mask)");
+  add_transfer_options(args);
+  if (!args.parse(argv)) return 0;
+  if (!args.has("output")) throw Error("facehex run", "missing -o OUTPUT_FOLDER");
+  std::string input = args.get("INPUT"), constraints = args.get("constraints");
+  if (input.empty()) {
+    const BundledModel patient = default_patient();
+    input = patient.mesh;
+    if (constraints.empty() && fs::exists(patient.constraints)) constraints = patient.constraints;
+    std::cerr << "no input given: running the bundled demo patient '" << patient.name << "'\n";
+  }
+  const fs::path out_dir = args.get("output");
+  std::error_code ec;
+  fs::create_directories(out_dir, ec);
+  if (ec) throw Error(out_dir.string(), "cannot create the output folder: " + ec.message());
+
+  TransferOutputs out = execute_transfer(transfer_inputs(args, input, constraints));
+  VolumeMesh patient_model = parameterized_tet_mesh(out.run.patient, &out.patient);
+  VolumeMesh standard_hex = out.standard;
+  attach_fields(standard_hex, out.run.standard);
+  attach_quality(standard_hex);
+  attach_quality(out.run.patient_hex);
+  out.run.patient_hex.point_data["uvw"] = out.run.standard.fields.uvw;
+  if (side_mask_of(out.standard).size() > 0)
+    out.run.patient_hex.point_data[kSideMaskArray] = out.standard.point_data.at(kSideMaskArray);
+
+  write_volume_mesh((out_dir / "patient_model.vtu").string(), patient_model);
+  write_volume_mesh((out_dir / "standard_hex.vtu").string(), standard_hex);
+  write_volume_mesh((out_dir / "patient_hex.vtu").string(), out.run.patient_hex);
+  json report = run_report(out.run, out.standard_quality, out.patient_quality, out.distance);
+  report["inputs"] = {{"patient", input},
+                      {"patient_constraints", constraints},
+                      {"standard", out.standard.num_vertices() > 0 ? args.get("standard") : ""}};
+  write_json((out_dir / "report.json").string(), report);
+  std::cout << run_summary_text(out.run, out.standard_quality, out.patient_quality, out.distance) << "outputs in "
+            << out_dir.string() << "/: patient_model.vtu, standard_hex.vtu, patient_hex.vtu, report.json\n";
+  return out.patient_quality.summary.inverted == 0 ? 0 : 3;
+}
+
+int cmd_standards(const Argv& argv) {
+  Args args("standards", "Lists the bundled standard hex meshes (use a name with --standard).");
+  if (!args.parse(argv)) return 0;
+  for (const auto& s : bundled_standards()) std::cout << s.name << "\t" << s.description << "\n\t" << s.mesh << "\n";
+  return 0;
+}
+
+}  // namespace facehex::cli

@@ -1,0 +1,20 @@
+#pragma once
+// The facehex sub-commands. Each takes its arguments (after the command name) and returns the exit code; errors
+// are thrown as facehex::Error and printed by main.
+#include <string>
+#include <vector>
+
+namespace facehex::cli {
+
+using Argv = std::vector<std::string>;
+
+int cmd_info(const Argv& argv);
+int cmd_convert(const Argv& argv);
+int cmd_sides(const Argv& argv);
+int cmd_fields(const Argv& argv);
+int cmd_map(const Argv& argv);
+int cmd_quality(const Argv& argv);
+int cmd_run(const Argv& argv);
+int cmd_standards(const Argv& argv);
+
+}  // namespace facehex::cli

@@ -1,0 +1,169 @@
+#include "app/report.h"
+
+#include "core/constraint_set.h"
+#include "core/tet_topology.h"
+
+#include <cstdio>
+#include <sstream>
+
+namespace facehex::cli {
+namespace {
+
+using nlohmann::json;
+
+std::string fmt(const char* format, double x) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, x);
+  return buf;
+}
+
+json angles_json(const AngleStatistics& a) {
+  return {{"mean_deviation_from_90_deg", a.mean_deviation_from_90},
+          {"fraction_within_10_deg_of_90", a.fraction_within_10_of_90},
+          {"histogram_bin_deg", AngleStatistics::kBinWidth},
+          {"histogram", a.histogram}};
+}
+
+json health_json(const ParamHealth& h) {
+  return {{"tets", h.tets},
+          {"orientation", h.orientation},
+          {"inverted", h.inverted},
+          {"degenerate", h.degenerate},
+          {"flat_by_constraint", h.flat_by_constraint},
+          {"coordinates_outside_cube", h.outside_cube},
+          {"ok", h.ok()},
+          {"first_inverted_tets", h.inverted_tets}};
+}
+
+json parameterization_json(const ModelParameterization& m) {
+  json fixed = json::object();
+  for (int f = 0; f < 3; ++f) fixed[kFieldNames[f]] = m.constraints.fields[f].vertices.size();
+  return {{"vertices", m.V.rows()},
+          {"tets", m.T.rows()},
+          {"fixed_vertices", fixed},
+          {"health", health_json(m.health)},
+          {"gradient_angles_before", angles_json(m.fields.angles_initial)},
+          {"gradient_angles_after", angles_json(m.fields.angles)},
+          {"seconds", m.fields.seconds}};
+}
+
+}  // namespace
+
+MeshQualityReport quality_report(const VolumeMesh& mesh, const VolumeMesh* reference) {
+  MeshQualityReport q;
+  q.summary = summarize(mesh, element_quality(mesh));
+  if (reference) {
+    q.has_distortion = true;
+    q.distortion = dihedral_distortion(*reference, mesh);
+  }
+  return q;
+}
+
+json to_json(const MeshQualityReport& q) {
+  const QualitySummary& s = q.summary;
+  json j = {{"cells", s.cells},
+            {"hexes", s.hexes},
+            {"wedges", s.wedges},
+            {"inverted", s.inverted},
+            {"shape_min", s.shape_min},
+            {"shape_mean", s.shape_mean},
+            {"scaled_jacobian_min", s.scaled_jacobian_min},
+            {"scaled_jacobian_mean", s.scaled_jacobian_mean},
+            {"percent_scaled_jacobian_below_0_3", 100.0 * s.fraction_scaled_jacobian_below_0_3}};
+  if (q.has_distortion) {
+    json bins = json::array();
+    const auto& lo = DihedralDistortion::kBinLower;
+    for (size_t b = 0; b < lo.size(); ++b)
+      bins.push_back({{"from_deg", lo[b]}, {"to_deg", b + 1 < lo.size() ? json(lo[b + 1]) : json(nullptr)},
+                      {"percent", q.distortion.percent[b]}});
+    j["dihedral_distortion"] = {{"bins", bins},
+                                {"max_deg", q.distortion.max_deg},
+                                {"mean_deg", q.distortion.mean_deg},
+                                {"percent_below_16_deg", q.distortion.percent[0] + q.distortion.percent[1]},
+                                {"angles", q.distortion.angles}};
+  }
+  return j;
+}
+
+std::string quality_text(const MeshQualityReport& q) {
+  const QualitySummary& s = q.summary;
+  std::ostringstream os;
+  os << "  cells " << s.cells << " (" << s.hexes << " hex, " << s.wedges << " wedge), inverted " << s.inverted << "\n"
+     << "  shape           min " << fmt("%.3f", s.shape_min) << "  mean " << fmt("%.3f", s.shape_mean) << "\n"
+     << "  scaled Jacobian min " << fmt("%.3f", s.scaled_jacobian_min) << "  mean "
+     << fmt("%.3f", s.scaled_jacobian_mean) << "  below 0.3: " << fmt("%.2f", 100 * s.fraction_scaled_jacobian_below_0_3)
+     << " %\n";
+  if (q.has_distortion) {
+    const auto& d = q.distortion;
+    const auto& lo = DihedralDistortion::kBinLower;
+    os << "  dihedral-angle distortion against the standard (paper Table 1):\n";
+    for (size_t b = 0; b < lo.size(); ++b) {
+      const std::string range = b + 1 < lo.size() ? fmt("%.0f", lo[b]) + "-" + fmt("%.0f", lo[b + 1]) + " deg"
+                                                  : "> " + fmt("%.0f", lo[b]) + " deg";
+      os << "    " << range << std::string(12 - std::min<size_t>(12, range.size()), ' ') << fmt("%5.1f", d.percent[b])
+         << " %\n";
+    }
+    os << "    max " << fmt("%.1f", d.max_deg) << " deg, mean " << fmt("%.2f", d.mean_deg) << " deg\n";
+  }
+  return os.str();
+}
+
+DistanceSummary side_vertex_distances(const TransferRun& run, const VolumeMesh& standard) {
+  const Eigen::VectorXi mask = side_mask_of(standard);
+  std::vector<int> rows;
+  for (int v = 0; v < mask.size(); ++v)
+    if (mask(v) != 0) rows.push_back(v);
+  Eigen::MatrixXd points(static_cast<Eigen::Index>(rows.size()), 3);
+  for (size_t i = 0; i < rows.size(); ++i) points.row(static_cast<Eigen::Index>(i)) = run.patient_hex.V.row(rows[i]);
+  const BoundaryFaces boundary = boundary_faces(run.patient.T);
+  return summarize_distances(distances_to_surface(points, run.patient.V, boundary.F));
+}
+
+json run_report(const TransferRun& run, const MeshQualityReport& standard_quality,
+                const MeshQualityReport& patient_quality, const DistanceSummary& distance) {
+  const TransferStatistics& t = run.transfer;
+  double total = 0;
+  for (const auto& [stage, s] : run.seconds) total += s;
+  return {{"format", "facehex-report"},
+          {"version", 1},
+          {"seconds", run.seconds},
+          {"total_seconds", total},
+          {"standard",
+           {{"parameterization", parameterization_json(run.standard)},
+            {"auxiliary_tets_non_positive", run.standard_auxiliary_non_positive},
+            {"quality", to_json(standard_quality)}}},
+          {"patient", {{"parameterization", parameterization_json(run.patient)}}},
+          {"transfer",
+           {{"vertices", t.vertices},
+            {"located_inside", t.located_inside},
+            {"located_nearest", t.located_nearest},
+            {"max_violation", t.max_violation},
+            {"snapped_to_boundary", t.snapped_to_boundary},
+            {"snap_failures", t.snap_failures},
+            {"walk_hits", t.walk_hits},
+            {"side_vertex_distance_mm",
+             {{"points", distance.points}, {"max", distance.max}, {"p95", distance.p95}, {"mean", distance.mean}}}}},
+          {"patient_hex", {{"quality", to_json(patient_quality)}}}};
+}
+
+std::string run_summary_text(const TransferRun& run, const MeshQualityReport& standard_quality,
+                             const MeshQualityReport& patient_quality, const DistanceSummary& distance) {
+  std::ostringstream os;
+  double total = 0;
+  for (const auto& [stage, s] : run.seconds) total += s;
+  const ParamHealth& h = run.patient.health;
+  os << "patient model: " << run.patient.V.rows() << " vertices, " << run.patient.T.rows() << " tets; "
+     << "parameterization: " << h.inverted << " inverted, " << (h.degenerate - h.flat_by_constraint)
+     << " degenerate tets\n"
+     << "gradient angles, mean |90 - angle|: " << fmt("%.1f", run.patient.fields.angles_initial.mean_deviation_from_90)
+     << " deg before, " << fmt("%.1f", run.patient.fields.angles.mean_deviation_from_90)
+     << " deg after the orthogonality improvement\n"
+     << "standard hex mesh:\n"
+     << quality_text(standard_quality) << "patient hex mesh:\n"
+     << quality_text(patient_quality) << "  side vertices off the patient surface: p95 "
+     << fmt("%.2g", distance.p95) << " mm, max " << fmt("%.2g", distance.max) << " mm\n"
+     << "time: " << fmt("%.2f", total) << " s\n";
+  return os.str();
+}
+
+}  // namespace facehex::cli

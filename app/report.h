@@ -1,0 +1,33 @@
+#pragma once
+// The run report: stage timings, sizes, parameterization health, transfer statistics and the quality tables of
+// the paper (Table 1: dihedral-angle distortion; Table 2: mean element shape), as JSON for scripts and as a short
+// text summary for people.
+#include "core/mesh.h"
+#include "core/quality/hex_quality.h"
+#include "core/quality/surface_distance.h"
+#include "core/transfer_pipeline.h"
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace facehex::cli {
+
+struct MeshQualityReport {
+  QualitySummary summary;
+  bool has_distortion = false;
+  DihedralDistortion distortion;
+};
+
+MeshQualityReport quality_report(const VolumeMesh& mesh, const VolumeMesh* reference);
+nlohmann::json to_json(const MeshQualityReport& q);
+std::string quality_text(const MeshQualityReport& q);
+
+// Distances (mm) from the mapped standard vertices that lie on a side (side_mask != 0) to the patient's boundary.
+DistanceSummary side_vertex_distances(const TransferRun& run, const VolumeMesh& standard);
+
+nlohmann::json run_report(const TransferRun& run, const MeshQualityReport& standard_quality,
+                          const MeshQualityReport& patient_quality, const DistanceSummary& distance);
+std::string run_summary_text(const TransferRun& run, const MeshQualityReport& standard_quality,
+                             const MeshQualityReport& patient_quality, const DistanceSummary& distance);
+
+}  // namespace facehex::cli

@@ -1,0 +1,30 @@
+#pragma once
+// The bundled data under resources/ (standards, sample patients). The folder is the source tree's resources/
+// (compiled in), unless the environment variable FACEHEX_RESOURCES names another one.
+//
+// Layout: resources/standards/NAME/{standard.vtu, constraints.json, README.md}
+//         resources/patients/NAME/{patient.vtu, constraints.json}
+#include <string>
+#include <vector>
+
+namespace facehex {
+
+std::string resource_dir();
+
+struct BundledModel {
+  std::string name;
+  std::string mesh;         // path of the mesh file
+  std::string constraints;  // path of its constraint-set JSON
+  std::string description;  // first line of its README.md, if any
+};
+
+std::vector<BundledModel> bundled_standards();
+std::vector<BundledModel> bundled_patients();
+
+// A bundled standard by name, or a mesh path (its constraints: NAME.json beside it, else constraints.json in its
+// folder). Throws facehex::Error when neither exists.
+BundledModel find_standard(const std::string& name_or_path);
+BundledModel default_standard();
+BundledModel default_patient();
+
+}  // namespace facehex
