@@ -9,32 +9,36 @@ namespace facehex {
 
 namespace {
 
-// Each row (k; a, b, c). The orders follow from mesh.h: hex bottom (0,1,2,3) turns counter-clockwise seen from the
-// top, so at a bottom node (next, previous, up) is right-handed and at a top node (previous, next, down) is. The
-// wedge bottom (0,1,2) turns clockwise seen from the top, hence the mirrored pattern. Tet corners are the even
-// permutations of (0,1,2,3) that start with k.
-constexpr std::array<std::array<int, 4>, 8> kHexCorners = {{{0, 1, 3, 4},
-                                                           {1, 2, 0, 5},
-                                                           {2, 3, 1, 6},
-                                                           {3, 0, 2, 7},
-                                                           {4, 7, 5, 0},
-                                                           {5, 4, 6, 1},
-                                                           {6, 5, 7, 2},
-                                                           {7, 6, 4, 3}}};
+// Each row (k; a, b, c). The orders follow from mesh.h. The hex bottom (0,1,2,3) turns counter-clockwise seen from
+// the top, so (next, previous, up) is right-handed at a bottom node and (previous, next, down) at a top node. The
+// wedge bottom (0,1,2) turns clockwise seen from the top, so there it is (previous, next, up) at a bottom node and
+// (next, previous, down) at a top node. Tet corners are the even permutations of (0,1,2,3) starting with k.
+constexpr std::array<std::array<int, 4>, 8> kHexCorners = {
+    {{0, 1, 3, 4}, {1, 2, 0, 5}, {2, 3, 1, 6}, {3, 0, 2, 7}, {4, 7, 5, 0}, {5, 4, 6, 1}, {6, 5, 7, 2}, {7, 6, 4, 3}}};
 constexpr std::array<std::array<int, 4>, 6> kWedgeCorners = {
     {{0, 2, 1, 3}, {1, 0, 2, 4}, {2, 1, 0, 5}, {3, 4, 5, 0}, {4, 5, 3, 1}, {5, 3, 4, 2}}};
 constexpr std::array<std::array<int, 4>, 4> kTetCorners = {{{0, 1, 2, 3}, {1, 2, 0, 3}, {2, 0, 1, 3}, {3, 0, 2, 1}}};
 
+// Makes the ideal element's scaled Jacobian 1 (see the header).
 double scaled_jacobian_factor(CellType type) {
-  switch (type) {
-    case CellType::Tet: return std::sqrt(2.0);
-    case CellType::Wedge: return 2.0 / std::sqrt(3.0);
-    case CellType::Hex: return 1.0;
-  }
+  if (type == CellType::Tet) return std::sqrt(2.0);
+  if (type == CellType::Wedge) return 2.0 / std::sqrt(3.0);
   return 1.0;
 }
 
 }  // namespace
+
+CellNodes ideal_cell(CellType type) {
+  const double h = std::sqrt(3.0) / 2;
+  CellNodes X = CellNodes::Zero();
+  if (type == CellType::Tet)
+    X.topRows(4) << 0, 0, 0, 1, 0, 0, 0.5, h, 0, 0.5, h / 3, std::sqrt(2.0 / 3);
+  else if (type == CellType::Wedge)
+    X.topRows(6) << 0, 0, 0, 0.5, h, 0, 1, 0, 0, 0, 0, 1, 0.5, h, 1, 1, 0, 1;
+  else
+    X << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1;
+  return X;
+}
 
 CellNodes cell_nodes(const VolumeMesh& mesh, int cell) {
   CellNodes X = CellNodes::Zero();
@@ -44,11 +48,8 @@ CellNodes cell_nodes(const VolumeMesh& mesh, int cell) {
 
 const std::array<int, 4>& corner_nodes(CellType type, int k) {
   assert(k >= 0 && k < node_count(type));
-  switch (type) {
-    case CellType::Tet: return kTetCorners[k];
-    case CellType::Wedge: return kWedgeCorners[k];
-    case CellType::Hex: break;
-  }
+  if (type == CellType::Tet) return kTetCorners[k];
+  if (type == CellType::Wedge) return kWedgeCorners[k];
   return kHexCorners[k];
 }
 
@@ -70,7 +71,7 @@ double min_corner_determinant(CellType type, const CellNodes& X) {
 }
 
 double scaled_jacobian(CellType type, const CellNodes& X) {
-  double lowest = 1;
+  double lowest = 1;  // det(A) / lengths lies in [-1, 1] (Hadamard)
   for (int k = 0; k < node_count(type); ++k) {
     const Eigen::Matrix3d A = corner_jacobian(type, X, k);
     const double lengths = A.col(0).norm() * A.col(1).norm() * A.col(2).norm();

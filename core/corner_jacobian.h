@@ -27,6 +27,11 @@ using CellNodes = Eigen::Matrix<double, 8, 3>;
 // Per-corner values of one cell: entries 0 .. node_count(type)-1 used.
 using CornerValues = Eigen::Matrix<double, 8, 1>;
 
+// The ideal cell of each type, unit edges, positively oriented, rows in VTK order: the unit cube [0,1]^3; the prism
+// of height 1 over the equilateral triangle (0,0,0), (1/2,sqrt(3)/2,0), (1,0,0) (z = 0, then z = 1); the regular tet
+// (0,0,0), (1,0,0), (1/2,sqrt(3)/2,0), apex above. Quality measures are normalized so that it scores 1.
+CellNodes ideal_cell(CellType type);
+
 // Gathers the nodes of `cell` (an index into mesh.C) from mesh.V.
 CellNodes cell_nodes(const VolumeMesh& mesh, int cell);
 

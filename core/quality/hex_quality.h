@@ -3,12 +3,15 @@
 // against its standard (paper Table 1).
 //
 // Measures per cell:
-//  - shape: Verdict hex "shape" (Knupp), via vtkMeshQuality (measure set explicitly). For wedges, VTK 9.1's
-//    Verdict has no wedge shape; we use the same definition on the wedge's corners (3 / mean of the corner
-//    condition numbers of the corner Jacobians normalized to the ideal wedge), documented in hex_quality.cpp.
+//  - shape: Verdict hex "shape" (Knupp), via vtkMeshQuality (measure set explicitly). VTK 9.1 computes it as the
+//    minimum over the 8 corners of 3 det(A_k)^(2/3) / |A_k|_F^2 (A_k the corner Jacobian; 0 if any det <= 0), NOT as
+//    the mean its documentation suggests. VTK 9.1's Verdict has no wedge shape; wedges get the same definition on
+//    their 6 corners with A_k normalized by the ideal (equilateral) wedge's corner, documented in hex_quality.cpp.
+//    Tets: Verdict tet shape. All in [0, 1], 1 for the ideal cell of corner_jacobian.h.
 //  - scaled_jacobian: minimum over corners of the corner Jacobian determinant divided by the product of the three
-//    edge lengths at that corner (hexes: Verdict via vtkMeshQuality; wedges: corner_jacobian.h).
-//  - inverted: any corner Jacobian <= 0.
+//    edge lengths at that corner, in [-1, 1] (hexes and tets: Verdict via vtkMeshQuality, the same 8 / 4 corners
+//    as corner_jacobian.h; wedges: corner_jacobian.h, normalized so the equilateral prism gives 1).
+//  - inverted: any corner Jacobian <= 0 (corner_jacobian.h).
 #include "core/mesh.h"
 
 #include <Eigen/Core>
@@ -26,10 +29,10 @@ ElementQuality element_quality(const VolumeMesh& mesh);
 
 struct QualitySummary {
   int cells = 0, hexes = 0, wedges = 0;
-  int inverted = 0;                  // cells with a corner Jacobian <= 0
+  int inverted = 0;  // cells with a corner Jacobian <= 0
   double shape_min = 0, shape_mean = 0;
   double scaled_jacobian_min = 0, scaled_jacobian_mean = 0;
-  double fraction_scaled_jacobian_below_0_3 = 0;
+  double fraction_scaled_jacobian_below_0_3 = 0;  // share of cells, in [0, 1]
 };
 
 QualitySummary summarize(const VolumeMesh& mesh, const ElementQuality& quality);
@@ -44,7 +47,14 @@ struct DihedralDistortion {
   long angles = 0;
 };
 
-// Throws facehex::Error if the meshes do not have the same connectivity.
+// Interior dihedral angles (degrees) at the edges of one cell (12 hex, 9 wedge, 6 tet entries, in a fixed order per
+// cell type), each between the Newell (average) normals of the two faces meeting at the edge, so a warped quad face
+// has one well-defined plane. The unit cube gives 90 everywhere, the equilateral prism 60 at its three edges joining
+// the triangles, the regular tet acos(1/3). Independent of the cell's orientation; a zero-area face gives 180.
+Eigen::VectorXd cell_dihedral_angles(const VolumeMesh& mesh, int cell);
+
+// Throws facehex::Error("dihedral distortion", ...) if the meshes do not have the same vertex count, cell types and
+// cell nodes. Each cell edge counts once per cell (an edge shared by four hexes contributes four angles).
 DihedralDistortion dihedral_distortion(const VolumeMesh& reference, const VolumeMesh& mapped);
 
 }  // namespace facehex
