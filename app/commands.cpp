@@ -5,11 +5,11 @@
 #include "app/terminal_progress.h"
 #include "core/constraint_set.h"
 #include "core/error.h"
-#include "core/hex_to_tets.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh_check.h"
 #include "core/resources.h"
 #include "core/shell_sides.h"
+#include "core/standard/closed_domain.h"
 #include "core/sides.h"
 #include "core/text_file.h"
 #include "core/transfer_pipeline.h"
@@ -58,6 +58,13 @@ ConstraintSet load_constraints(const std::string& path, const VolumeMesh& mesh, 
   return side_constraints();
 }
 
+// The tet domain a hex standard is parameterized on: "closed" (openings filled) or "auxiliary" (the paper's).
+StandardDomain standard_domain(const VolumeMesh& hex, const std::string& kind) {
+  if (kind == "closed") return closed_domain(hex);
+  if (kind == "auxiliary") return auxiliary_domain(hex);
+  throw Error("--standard-domain", "expects closed or auxiliary, got '" + kind + "'");
+}
+
 void write_json(const std::string& path, const json& j) { write_text_file(path, j.dump(2) + "\n"); }
 
 void attach_quality(VolumeMesh& mesh) {
@@ -66,20 +73,22 @@ void attach_quality(VolumeMesh& mesh) {
   mesh.cell_data["scaled_jacobian"] = q.scaled_jacobian;
 }
 
+// The fields of a parameterization at the mesh's vertices (the first rows of the parameterized domain).
 void attach_fields(VolumeMesh& mesh, const ModelParameterization& p) {
-  mesh.point_data["u"] = p.fields.uvw.col(0);
-  mesh.point_data["v"] = p.fields.uvw.col(1);
-  mesh.point_data["w"] = p.fields.uvw.col(2);
-  mesh.point_data["uvw"] = p.fields.uvw;
-  mesh.point_data["uvw_initial"] = p.fields.uvw_initial;
-  Eigen::MatrixXd fixed = p.fixed.cast<double>();
-  mesh.point_data["fixed_uvw"] = fixed;
+  const Eigen::Index n = mesh.num_vertices();
+  const Eigen::MatrixXd uvw = p.fields.uvw.topRows(n);
+  mesh.point_data["u"] = uvw.col(0);
+  mesh.point_data["v"] = uvw.col(1);
+  mesh.point_data["w"] = uvw.col(2);
+  mesh.point_data["uvw"] = uvw;
+  mesh.point_data["uvw_initial"] = p.fields.uvw_initial.topRows(n);
+  mesh.point_data["fixed_uvw"] = p.fixed.topRows(n).cast<double>();
 }
 
 // Writes the tet model with its fields and per-tet gradients (before/after) and gradient angles.
 VolumeMesh parameterized_tet_mesh(const ModelParameterization& p, const VolumeMesh* source) {
   VolumeMesh m = VolumeMesh::from_tets(p.V, p.T);
-  if (source && source->is_tet_mesh()) m.point_data = source->point_data;
+  if (source && source->num_vertices() == p.V.rows()) m.point_data = source->point_data;  // same vertices
   attach_fields(m, p);
   for (int f = 0; f < 3; ++f) {
     m.cell_data[std::string("grad_") + kFieldNames[f]] = p.fields.gradients[f];
@@ -93,6 +102,7 @@ struct TransferInputs {
   std::string standard_constraints;  // empty: the standard's bundled/sibling constraints
   std::string patient, patient_constraints;
   double edge_length = 2.0;
+  std::string standard_domain = "closed";
   TransferOptions options;
 };
 
@@ -113,7 +123,7 @@ TransferOutputs execute_transfer(const TransferInputs& in) {
   std::cerr << "reading the patient " << in.patient << "\n";
   out.patient = load_tet_model(in.patient, in.edge_length);
   const ConstraintSet patient_set = load_constraints(in.patient_constraints, out.patient, in.patient);
-  out.run = run_transfer(out.standard, standard_set, std_constraints, out.patient, patient_set,
+  out.run = run_transfer(out.standard, standard_domain(out.standard, in.standard_domain), standard_set, std_constraints, out.patient, patient_set,
                          in.patient_constraints.empty() ? in.patient : in.patient_constraints, in.options,
                          progress.callback());
   progress.finish();
@@ -127,6 +137,8 @@ void add_transfer_options(Args& args) {
   args.option("standard", "bundled standard name or a hex mesh file", "artisynth-refface")
       .option("standard-constraints", "constraint set of the standard (default: the one bundled with it)")
       .option("edge-length", "target edge length (mm) when the patient is a closed surface", "2")
+      .option("standard-domain",
+              "tet domain of the standard: closed (openings filled) or auxiliary (paper: split hexes only)", "closed")
       .flag("allow-inverted", "continue even if the patient parameterization has inverted tets");
   add_field_options(args);
 }
@@ -138,6 +150,7 @@ TransferInputs transfer_inputs(const Args& args, const std::string& patient, con
   in.patient = patient;
   in.patient_constraints = patient_constraints;
   in.edge_length = args.number("edge-length");
+  in.standard_domain = args.get("standard-domain");
   in.options.fields = field_options(args);
   in.options.allow_inverted_parameterization = args.has("allow-inverted");
   return in;
@@ -215,7 +228,8 @@ int cmd_fields(const Argv& argv) {
   args.positional("MODEL", "tet model, closed surface, or hex-dominant mesh")
       .option("constraints", "constraint-set JSON (default: the six sides from side_mask)")
       .option("output", "output .vtu")
-      .option("edge-length", "target edge length (mm) when the model is a closed surface", "2");
+      .option("edge-length", "target edge length (mm) when the model is a closed surface", "2")
+      .option("standard-domain", "for a hex mesh: closed (openings filled) or auxiliary (split hexes only)", "closed");
   add_field_options(args);
   if (!args.parse(argv)) return 0;
   if (!args.has("output")) throw Error("facehex fields", "missing -o OUTPUT");
@@ -223,21 +237,25 @@ int cmd_fields(const Argv& argv) {
   MeshReadOptions ro;
   ro.target_edge_length = args.number("edge-length");
   VolumeMesh mesh = read_volume_mesh(path, ro);
-  Eigen::MatrixXi T;
+  StandardDomain domain;
   if (mesh.is_tet_mesh()) {
     check_and_orient_tet_mesh(mesh, path);
-    T = mesh.tets();
+    domain = {mesh.V, mesh.tets(), side_mask_of(mesh), mesh.num_vertices(), 0, "the model's own tets"};
   } else {
-    T = split_into_tets(mesh).T;
+    domain = standard_domain(mesh, args.get("standard-domain"));
   }
   const ConstraintSet set = load_constraints(args.get("constraints"), mesh, path);
   TerminalProgress progress;
   const ModelParameterization p =
-      parameterize_model(mesh.V, T, side_mask_of(mesh), set, args.has("constraints") ? args.get("constraints") : path,
-                         field_options(args), progress.callback());
+      parameterize_model(domain.V, domain.T, domain.side_mask, set,
+                         args.has("constraints") ? args.get("constraints") : path, field_options(args),
+                         progress.callback());
   progress.finish();
-  write_volume_mesh(args.get("output"), parameterized_tet_mesh(p, &mesh));
-  std::cout << "parameterization: " << p.health.inverted << " inverted, "
+  VolumeMesh out = parameterized_tet_mesh(p, &mesh);
+  if (domain.side_mask.size() == p.V.rows()) out.point_data[kSideMaskArray] = domain.side_mask.cast<double>();
+  write_volume_mesh(args.get("output"), out);
+  std::cout << "domain: " << domain.description << " (" << p.T.rows() << " tets)\n"
+            << "parameterization: " << p.health.inverted << " inverted, "
             << (p.health.degenerate - p.health.flat_by_constraint) << " degenerate of " << p.health.tets << " tets\n"
             << "gradient angles, mean |90 - angle|: " << p.fields.angles_initial.mean_deviation_from_90
             << " deg before, " << p.fields.angles.mean_deviation_from_90 << " deg after\n"
@@ -307,7 +325,7 @@ int cmd_run(const Argv& argv) {
   attach_fields(standard_hex, out.run.standard);
   attach_quality(standard_hex);
   attach_quality(out.run.patient_hex);
-  out.run.patient_hex.point_data["uvw"] = out.run.standard.fields.uvw;
+  out.run.patient_hex.point_data["uvw"] = hex_vertex_uvw(out.run, out.standard.num_vertices());
   if (side_mask_of(out.standard).size() > 0)
     out.run.patient_hex.point_data[kSideMaskArray] = out.standard.point_data.at(kSideMaskArray);
 

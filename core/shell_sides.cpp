@@ -26,18 +26,18 @@ Eigen::Vector3d newell_normal(const Eigen::MatrixXd& V, const std::vector<int>& 
   return n.normalized();
 }
 
-// The boundary face reached by walking through cells from boundary face (cell, face), or {-1,-1} if the chord is
-// longer than max_layers or meets a cell without an opposite face.
-std::array<int, 2> chord_end(const VolumeMesh& mesh, const FaceNeighbors& nb, int cell, int face, int max_layers) {
-  for (int layer = 0; layer < max_layers; ++layer) {
+// The boundary face reached by walking through cells from boundary face (cell, face), and the number of cells
+// crossed; {-1,-1,0} if the walk is longer than max_cells or meets a cell without an opposite face.
+std::array<int, 3> chord_end(const VolumeMesh& mesh, const FaceNeighbors& nb, int cell, int face, int max_cells) {
+  for (int length = 1; length <= max_cells; ++length) {
     const int exit = opposite_face(mesh.types[cell], face);
-    if (exit < 0) return {-1, -1};
+    if (exit < 0) return {-1, -1, 0};
     const auto [next, next_face] = nb[cell][exit];
-    if (next < 0) return {cell, exit};
+    if (next < 0) return {cell, exit, length};
     cell = next;
     face = next_face;
   }
-  return {-1, -1};
+  return {-1, -1, 0};
 }
 
 }  // namespace
@@ -63,14 +63,25 @@ ShellSides label_shell_sides(const VolumeMesh& mesh, const ShellFrame& frame) {
         faces.push_back(std::move(b));
       }
 
+  ShellSides out;
   constexpr int kUnknown = -1, kOpening = -2;
   std::vector<int> side(faces.size(), kUnknown);
-  // 1. Through-thickness chords: outer / inner.
+  // 1. Through-thickness chords: the shell has the same number of element layers everywhere, so those chords
+  //    all have the most common length (at most max_layers); longer ones run along the shell (e.g. from the top
+  //    cut down to an eye opening) and belong to strips.
+  std::vector<std::array<int, 3>> ends(faces.size());
+  std::map<int, int> length_count;
   for (size_t i = 0; i < faces.size(); ++i) {
-    if (side[i] != kUnknown) continue;
-    const auto end = chord_end(mesh, nb, faces[i].cell, faces[i].face, frame.max_layers);
-    if (end[0] < 0) continue;
-    const size_t j = static_cast<size_t>(index_of.at({end[0], end[1]}));
+    ends[i] = chord_end(mesh, nb, faces[i].cell, faces[i].face, frame.max_layers);
+    if (ends[i][2] > 0) ++length_count[ends[i][2]];
+  }
+  int layers = 0;
+  for (const auto& [length, count] : length_count)
+    if (layers == 0 || count > length_count[layers]) layers = length;
+  out.layers = layers;
+  for (size_t i = 0; i < faces.size(); ++i) {
+    if (side[i] != kUnknown || ends[i][2] != layers || layers == 0) continue;
+    const size_t j = static_cast<size_t>(index_of.at({ends[i][0], ends[i][1]}));
     if (j == i) continue;
     const Eigen::Vector3d radial = (0.5 * (faces[i].centroid + faces[j].centroid) - frame.center).normalized();
     const bool i_outer = faces[i].normal.dot(radial) >= faces[j].normal.dot(radial);
@@ -126,7 +137,6 @@ ShellSides label_shell_sides(const VolumeMesh& mesh, const ShellFrame& frame) {
       side[i] = (faces[i].centroid - frame.center).dot(frame.lateral) < 0 ? U0 : U1;
   }
 
-  ShellSides out;
   out.side_mask = Eigen::VectorXi::Zero(mesh.num_vertices());
   for (size_t i = 0; i < faces.size(); ++i) {
     if (side[i] == kOpening) {

@@ -1,7 +1,6 @@
 #include "core/transfer_pipeline.h"
 
 #include "core/error.h"
-#include "core/hex_to_tets.h"
 #include "core/stopwatch.h"
 
 namespace facehex {
@@ -40,15 +39,19 @@ ModelParameterization parameterize_model(const Eigen::MatrixXd& V, const Eigen::
   return m;
 }
 
-TransferRun run_transfer(const VolumeMesh& standard, const ConstraintSet& standard_constraints,
+TransferRun run_transfer(const VolumeMesh& standard, const StandardDomain& domain,
+                         const ConstraintSet& standard_constraints,
                          const std::string& standard_source, const VolumeMesh& patient,
                          const ConstraintSet& patient_constraints, const std::string& patient_source,
                          const TransferOptions& options, const ProgressCallback& progress) {
   TransferRun run;
   Stopwatch clock;
-  const AuxiliaryTets aux = split_into_tets(standard);
-  run.standard_auxiliary_non_positive = aux.non_positive_tets;
-  run.standard = parameterize_model(standard.V, aux.T, side_mask_of(standard), standard_constraints, standard_source,
+  if (domain.hex_vertices != standard.num_vertices() ||
+      (domain.V.topRows(domain.hex_vertices) - standard.V).cwiseAbs().maxCoeff() > 0)
+    throw Error(standard_source, "the parameterization domain was not built from this standard mesh");
+  run.standard_domain = domain.description;
+  run.standard_domain_non_positive = domain.non_positive_tets;
+  run.standard = parameterize_model(domain.V, domain.T, domain.side_mask, standard_constraints, standard_source,
                                     options.fields, sub_progress(progress, 0.0, 0.3));
   run.seconds["standard_parameterization"] = clock.lap();
   run.patient = parameterize_model(patient.V, patient.tets(), side_mask_of(patient), patient_constraints,
@@ -62,10 +65,14 @@ TransferRun run_transfer(const VolumeMesh& standard, const ConstraintSet& standa
     throw Error(patient_source,
                 "the model frame has the opposite handedness to the standard's (mirrored scan?): swap the u0 and u1 "
                 "sides of its constraint set");
-  run.patient_hex = transfer_hex_mesh(standard, run.standard.fields.uvw, run.patient.V, run.patient.T,
+  run.patient_hex = transfer_hex_mesh(standard, hex_vertex_uvw(run, standard.num_vertices()), run.patient.V, run.patient.T,
                                       run.patient.fields.uvw, &run.transfer, sub_progress(progress, 0.85, 1.0));
   run.seconds["mapping"] = clock.lap();
   return run;
+}
+
+Eigen::MatrixXd hex_vertex_uvw(const TransferRun& run, int hex_vertices) {
+  return run.standard.fields.uvw.topRows(hex_vertices);
 }
 
 }  // namespace facehex

@@ -7,6 +7,7 @@
 #include "core/mesh.h"
 #include "core/param_health.h"
 #include "core/progress.h"
+#include "core/standard_domain.h"
 
 #include <map>
 #include <string>
@@ -29,6 +30,7 @@ ModelParameterization parameterize_model(const Eigen::MatrixXd& V, const Eigen::
                                          const std::string& source, const HarmonicFieldsOptions& options,
                                          const ProgressCallback& progress = {});
 
+
 struct TransferOptions {
   HarmonicFieldsOptions fields;
   // A parameterization with inverted tets is not a bijection: by default the run stops with an error naming them.
@@ -36,18 +38,23 @@ struct TransferOptions {
 };
 
 struct TransferRun {
-  ModelParameterization standard, patient;
-  int standard_auxiliary_non_positive = 0;  // aux tets with non-positive volume (badly shaped standard cells)
+  ModelParameterization standard, patient;  // standard: on its domain; its first #Vs rows are the hex vertices
+  std::string standard_domain;              // how the standard's tet domain was built
+  int standard_domain_non_positive = 0;     // domain tets with non-positive volume (badly shaped standard cells)
   VolumeMesh patient_hex;
   TransferStatistics transfer;
   std::map<std::string, double> seconds;  // stage timings
 };
 
-// standard: hex-dominant mesh with its constraint set; patient: checked tet model (see mesh_check.h) with its set.
-// Sources name the files in error messages.
-TransferRun run_transfer(const VolumeMesh& standard, const ConstraintSet& standard_constraints,
+// standard: hex-dominant mesh with its constraint set, parameterized on `domain` (see standard_domain.h); patient:
+// checked tet model (see mesh_check.h) with its set. Sources name the files in error messages.
+TransferRun run_transfer(const VolumeMesh& standard, const StandardDomain& domain,
+                         const ConstraintSet& standard_constraints,
                          const std::string& standard_source, const VolumeMesh& patient,
                          const ConstraintSet& patient_constraints, const std::string& patient_source,
                          const TransferOptions& options, const ProgressCallback& progress = {});
+
+// The standard's (u,v,w) at its hex vertices: the first rows of its domain's parameterization (#Vs x 3).
+Eigen::MatrixXd hex_vertex_uvw(const TransferRun& run, int hex_vertices);
 
 }  // namespace facehex

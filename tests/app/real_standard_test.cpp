@@ -35,7 +35,7 @@ TEST(BundledStandard, MapsOntoItsOwnAuxiliaryTetModelAsTheIdentity) {
   const ConstraintSet set = read_constraint_set(standard.constraints);
   VolumeMesh patient = VolumeMesh::from_tets(hex.V, split_into_tets(hex).T);
   patient.point_data = hex.point_data;
-  const TransferRun run = run_transfer(hex, set, standard.constraints, patient, set, "self", TransferOptions{});
+  const TransferRun run = run_transfer(hex, auxiliary_domain(hex), set, standard.constraints, patient, set, "self", TransferOptions{});
   EXPECT_LT((run.patient_hex.V - hex.V).cwiseAbs().maxCoeff(), 1e-6);
   EXPECT_EQ(summarize(run.patient_hex, element_quality(run.patient_hex)).inverted, 0);
 }

@@ -53,7 +53,7 @@ TEST(HexTransfer, StandardOntoItselfIsTheIdentity) {
   const VolumeMesh patient = VolumeMesh::from_tets(standard.V, split_into_tets(standard).T);
   VolumeMesh patient_with_mask = patient;
   patient_with_mask.point_data = standard.point_data;
-  const TransferRun run = run_transfer(standard, side_constraints(), "standard", patient_with_mask,
+  const TransferRun run = run_transfer(standard, auxiliary_domain(standard), side_constraints(), "standard", patient_with_mask,
                                        side_constraints(), "patient", default_options());
   EXPECT_TRUE(run.patient.health.ok());
   EXPECT_LT((run.patient_hex.V - standard.V).cwiseAbs().maxCoeff(), 1e-6);
@@ -71,7 +71,7 @@ TEST(HexTransfer, BoxOntoStretchedBoxIsTheAffineMap) {
   VolumeMesh patient = VolumeMesh::from_tets(target_hex.V, split_into_tets(target_hex).T);
   patient.point_data = target_hex.point_data;
   const TransferRun run =
-      run_transfer(standard, side_constraints(), "standard", patient, side_constraints(), "patient", default_options());
+      run_transfer(standard, auxiliary_domain(standard), side_constraints(), "standard", patient, side_constraints(), "patient", default_options());
   const Eigen::MatrixXd expected = standard.V * scale.asDiagonal();
   EXPECT_LT((run.patient_hex.V - expected).cwiseAbs().maxCoeff(), 1e-6);
   EXPECT_EQ(run.transfer.snap_failures, 0);

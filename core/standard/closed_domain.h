@@ -1,0 +1,20 @@
+#pragma once
+// A standard's parameterization domain with its openings closed.
+//
+// A patient model from a CT is one solid without tunnels (eyes, nostrils and mouth are filled, see docs), while a
+// hand-built standard may keep the openings as holes through the shell. Harmonic fields with free (Neumann) walls
+// on such holes bend sharply around their rims (the rim of a slit such as the mouth behaves like a crack tip), and
+// the parameterization folds there. closed_domain() fills every opening: each opening's wall is capped at its rims
+// (least-area triangulation of each rim loop, no new vertex) and the plug it encloses is tetrahedralized by TetGen
+// without Steiner points on its surface, so the plug conforms to the auxiliary tets around it. The caps lie on the
+// skin or bone side and carry that side; the hex vertices stay the domain's first vertices.
+//
+// An opening whose cap cannot be built or meshed (e.g. rims that touch each other) stays open; the returned
+// description says how many were closed.
+#include "core/standard_domain.h"
+
+namespace facehex {
+
+StandardDomain closed_domain(const VolumeMesh& hex);
+
+}  // namespace facehex

@@ -1,0 +1,24 @@
+#pragma once
+// The tet domain on which a standard hex mesh is parameterized. Its first #Vs vertices are the hex mesh's vertices,
+// in order, so every hex vertex carries its field values directly (paper 3.2); further vertices (if any) are added
+// by domain builders such as closed_domain() (core/standard/closed_domain.h).
+#include "core/mesh.h"
+
+#include <Eigen/Core>
+#include <string>
+
+namespace facehex {
+
+struct StandardDomain {
+  Eigen::MatrixXd V;          // #V x 3, rows 0..hex_vertices-1 are the hex vertices
+  Eigen::MatrixXi T;          // #T x 4
+  Eigen::VectorXi side_mask;  // #V (sides.h bits), or empty
+  int hex_vertices = 0;
+  int non_positive_tets = 0;  // tets with volume <= 0 (badly shaped hex cells split into tets)
+  std::string description;    // how it was built, for reports
+};
+
+// The paper's auxiliary tet mesh: hexes and wedges split into tets, no vertex added (hex_to_tets.h).
+StandardDomain auxiliary_domain(const VolumeMesh& hex);
+
+}  // namespace facehex
