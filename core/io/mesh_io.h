@@ -5,6 +5,8 @@
 //   read : .vtu, .vtk (legacy), .node/.ele (TetGen; either name), .msh (Gmsh 2.2 and 4.1, ASCII),
 //          .node/.elem (ANSYS: see ansys_io.h; chosen when a sibling .elem exists)
 //   write: .vtu (all point/cell data attached), .vtk (legacy), .msh (Gmsh 4.1 ASCII)
+// Finite-element models with named sets, surfaces and material frames (fe_sets.h, docs/export.md):
+//   read and write: .inp (Abaqus / CalculiX, abaqus_io.h), .feb (FEBio 4.0, febio_io.h)
 // Closed triangle surfaces (.stl, .obj, .ply, .vtp) given where a volume mesh is expected are tetrahedralized with
 // TetGen at MeshReadOptions::target_edge_length.
 //
@@ -23,7 +25,14 @@ struct MeshReadOptions {
 };
 
 VolumeMesh read_volume_mesh(const std::string& path, const MeshReadOptions& options = {});
-void write_volume_mesh(const std::string& path, const VolumeMesh& mesh);
+
+struct MeshWriteOptions {
+  // The FE formats (.inp, .feb) refuse meshes with inverted elements (corner_jacobian.h), which no solver accepts,
+  // unless this is set; the other formats write any valid mesh so that bad results can be inspected.
+  bool allow_inverted = false;
+};
+
+void write_volume_mesh(const std::string& path, const VolumeMesh& mesh, const MeshWriteOptions& options = {});
 
 // Reads a triangle surface (.stl, .obj, .ply, .vtp). Polygons are triangulated.
 SurfaceMesh read_surface_mesh(const std::string& path);

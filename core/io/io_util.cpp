@@ -1,0 +1,215 @@
+#include "core/io/io_util.h"
+
+#include "core/error.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace facehex::io {
+
+namespace fs = std::filesystem;
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+std::string find_sibling(const std::string& path, const std::string& ext) {
+  std::string upper = ext;
+  std::transform(upper.begin(), upper.end(), upper.begin(), [](unsigned char c) { return std::toupper(c); });
+  for (const std::string& e : {ext, upper}) {
+    const std::string candidate = fs::path(path).replace_extension(e).string();
+    std::error_code ec;
+    if (fs::is_regular_file(candidate, ec)) return candidate;
+  }
+  return {};
+}
+
+void check_readable_file(const std::string& path) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (!fs::exists(status)) throw Error(path, "file not found");
+  if (fs::is_directory(status)) throw Error(path, "is a folder, not a mesh file");
+  if (!fs::is_regular_file(status)) throw Error(path, "is not a regular file");
+  if (fs::file_size(path, ec) == 0) throw Error(path, "file is empty");
+  std::ifstream probe(path, std::ios::binary);
+  if (!probe) throw Error(path, std::string("cannot open file for reading: ") + std::strerror(errno));
+}
+
+std::string format_double(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
+std::vector<std::string_view> split_fields(std::string_view line) {
+  std::vector<std::string_view> fields;
+  size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    const size_t start = i;
+    while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    if (i > start) fields.push_back(line.substr(start, i - start));
+  }
+  return fields;
+}
+
+// std::from_chars is locale-independent (strtod is not: a German locale would stop at the '.'), but rejects a
+// leading '+', which Fortran-style writers (ANSYS) do emit.
+static std::string_view strip_plus(std::string_view s) {
+  return (s.size() > 1 && s[0] == '+' && s[1] != '-') ? s.substr(1) : s;
+}
+
+bool parse_integer(std::string_view s, long* out) {
+  s = strip_plus(s);
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), *out);
+  return ec == std::errc() && end == s.data() + s.size() && !s.empty();
+}
+
+bool parse_real(std::string_view s, double* out) {
+  s = strip_plus(s);
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), *out);
+  return ec == std::errc() && end == s.data() + s.size() && !s.empty();
+}
+
+LineParser::LineParser(const std::string& path, char comment) : path_(path), comment_(comment) {
+  check_readable_file(path);
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw Error(path, "read error");
+  text_ = ss.str();
+}
+
+bool LineParser::next() {
+  while (pos_ < text_.size()) {
+    size_t end = text_.find('\n', pos_);
+    if (end == std::string::npos) end = text_.size();
+    std::string_view line(text_.data() + pos_, end - pos_);
+    pos_ = end + 1;
+    ++line_number_;
+    if (line.find('\0') != std::string_view::npos) fail("binary content in a text file");
+    if (comment_ != '\0') line = line.substr(0, line.find(comment_));
+    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back()))) line.remove_suffix(1);
+    fields_ = split_fields(line);
+    if (fields_.empty()) continue;
+    line_ = line;
+    return true;
+  }
+  line_ = {};
+  fields_.clear();
+  return false;
+}
+
+void LineParser::require_next(const std::string& what) {
+  if (!next()) fail("file ends early: expected " + what);
+}
+
+void LineParser::require_fields(size_t n, const std::string& what) const {
+  if (fields_.size() < n) {
+    fail("expected " + std::to_string(n) + " values for " + what + ", found " + std::to_string(fields_.size()));
+  }
+}
+
+long LineParser::integer(size_t i, const std::string& what) const {
+  require_fields(i + 1, what);
+  long v = 0;
+  if (!parse_integer(fields_[i], &v)) fail("expected an integer " + what + ", found '" + std::string(fields_[i]) + "'");
+  return v;
+}
+
+double LineParser::real(size_t i, const std::string& what) const {
+  require_fields(i + 1, what);
+  double v = 0;
+  if (!parse_real(fields_[i], &v) || !std::isfinite(v)) {
+    fail("expected a finite number for " + what + ", found '" + std::string(fields_[i]) + "'");
+  }
+  return v;
+}
+
+void LineParser::fail(const std::string& problem) const {
+  throw Error(path_, problem + ", line " + std::to_string(line_number_));
+}
+
+int find_repeated(const int* nodes, int n) {
+  for (int k = 1; k < n; ++k)
+    for (int j = 0; j < k; ++j)
+      if (nodes[j] == nodes[k]) return k;
+  return -1;
+}
+
+Eigen::MatrixXd rows_to_matrix(const std::vector<double>& values, int cols) {
+  if (cols == 0) return Eigen::MatrixXd();
+  const Eigen::Index rows = static_cast<Eigen::Index>(values.size()) / cols;
+  return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(values.data(), rows,
+                                                                                                  cols);
+}
+
+void CellBuilder::add(CellType type, const int* nodes) {
+  types_.push_back(type);
+  const int n = node_count(type);
+  for (int k = 0; k < 8; ++k) nodes_.push_back(k < n ? nodes[k] : -1);
+}
+
+void CellBuilder::finish(VolumeMesh* mesh) {
+  mesh->C = Eigen::Map<Eigen::Matrix<int, Eigen::Dynamic, 8, Eigen::RowMajor>>(nodes_.data(), size(), 8);
+  mesh->types = std::move(types_);
+  types_.clear();
+  nodes_.clear();
+}
+
+void check_volume_mesh(const std::string& subject, const VolumeMesh& mesh) {
+  const int nv = mesh.num_vertices();
+  const int nc = mesh.num_cells();
+  if (nv == 0 || mesh.V.cols() != 3) throw Error(subject, "mesh has no points");
+  if (!mesh.V.allFinite()) throw Error(subject, "mesh has non-finite point coordinates");
+  if (nc == 0) throw Error(subject, "mesh has no volume cells");
+  if (mesh.C.cols() != 8) throw Error(subject, "cell connectivity must have 8 columns");
+  if (static_cast<int>(mesh.types.size()) != nc) {
+    throw Error(subject, "cell type list (" + std::to_string(mesh.types.size()) + ") and connectivity (" +
+                             std::to_string(nc) + " cells) disagree");
+  }
+  for (int c = 0; c < nc; ++c) {
+    const int n = node_count(mesh.types[c]);
+    for (int k = 0; k < 8; ++k) {
+      const int id = mesh.C(c, k);
+      if (k >= n) {
+        if (id != -1) throw Error(subject, "cell " + std::to_string(c) + ": unused node slot is not -1");
+        continue;
+      }
+      if (id < 0 || id >= nv) {
+        throw Error(subject, "cell " + std::to_string(c) + " refers to point " + std::to_string(id) +
+                                 ", but there are " + std::to_string(nv) + " points");
+      }
+      for (int j = 0; j < k; ++j) {
+        if (mesh.C(c, j) == id) {
+          throw Error(subject, std::string("cell ") + std::to_string(c) + " (" + cell_type_name(mesh.types[c]) +
+                                   ") uses point " + std::to_string(id) + " twice");
+        }
+      }
+    }
+  }
+  for (const auto& [name, a] : mesh.point_data) {
+    if (a.rows() != nv) {
+      throw Error(subject, "point data '" + name + "' has " + std::to_string(a.rows()) + " rows for " +
+                               std::to_string(nv) + " points");
+    }
+  }
+  for (const auto& [name, a] : mesh.cell_data) {
+    if (a.rows() != nc) {
+      throw Error(subject, "cell data '" + name + "' has " + std::to_string(a.rows()) + " rows for " +
+                               std::to_string(nc) + " cells");
+    }
+  }
+}
+
+}  // namespace facehex::io

@@ -1,0 +1,134 @@
+#include "core/io/vtk_mesh_io.h"
+
+#include "core/error.h"
+#include "core/io/io_util.h"
+#include "core/io/vtk_util.h"
+
+#include <vtkCellData.h>
+#include <vtkCellType.h>
+#include <vtkCellTypes.h>
+#include <vtkDoubleArray.h>
+#include <vtkIdList.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkSmartPointer.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkUnstructuredGridReader.h>
+#include <vtkUnstructuredGridWriter.h>
+#include <vtkXMLUnstructuredGridReader.h>
+#include <vtkXMLUnstructuredGridWriter.h>
+
+namespace facehex::io {
+
+namespace {
+
+// VolumeMesh stores cells in VTK order already: conversion is a copy, no reordering.
+VolumeMesh from_grid(const std::string& path, vtkUnstructuredGrid* grid) {
+  if (!grid || grid->GetNumberOfPoints() == 0) throw Error(path, "file holds no points (empty or not a mesh)");
+  VolumeMesh mesh;
+  const vtkIdType nv = grid->GetNumberOfPoints();
+  mesh.V.resize(nv, 3);
+  for (vtkIdType i = 0; i < nv; ++i) {
+    double p[3];
+    grid->GetPoint(i, p);
+    mesh.V.row(i) << p[0], p[1], p[2];
+  }
+  CellBuilder cells;
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c) {
+    const int vtk_type = grid->GetCellType(c);
+    CellType type;
+    switch (vtk_type) {
+      case VTK_TETRA:
+        type = CellType::Tet;
+        break;
+      case VTK_WEDGE:
+        type = CellType::Wedge;
+        break;
+      case VTK_HEXAHEDRON:
+        type = CellType::Hex;
+        break;
+      default:
+        throw Error(path, "cell " + std::to_string(c) + " has unsupported type " +
+                              vtkCellTypes::GetClassNameFromTypeId(vtk_type) + " (VTK type " +
+                              std::to_string(vtk_type) + "); only tetra, wedge and hexahedron cells are supported");
+    }
+    grid->GetCellPoints(c, ids);
+    if (ids->GetNumberOfIds() != node_count(type)) {
+      throw Error(path, "cell " + std::to_string(c) + " has " + std::to_string(ids->GetNumberOfIds()) + " nodes");
+    }
+    int nodes[8];
+    for (int k = 0; k < node_count(type); ++k) nodes[k] = static_cast<int>(ids->GetId(k));
+    cells.add(type, nodes);
+  }
+  cells.finish(&mesh);
+  vtk_arrays_to_matrices(path, grid->GetPointData(), mesh.num_vertices(), &mesh.point_data);
+  vtk_arrays_to_matrices(path, grid->GetCellData(), mesh.num_cells(), &mesh.cell_data);
+  check_volume_mesh(path, mesh);
+  return mesh;
+}
+
+vtkSmartPointer<vtkUnstructuredGrid> to_grid(const VolumeMesh& mesh) {
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();  // full precision in the file
+  points->SetNumberOfPoints(mesh.num_vertices());
+  for (int i = 0; i < mesh.num_vertices(); ++i) points->SetPoint(i, mesh.V(i, 0), mesh.V(i, 1), mesh.V(i, 2));
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  grid->SetPoints(points);
+  grid->Allocate(mesh.num_cells());
+  for (int c = 0; c < mesh.num_cells(); ++c) {
+    const int vtk_type = mesh.types[c] == CellType::Tet     ? VTK_TETRA
+                         : mesh.types[c] == CellType::Wedge ? VTK_WEDGE
+                                                            : VTK_HEXAHEDRON;
+    vtkIdType ids[8];
+    for (int k = 0; k < node_count(mesh.types[c]); ++k) ids[k] = mesh.C(c, k);
+    grid->InsertNextCell(vtk_type, node_count(mesh.types[c]), ids);
+  }
+  matrices_to_vtk_arrays(mesh.point_data, grid->GetPointData());
+  matrices_to_vtk_arrays(mesh.cell_data, grid->GetCellData());
+  return grid;
+}
+
+}  // namespace
+
+VolumeMesh read_vtu(const std::string& path) {
+  check_readable_file(path);
+  vtkNew<vtkXMLUnstructuredGridReader> reader;
+  reader->SetFileName(path.c_str());
+  run_vtk(path, "reading VTK XML", reader);
+  return from_grid(path, reader->GetOutput());
+}
+
+VolumeMesh read_legacy_vtk(const std::string& path) {
+  check_readable_file(path);
+  vtkNew<vtkUnstructuredGridReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->ReadAllScalarsOn();  // legacy files may hold several arrays per kind; keep them all
+  reader->ReadAllVectorsOn();
+  reader->ReadAllTensorsOn();
+  reader->ReadAllFieldsOn();
+  run_vtk(path, "reading legacy VTK", reader);
+  return from_grid(path, reader->GetOutput());
+}
+
+void write_vtu(const std::string& file, const VolumeMesh& mesh) {
+  vtkNew<vtkXMLUnstructuredGridWriter> writer;
+  writer->SetInputData(to_grid(mesh));
+  writer->SetFileName(file.c_str());
+  writer->SetDataModeToAppended();
+  writer->EncodeAppendedDataOff();  // raw binary: smaller, and nothing is lost
+  writer->SetCompressorTypeToZLib();
+  writer->SetHeaderTypeToUInt64();  // no 4 GB limit per array
+  run_vtk(file, "writing VTK XML", writer, [&] { return writer->Write(); });
+}
+
+void write_legacy_vtk(const std::string& file, const VolumeMesh& mesh) {
+  vtkNew<vtkUnstructuredGridWriter> writer;
+  writer->SetInputData(to_grid(mesh));
+  writer->SetFileName(file.c_str());
+  writer->SetFileTypeToBinary();
+  run_vtk(file, "writing legacy VTK", writer, [&] { return writer->Write(); });
+}
+
+}  // namespace facehex::io

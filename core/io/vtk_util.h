@@ -1,0 +1,32 @@
+#pragma once
+// VTK plumbing shared by the volume (vtk_mesh_io.cpp) and surface (surface_io.cpp) formats. Not public API.
+//
+// VTK readers and writers do not throw: they print to stderr and return empty or half-filled output. Every VTK
+// pipeline call of core/io therefore goes through run_vtk(), which silences that output, collects the messages and
+// turns any error into a facehex::Error naming the file.
+#include <Eigen/Core>
+
+#include <functional>
+#include <map>
+#include <string>
+
+class vtkAlgorithm;
+class vtkFieldData;
+class vtkDataSetAttributes;
+
+namespace facehex::io {
+
+// Runs `action` (default: updating the algorithm; writers pass their Write(), which vtkWriter and vtkXMLWriter
+// declare separately) with VTK's messages captured. Throws facehex::Error(path, "<what> failed: <first VTK error>")
+// when the algorithm reported an error, its error code is set or the update / action returned 0.
+void run_vtk(const std::string& path, const std::string& what, vtkAlgorithm* algorithm,
+             const std::function<int()>& action = nullptr);
+
+// Numeric arrays of `data` (one row per tuple) into `out`, by name; unnamed arrays become "array<i>", non-numeric
+// arrays (strings) are skipped. Throws unless every array has `rows` tuples.
+void vtk_arrays_to_matrices(const std::string& path, vtkFieldData* data, int rows,
+                            std::map<std::string, Eigen::MatrixXd>* out);
+// Each matrix as a double array with as many components as columns.
+void matrices_to_vtk_arrays(const std::map<std::string, Eigen::MatrixXd>& arrays, vtkDataSetAttributes* out);
+
+}  // namespace facehex::io
