@@ -144,6 +144,15 @@ json run_report(const TransferRun& run, const MeshQualityReport& standard_qualit
             {"walk_hits", t.walk_hits},
             {"side_vertex_distance_mm",
              {{"points", distance.points}, {"max", distance.max}, {"p95", distance.p95}, {"mean", distance.mean}}}}},
+          {"untangle",
+           {{"inverted_before", run.untangle.inverted_before},
+            {"inverted_after", run.untangle.inverted_after},
+            {"bad_before", run.untangle.bad_before},
+            {"bad_after", run.untangle.bad_after},
+            {"min_scaled_jacobian_before", run.untangle.min_scaled_jacobian_before},
+            {"min_scaled_jacobian_after", run.untangle.min_scaled_jacobian_after},
+            {"free_vertices", run.untangle.free_vertices},
+            {"sweeps", run.untangle.sweeps}}},
           {"patient_hex", {{"quality", to_json(patient_quality)}}}};
 }
 
@@ -159,6 +168,9 @@ std::string run_summary_text(const TransferRun& run, const MeshQualityReport& st
      << "gradient angles, mean |90 - angle|: " << fmt("%.1f", run.patient.fields.angles_initial.mean_deviation_from_90)
      << " deg before, " << fmt("%.1f", run.patient.fields.angles.mean_deviation_from_90)
      << " deg after the orthogonality improvement\n"
+     << "mapped hex mesh before repair: " << run.untangle.inverted_before << " inverted, "
+     << run.untangle.bad_before << " with scaled Jacobian < 0.2; after: " << run.untangle.inverted_after << " inverted, "
+     << run.untangle.bad_after << "\n"
      << "standard hex mesh:\n"
      << quality_text(standard_quality) << "patient hex mesh:\n"
      << quality_text(patient_quality) << "  side vertices off the patient surface: p95 "

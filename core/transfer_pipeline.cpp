@@ -68,6 +68,13 @@ TransferRun run_transfer(const VolumeMesh& standard, const StandardDomain& domai
   run.patient_hex = transfer_hex_mesh(standard, hex_vertex_uvw(run, standard.num_vertices()), run.patient.V, run.patient.T,
                                       run.patient.fields.uvw, &run.transfer, sub_progress(progress, 0.85, 1.0));
   run.seconds["mapping"] = clock.lap();
+  if (options.untangle) {
+    // Vertices on a side or a feature of the standard land exactly on the patient's sides and features: they stay.
+    std::vector<char> fixed(standard.num_vertices());
+    for (int v = 0; v < standard.num_vertices(); ++v) fixed[v] = run.standard.fixed.row(v).any();
+    run.untangle = untangle(run.patient_hex, fixed, options.untangle_options);
+    run.seconds["untangle"] = clock.lap();
+  }
   return run;
 }
 

@@ -8,6 +8,7 @@
 #include "core/param_health.h"
 #include "core/progress.h"
 #include "core/standard_domain.h"
+#include "core/untangle.h"
 
 #include <map>
 #include <string>
@@ -35,6 +36,10 @@ struct TransferOptions {
   HarmonicFieldsOptions fields;
   // A parameterization with inverted tets is not a bijection: by default the run stops with an error naming them.
   bool allow_inverted_parameterization = false;
+  // After the mapping, cells that are inverted or below untangle_options.min_scaled_jacobian are repaired by moving
+  // nearby vertices that are on no side and no feature (untangle.h).
+  bool untangle = true;
+  UntangleOptions untangle_options;
 };
 
 struct TransferRun {
@@ -43,6 +48,7 @@ struct TransferRun {
   int standard_domain_non_positive = 0;     // domain tets with non-positive volume (badly shaped standard cells)
   VolumeMesh patient_hex;
   TransferStatistics transfer;
+  UntangleReport untangle;
   std::map<std::string, double> seconds;  // stage timings
 };
 
