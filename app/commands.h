@@ -16,5 +16,6 @@ int cmd_map(const Argv& argv);
 int cmd_quality(const Argv& argv);
 int cmd_run(const Argv& argv);
 int cmd_standards(const Argv& argv);
+int cmd_bench(const Argv& argv);
 
 }  // namespace facehex::cli

@@ -14,6 +14,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace facehex {
 
@@ -28,6 +29,7 @@ struct HarmonicFieldsResult {
   GradientFields gradients_initial, gradients;  // per tet, #T x 3 each
   AngleStatistics angles_initial, angles;
   std::map<std::string, double> seconds;        // per stage
+  std::vector<double> iteration_seconds;        // per orthogonality iteration
 };
 
 class HarmonicFields {
