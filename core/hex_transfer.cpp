@@ -19,12 +19,14 @@ VolumeMesh transfer_hex_mesh(const VolumeMesh& standard, const Eigen::MatrixXd& 
   out.types = standard.types;
   out.V.resize(standard.V.rows(), 3);
   stats.vertices = static_cast<int>(standard.V.rows());
+  stats.tet.resize(standard.V.rows());
   int hint = -1;
   for (Eigen::Index i = 0; i < standard.V.rows(); ++i) {
     if (i % 4096 == 0) report_progress(progress, "mapping vertices", static_cast<double>(i) / standard.V.rows());
     const Eigen::Vector3d q = standard_uvw.row(i).transpose();
     ParamLocator::Hit hit = locator.locate(q, hint);
     hint = hit.tet;
+    stats.tet(i) = hit.tet;
     Eigen::Vector4d b = hit.bary;
     if (hit.violation > 0) {
       ++stats.located_nearest;

@@ -21,6 +21,7 @@ struct TransferStatistics {
   int snapped_to_boundary = 0;  // placed exactly on a patient side
   int snap_failures = 0;        // on a side, but the tet found has no vertex on it (kept inside)
   int walk_hits = 0;            // located by walking from the previous hit
+  Eigen::VectorXi tet;          // #Vs, the patient tet each standard vertex was placed in
   double seconds_locator_build = 0, seconds_mapping = 0;
 };
 

@@ -18,6 +18,28 @@ std::string health_problem(const ParamHealth& h) {
          " degenerate (the fields fold); check the constraint set (sides, feature values) of this model";
 }
 
+// How the untangler may move each mapped standard vertex. On a shape end (value 0 or 1) it lies exactly on the
+// patient's boundary: fixed. Pinned to a feature value only, it lies on the patient's feature surface (an iso-surface
+// of that field): it slides in the surface's tangent plane, normal to the patient's field gradient where it landed
+// (along a line for two features). Otherwise it is free.
+MotionConstraints motion_constraints(const TransferRun& run, int hex_vertices) {
+  MotionConstraints motion(hex_vertices, Eigen::Matrix3d::Identity());
+  const Eigen::MatrixXd uvw = hex_vertex_uvw(run, hex_vertices);
+  for (int v = 0; v < hex_vertices; ++v) {
+    Eigen::Matrix3d& P = motion[v];
+    for (int f = 0; f < 3; ++f) {
+      if (!run.standard.fixed(v, f)) continue;
+      if (uvw(v, f) == 0.0 || uvw(v, f) == 1.0) {
+        P.setZero();
+        break;
+      }
+      const Eigen::Vector3d n = run.patient.fields.gradients[f].row(run.transfer.tet(v)).transpose().normalized();
+      if (n.allFinite()) P = (Eigen::Matrix3d::Identity() - n * n.transpose()) * P;
+    }
+  }
+  return motion;
+}
+
 }  // namespace
 
 ModelParameterization parameterize_model(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T,
@@ -69,10 +91,7 @@ TransferRun run_transfer(const VolumeMesh& standard, const StandardDomain& domai
                                       run.patient.fields.uvw, &run.transfer, sub_progress(progress, 0.85, 1.0));
   run.seconds["mapping"] = clock.lap();
   if (options.untangle) {
-    // Vertices on a side or a feature of the standard land exactly on the patient's sides and features: they stay.
-    std::vector<char> fixed(standard.num_vertices());
-    for (int v = 0; v < standard.num_vertices(); ++v) fixed[v] = run.standard.fixed.row(v).any();
-    run.untangle = untangle(run.patient_hex, fixed, options.untangle_options);
+    run.untangle = untangle(run.patient_hex, motion_constraints(run, standard.num_vertices()), options.untangle_options);
     run.seconds["untangle"] = clock.lap();
   }
   return run;

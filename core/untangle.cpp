@@ -56,7 +56,14 @@ struct Energy {
 
 }  // namespace
 
-UntangleReport untangle(VolumeMesh& mesh, const std::vector<char>& fixed, const UntangleOptions& options) {
+MotionConstraints fixed_or_free(const std::vector<char>& fixed) {
+  MotionConstraints motion(fixed.size());
+  for (size_t v = 0; v < fixed.size(); ++v)
+    motion[v] = fixed[v] ? Eigen::Matrix3d::Zero().eval() : Eigen::Matrix3d::Identity().eval();
+  return motion;
+}
+
+UntangleReport untangle(VolumeMesh& mesh, const MotionConstraints& motion, const UntangleOptions& options) {
   UntangleReport report;
   const int nc = mesh.num_cells(), nv = mesh.num_vertices();
   auto scaled = [&](int c) { return scaled_jacobian(mesh.types[c], cell_nodes(mesh, c)); };
@@ -96,7 +103,7 @@ UntangleReport untangle(VolumeMesh& mesh, const std::vector<char>& fixed, const 
   }
   std::vector<int> free_vertices;
   for (int v : region)
-    if (!fixed[v]) free_vertices.push_back(v);
+    if (!motion[v].isZero()) free_vertices.push_back(v);
   report.free_vertices = static_cast<int>(free_vertices.size());
 
   // Corners touching each free vertex (the vertex is the corner node or one of its three neighbours).
@@ -150,20 +157,40 @@ UntangleReport untangle(VolumeMesh& mesh, const std::vector<char>& fixed, const 
     for (int v : free_vertices) {
       Eigen::Vector3d g;
       const double e0 = vertex_energy(v, &g);
-      const double gn = g.norm();
-      if (!(gn > 0) || !std::isfinite(e0)) continue;
-      // Step length: a tenth of the shortest edge at v, halved until the energy decreases.
+      g = motion[v] * g;  // allowed directions only
+      if (!(g.norm() > 0) || !std::isfinite(e0)) continue;
       double edge = std::numeric_limits<double>::infinity();
       for (const Corner& corner : corners_of[v])
         for (int local : corner_nodes(mesh.types[corner.cell], corner.k))
           if (mesh.C(corner.cell, local) != v)
             edge = std::min(edge, (mesh.V.row(mesh.C(corner.cell, local)) - mesh.V.row(v)).norm());
       const Eigen::RowVector3d x0 = mesh.V.row(v);
-      double t = 0.1 * edge;
+      // Newton direction from a finite-difference Hessian of the analytic gradient, in the allowed subspace;
+      // steepest descent where the Hessian is not positive definite.
+      const double h = 1e-5 * edge;
+      Eigen::Matrix3d H;
+      for (int d = 0; d < 3; ++d) {
+        Eigen::Vector3d gd;
+        mesh.V(v, d) += h;
+        vertex_energy(v, &gd);
+        mesh.V(v, d) = x0(d);
+        H.col(d) = (motion[v] * gd - g) / h;
+      }
+      H = 0.5 * (H + H.transpose()).eval();
+      H = (motion[v] * H * motion[v]).eval() + (Eigen::Matrix3d::Identity() - motion[v]) * H.norm();
+      Eigen::Vector3d step;
+      const Eigen::LLT<Eigen::Matrix3d> llt(H);
+      if (llt.info() == Eigen::Success && H.allFinite()) {
+        step = -(motion[v] * llt.solve(g));
+      } else {
+        step = -g;
+      }
+      if (step.norm() > 0.5 * edge) step *= 0.5 * edge / step.norm();  // no jumps across several cells
+      double t = 1;
       bool improved = false;
       for (int halving = 0; halving < 30 && !improved; ++halving, t *= 0.5) {
-        mesh.V.row(v) = x0 - t * g.transpose() / gn;
-        improved = vertex_energy(v, nullptr) < e0 - 1e-4 * t * gn;
+        mesh.V.row(v) = x0 + t * step.transpose();
+        improved = vertex_energy(v, nullptr) < e0 + 1e-4 * t * g.dot(step);
       }
       if (!improved) mesh.V.row(v) = x0;
       moved = std::max(moved, (mesh.V.row(v) - x0).norm());

@@ -9,11 +9,14 @@
 // minimizing it untangles. delta is taken from the worst corner and shrinks to 0 once nothing is inverted.
 //
 // Only vertices near bad cells move (within `rings` vertex rings of a cell that is inverted or whose scaled Jacobian
-// is below `min_scaled_jacobian`), so the rest of the mapped mesh keeps exactly the shape the mapping gave it; fixed
-// vertices (on the patient's surface, or on a feature) never move. Each sweep visits the free vertices in order and
-// moves each along its energy gradient with a backtracking line search (local Gauss-Seidel descent).
+// is below `min_scaled_jacobian`), so the rest of the mapped mesh keeps exactly the shape the mapping gave it.
+// Each vertex has a motion constraint: fixed (on the patient's surface), sliding in a plane (on a feature surface
+// such as the mid-sagittal sheet: it moves in the feature's tangent plane), or free. Each sweep visits the movable
+// vertices in order and moves each along its (projected) energy gradient with a backtracking line search (local
+// Gauss-Seidel descent).
 #include "core/mesh.h"
 
+#include <Eigen/Core>
 #include <vector>
 
 namespace facehex {
@@ -32,7 +35,12 @@ struct UntangleReport {
   int sweeps = 0;
 };
 
-// mesh: modified in place (V only). fixed: #V flags (nonzero = never moves).
-UntangleReport untangle(VolumeMesh& mesh, const std::vector<char>& fixed, const UntangleOptions& options = {});
+// How each vertex may move: P (3 x 3) projects a displacement onto the allowed directions: zero = fixed, identity =
+// free, I - n n^T = sliding in the plane of normal n.
+using MotionConstraints = std::vector<Eigen::Matrix3d>;
+MotionConstraints fixed_or_free(const std::vector<char>& fixed);
+
+// mesh: modified in place (V only). motion: #V projections.
+UntangleReport untangle(VolumeMesh& mesh, const MotionConstraints& motion, const UntangleOptions& options = {});
 
 }  // namespace facehex

@@ -1,17 +1,19 @@
 #include "core/io/abaqus_io.h"
 
-#include "core/cell_faces.h"
-#include "core/error.h"
-#include "core/io/fe_sets.h"
-#include "core/io/io_util.h"
-
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <unordered_map>
+
+#include "core/cell_faces.h"
+#include "core/error.h"
+#include "core/io/fe_sets.h"
+#include "core/io/io_util.h"
 
 namespace facehex::io {
 
@@ -24,9 +26,12 @@ constexpr int kIdsPerLine = 16;  // the Abaqus limit for data lines of *NSET and
 
 const char* abaqus_type(CellType type) {
   switch (type) {
-    case CellType::Hex: return "C3D8";
-    case CellType::Wedge: return "C3D6";
-    case CellType::Tet: return "C3D4";
+    case CellType::Hex:
+      return "C3D8";
+    case CellType::Wedge:
+      return "C3D6";
+    case CellType::Tet:
+      return "C3D4";
   }
   return "";
 }
@@ -38,6 +43,18 @@ const std::vector<std::vector<int>>& manual_faces(CellType type) {
   static const std::vector<std::vector<int>> wedge = {{1, 2, 3}, {4, 6, 5}, {1, 4, 5, 2}, {2, 5, 6, 3}, {3, 6, 4, 1}};
   static const std::vector<std::vector<int>> tet = {{1, 2, 3}, {1, 4, 2}, {2, 4, 3}, {3, 4, 1}};
   return type == CellType::Hex ? hex : type == CellType::Wedge ? wedge : tet;
+}
+
+// CalculiX reads at most 20 characters per field: the shortest text that reads back to exactly x, else (only for
+// 17-digit values with an exponent) the most digits that fit, which is still 13 or more.
+std::string format_field(double x) {
+  char buf[32];
+  for (int digits = 15; digits <= 17; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, x);
+    if (std::strtod(buf, nullptr) == x) break;
+  }
+  for (int digits = 16; std::strlen(buf) > 20; --digits) std::snprintf(buf, sizeof buf, "%.*g", digits, x);
+  return buf;
 }
 
 // Frame vectors are unit vectors: 9 digits keep them exact to 1e-9 and the line under CalculiX's 132 characters.
@@ -71,7 +88,8 @@ std::vector<std::string_view> comma_fields(std::string_view line) {
   size_t start = 0;
   while (true) {
     const size_t comma = line.find(',', start);
-    fields.push_back(trim(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
+    fields.push_back(
+        trim(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
     if (comma == std::string_view::npos) break;
     start = comma + 1;
   }
@@ -151,7 +169,8 @@ class AbaqusReader {
 
   double real(std::string_view field, const std::string& what) const {
     double x;
-    if (!parse_real(field, &x)) in_.fail("expected a finite number for " + what + ", found '" + std::string(field) + "'");
+    if (!parse_real(field, &x))
+      in_.fail("expected a finite number for " + what + ", found '" + std::string(field) + "'");
     return x;
   }
 
@@ -203,8 +222,8 @@ class AbaqusReader {
       more = advance();
     }
     if (pending.id != 0) {
-      throw Error(in_.path(), "element " + std::to_string(pending.id) + " is incomplete, line " +
-                                  std::to_string(pending.line));
+      throw Error(in_.path(),
+                  "element " + std::to_string(pending.id) + " is incomplete, line " + std::to_string(pending.line));
     }
     return more;
   }
@@ -277,7 +296,8 @@ class AbaqusReader {
 
   VolumeMesh build() {
     if (elements_.empty()) throw Error(in_.path(), "no solid elements (*ELEMENT, TYPE=C3D8/C3D6/C3D4)");
-    std::stable_sort(elements_.begin(), elements_.end(), [](const Element& a, const Element& b) { return a.id < b.id; });
+    std::stable_sort(elements_.begin(), elements_.end(),
+                     [](const Element& a, const Element& b) { return a.id < b.id; });
     VolumeMesh mesh;
     mesh.V = rows_to_matrix(coords_, 3);
     CellBuilder cells;
@@ -302,8 +322,10 @@ class AbaqusReader {
     if (auto mask = side_mask_from_node_sets(mesh.num_vertices(), sets)) mesh.point_data[kSideMaskArray] = *mask;
 
     if (have_distribution_) {
-      MaterialFrames frames{Eigen::MatrixXd(elements_.size(), 3), Eigen::MatrixXd(elements_.size(), 3),
-                            Eigen::MatrixXd(elements_.size(), 3), {}};
+      MaterialFrames frames{Eigen::MatrixXd(elements_.size(), 3),
+                            Eigen::MatrixXd(elements_.size(), 3),
+                            Eigen::MatrixXd(elements_.size(), 3),
+                            {}};
       for (size_t i = 0; i < elements_.size(); ++i) {
         const auto it = frames_.find(elements_[i].id);
         const Eigen::Matrix3d& frame = it == frames_.end() ? default_frame_ : it->second;
@@ -360,8 +382,8 @@ void write_abaqus(const std::string& file, const VolumeMesh& mesh) {
 
   out << "*NODE, NSET=NALL\n";
   for (int i = 0; i < mesh.num_vertices(); ++i) {
-    out << i + 1 << ", " << format_double(mesh.V(i, 0)) << ", " << format_double(mesh.V(i, 1)) << ", "
-        << format_double(mesh.V(i, 2)) << '\n';
+    out << i + 1 << ", " << format_field(mesh.V(i, 0)) << ", " << format_field(mesh.V(i, 1)) << ", "
+        << format_field(mesh.V(i, 2)) << '\n';
   }
   for (CellType t : types) {
     out << "*ELEMENT, TYPE=" << abaqus_type(t) << ", ELSET=" << element_set_name(t) << '\n';

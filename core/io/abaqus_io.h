@@ -11,15 +11,16 @@
 //   *SOLID SECTION, ELSET=ALL, MATERIAL=SOFT_TISSUE[, ORIENTATION=FRAME]
 // Units: mm, N, MPa. The *DISTRIBUTION is written as CalculiX 2.20 reads it (no TABLE parameter); Abaqus/Standard
 // also wants a *DISTRIBUTION TABLE (COORD3D, COORD3D) named by TABLE= on the *DISTRIBUTION line (docs/export.md).
-// Lines stay under CalculiX's 132 characters: coordinates with 17 significant digits, frame vectors with 9.
+// CalculiX reads 132 characters per line and 20 per field: coordinates are the shortest text that reads back exactly
+// when that fits (else rounded to 13+ significant digits), frame vectors have 9 digits.
 //
 // The reader takes *NODE, *ELEMENT (C3D8*, C3D6*, C3D4*: linear bricks, wedges, tets with any R/H/I suffix),
 // *NSET (ids, set names, GENERATE) and one *DISTRIBUTION, and skips every other keyword with its data lines. Node and
 // element ids may have gaps; cells are ordered by element id. Node sets named after the sides become point data
 // "side_mask", the distribution becomes cell data "frame_e1".."frame_e3" (fe_sets.h). *INCLUDE is an error.
-#include "core/mesh.h"
-
 #include <string>
+
+#include "core/mesh.h"
 
 namespace facehex::io {
 

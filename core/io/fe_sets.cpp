@@ -1,11 +1,11 @@
 #include "core/io/fe_sets.h"
 
+#include <algorithm>
+
 #include "core/cell_faces.h"
 #include "core/constraint_set.h"
 #include "core/corner_jacobian.h"
 #include "core/error.h"
-
-#include <algorithm>
 
 namespace facehex {
 
@@ -19,17 +19,20 @@ std::string describe_cells(const std::vector<int>& cells, int total, const std::
   std::string ids;
   for (size_t i = 0; i < std::min(cells.size(), kShown); ++i) ids += (i ? ", " : "") + std::to_string(cells[i] + 1);
   if (cells.size() > kShown) ids += ", ...";
-  return std::to_string(cells.size()) + " of " + std::to_string(total) + " elements " + what + " (element ids " +
-         ids + ")";
+  return std::to_string(cells.size()) + " of " + std::to_string(total) + " elements " + what + " (element ids " + ids +
+         ")";
 }
 
 }  // namespace
 
 const char* element_set_name(CellType type) {
   switch (type) {
-    case CellType::Hex: return "HEX";
-    case CellType::Wedge: return "WEDGE";
-    case CellType::Tet: return "TET";
+    case CellType::Hex:
+      return "HEX";
+    case CellType::Wedge:
+      return "WEDGE";
+    case CellType::Tet:
+      return "TET";
   }
   return "";
 }
@@ -79,8 +82,8 @@ std::optional<MaterialFrames> export_frames(const VolumeMesh& mesh) {
     return it != mesh.cell_data.end() && it->second.cols() == 3;
   };
   if (has(kFrameArrays[0]) && has(kFrameArrays[1]) && has(kFrameArrays[2])) {
-    return MaterialFrames{mesh.cell_data.at(kFrameArrays[0]), mesh.cell_data.at(kFrameArrays[1]),
-                          mesh.cell_data.at(kFrameArrays[2]), {}};
+    return MaterialFrames{
+        mesh.cell_data.at(kFrameArrays[0]), mesh.cell_data.at(kFrameArrays[1]), mesh.cell_data.at(kFrameArrays[2]), {}};
   }
   const auto uvw = mesh.point_data.find("uvw");
   if (uvw == mesh.point_data.end() || uvw->second.cols() != 3) return std::nullopt;

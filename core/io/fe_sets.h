@@ -18,16 +18,16 @@
 // The material frame of each element (material_frame.h) comes from cell data "frame_e1", "frame_e2", "frame_e3" when
 // the mesh has them (e.g. read back from an exported file), else from point data "uvw" (a patient hex mesh written by
 // `facehex run`); a mesh with neither is exported without orientations.
-#include "core/material_frame.h"
-#include "core/mesh.h"
-#include "core/sides.h"
-
 #include <Eigen/Core>
 #include <array>
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "core/material_frame.h"
+#include "core/mesh.h"
+#include "core/sides.h"
 
 namespace facehex {
 

@@ -1,10 +1,5 @@
 #include "core/io/febio_io.h"
 
-#include "core/cell_faces.h"
-#include "core/error.h"
-#include "core/io/fe_sets.h"
-#include "core/io/io_util.h"
-
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cctype>
@@ -12,6 +7,11 @@
 #include <map>
 #include <sstream>
 #include <unordered_map>
+
+#include "core/cell_faces.h"
+#include "core/error.h"
+#include "core/io/fe_sets.h"
+#include "core/io/io_util.h"
 
 namespace facehex::io {
 
@@ -21,9 +21,12 @@ constexpr const char* kMaterial = "soft_tissue";
 
 const char* febio_type(CellType type) {
   switch (type) {
-    case CellType::Hex: return "hex8";
-    case CellType::Wedge: return "penta6";
-    case CellType::Tet: return "tet4";
+    case CellType::Hex:
+      return "hex8";
+    case CellType::Wedge:
+      return "penta6";
+    case CellType::Tet:
+      return "tet4";
   }
   return "";
 }
@@ -57,7 +60,9 @@ class XmlParser {
   }
 
  private:
-  [[noreturn]] void fail(const std::string& problem) { throw Error(path_, problem + ", line " + std::to_string(line())); }
+  [[noreturn]] void fail(const std::string& problem) {
+    throw Error(path_, problem + ", line " + std::to_string(line()));
+  }
   // The line of pos_, counted incrementally: pos_ only moves forward.
   int line() {
     line_ += static_cast<int>(std::count(text_.begin() + counted_, text_.begin() + pos_, '\n'));
@@ -328,7 +333,8 @@ class FebioReader {
 
   VolumeMesh build(const XmlElement& root) {
     if (elements_.empty()) fail(root, "no elements (<Elements type=\"hex8\">, penta6 or tet4)");
-    std::stable_sort(elements_.begin(), elements_.end(), [](const Element& a, const Element& b) { return a.id < b.id; });
+    std::stable_sort(elements_.begin(), elements_.end(),
+                     [](const Element& a, const Element& b) { return a.id < b.id; });
     VolumeMesh mesh;
     mesh.V = rows_to_matrix(coords_, 3);
     CellBuilder cells;
@@ -350,7 +356,8 @@ class FebioReader {
     for (const auto& [name, ids] : node_sets_)
       for (long id : ids) {
         const auto it = node_index_.find(id);
-        if (it == node_index_.end()) throw Error(path_, "node set " + name + " refers to unknown node " + std::to_string(id));
+        if (it == node_index_.end())
+          throw Error(path_, "node set " + name + " refers to unknown node " + std::to_string(id));
         sets[name].push_back(it->second);
       }
     if (auto mask = side_mask_from_node_sets(mesh.num_vertices(), sets)) mesh.point_data[kSideMaskArray] = *mask;
@@ -464,7 +471,8 @@ void write_febio(const std::string& file, const VolumeMesh& mesh) {
   out << "    <ElementSet name=\"" << kAllElementsSet << "\">" << id_list(all) << "</ElementSet>\n  </Mesh>\n";
 
   out << "  <MeshDomains>\n";
-  for (CellType t : types) out << "    <SolidDomain name=\"" << element_set_name(t) << "\" mat=\"" << kMaterial << "\"/>\n";
+  for (CellType t : types)
+    out << "    <SolidDomain name=\"" << element_set_name(t) << "\" mat=\"" << kMaterial << "\"/>\n";
   out << "  </MeshDomains>\n";
   if (frames) {
     out << "  <MeshData>\n";

@@ -18,9 +18,9 @@
 // The reader takes Mesh/Nodes, Mesh/Elements (hex8, penta6, tet4), Mesh/NodeSet and MeshData/ElementData of type
 // mat_axis, skipping the rest; cells are ordered by element id, node sets named after the sides become "side_mask"
 // and mat_axis becomes "frame_e1".."frame_e3" (elements without one get the global axes, as in FEBio).
-#include "core/mesh.h"
-
 #include <string>
+
+#include "core/mesh.h"
 
 namespace facehex::io {
 

@@ -381,7 +381,9 @@ void write_gmsh(const std::string& file, const VolumeMesh& mesh) {
     for (int size : {3, 4}) {
       FaceBlock block{s, size == 3 ? 2 : 3, {}};
       for (const CellFace& cf : sides.faces[s])
-        if (cell_faces(mesh.types[cf.cell])[cf.face].size == size) block.faces.push_back(face_vertices(mesh, cf.cell, cf.face));
+        if (cell_faces(mesh.types[cf.cell])[cf.face].size == size) {
+          block.faces.push_back(face_vertices(mesh, cf.cell, cf.face));
+        }
       num_faces += block.faces.size();
       if (!block.faces.empty()) face_blocks.push_back(std::move(block));
     }

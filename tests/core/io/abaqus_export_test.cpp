@@ -1,15 +1,14 @@
 // Abaqus / CalculiX .inp: node order and face numbers in the Abaqus conventions, sets and orientations, the round
 // trip through our reader, and the reader's handling of hand-written decks. (ccx itself runs in solver_export_test.)
-#include "core/io/abaqus_io.h"
+#include <gtest/gtest.h>
 
+#include <sstream>
+
+#include "core/io/abaqus_io.h"
 #include "core/io/fe_sets.h"
 #include "core/io/mesh_io.h"
 #include "export_test_meshes.h"
 #include "io_test_util.h"
-
-#include <gtest/gtest.h>
-
-#include <sstream>
 
 namespace facehex {
 namespace {
@@ -106,6 +105,23 @@ TEST(AbaqusExport, DeckHasSetsSurfacesOrientationsAndShortLines) {
   std::istringstream in(text);
   std::string line;
   while (std::getline(in, line)) EXPECT_LE(line.size(), 132u) << "CalculiX reads 132 characters: " << line;
+}
+
+TEST(AbaqusExport, CoordinatesFitCalculixFieldsAndReadBackExactlyWhenTheyCan) {
+  // CalculiX reads 20 characters per field. 77.755425599999995 is exactly 77.7554256 and -1/3 needs 16 digits, but
+  // -1e-9/3 would need 17 digits and an exponent (23 characters): it is rounded to 14.
+  TempDir dir;
+  VolumeMesh m = test::hex_wedge_slab();
+  m.V.row(0) << -1e-9 / 3, 77.755425599999995, -1.0 / 3.0;
+  const std::string path = dir.file("slab.inp");
+  write_volume_mesh(path, m, MeshWriteOptions{true});
+  const std::string text = test::read_file(path);
+  EXPECT_NE(text.find("\n1, -3.3333333333333e-10, 77.7554256, -0.3333333333333333\n"), std::string::npos)
+      << text.substr(0, 300);
+  const VolumeMesh back = read_volume_mesh(path);
+  EXPECT_NEAR(back.V(0, 0), m.V(0, 0), 1e-23);
+  EXPECT_EQ(back.V(0, 1), m.V(0, 1));
+  EXPECT_EQ(back.V(0, 2), m.V(0, 2));
 }
 
 TEST(AbaqusExport, RoundTripKeepsMeshSidesAndFrames) {

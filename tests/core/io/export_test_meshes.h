@@ -1,13 +1,13 @@
 #pragma once
 // Meshes and helpers shared by the FE export tests (*export*_test.cpp).
-#include "core/mesh.h"
-#include "core/sides.h"
-#include "tests/core/test_meshes.h"
-
 #include <Eigen/Core>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+
+#include "core/mesh.h"
+#include "core/sides.h"
+#include "tests/core/test_meshes.h"
 
 namespace facehex::test {
 

@@ -1,12 +1,11 @@
 // The sets, surfaces and frames every FE export shares (fe_sets.h), and the refusal of inverted meshes.
-#include "core/io/fe_sets.h"
+#include <gtest/gtest.h>
 
 #include "core/cell_faces.h"
+#include "core/io/fe_sets.h"
 #include "core/io/mesh_io.h"
 #include "export_test_meshes.h"
 #include "io_test_util.h"
-
-#include <gtest/gtest.h>
 
 namespace facehex {
 namespace {
@@ -78,12 +77,13 @@ TEST(FeExport, InvertedMeshIsRefusedWithItsElementIdsUnlessForced) {
     const std::string path = dir.file("bad" + ext);
     test::expect_error([&] { write_volume_mesh(path, m); }, "element ids 5");
     test::expect_error([&] { write_volume_mesh(path, m); }, "are inverted");
-    EXPECT_TRUE(dir.entries().empty()) << "nothing written";
+    EXPECT_FALSE(std::filesystem::exists(path)) << "nothing written";
     MeshWriteOptions force;
     force.allow_inverted = true;
     write_volume_mesh(path, m, force);
     EXPECT_TRUE(std::filesystem::exists(path));
   }
+  EXPECT_EQ(dir.entries(), (std::vector<std::string>{"bad.feb", "bad.inp"})) << "no temporary files left";
   write_volume_mesh(dir.file("bad.vtu"), m);  // data formats keep bad meshes inspectable
 }
 

@@ -1,0 +1,170 @@
+#include "core/segment/ct_volume.h"
+
+#include "core/error.h"
+
+#include <Eigen/Geometry>
+#include <vtkAlgorithm.h>
+#include <vtkCallbackCommand.h>
+#include <vtkDICOMImageReader.h>
+#include <vtkDataArray.h>
+#include <vtkImageCast.h>
+#include <vtkImageData.h>
+#include <vtkMetaImageReader.h>
+#include <vtkNIFTIImageReader.h>
+#include <vtkNew.h>
+#include <vtkNrrdReader.h>
+#include <vtkPointData.h>
+#include <vtkSmartPointer.h>
+#include <vtkXMLImageDataReader.h>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <functional>
+
+namespace facehex {
+namespace {
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+// Collects VTK's error messages so they end up in our exception instead of on the console.
+void collect_error(vtkObject*, unsigned long, void* client_data, void* call_data) {
+  auto* message = static_cast<std::string*>(client_data);
+  if (message->empty() && call_data) *message = static_cast<const char*>(call_data);
+}
+
+// Signed axis "+x" ... "-z" -> (axis, sign).
+std::pair<int, int> parse_axis(const std::string& text, const std::string& what) {
+  if (text.size() == 2 && (text[0] == '+' || text[0] == '-') && text[1] >= 'x' && text[1] <= 'z')
+    return {text[1] - 'x', text[0] == '+' ? 1 : -1};
+  throw Error("orientation", what + " axis must be one of +x, -x, +y, -y, +z, -z (got '" + text + "')");
+}
+
+}  // namespace
+
+CtVolume read_ct_volume(const std::string& path, const CtOrientation& orientation) {
+  namespace fs = std::filesystem;
+  if (!fs::exists(path)) throw Error(path, "no such file or folder");
+  const std::string name = lower(path);
+  vtkSmartPointer<vtkAlgorithm> reader;
+  std::function<double(double)> rescale = [](double v) { return v; };
+  if (fs::is_directory(path)) {
+    auto dicom = vtkSmartPointer<vtkDICOMImageReader>::New();
+    dicom->SetDirectoryName(path.c_str());
+    reader = dicom;
+  } else if (ends_with(name, ".mhd") || ends_with(name, ".mha")) {
+    auto meta = vtkSmartPointer<vtkMetaImageReader>::New();
+    meta->SetFileName(path.c_str());
+    reader = meta;
+  } else if (ends_with(name, ".nii") || ends_with(name, ".nii.gz")) {
+    auto nifti = vtkSmartPointer<vtkNIFTIImageReader>::New();
+    nifti->SetFileName(path.c_str());
+    reader = nifti;
+  } else if (ends_with(name, ".nrrd") || ends_with(name, ".nhdr")) {
+    auto nrrd = vtkSmartPointer<vtkNrrdReader>::New();
+    nrrd->SetFileName(path.c_str());
+    reader = nrrd;
+  } else if (ends_with(name, ".vti")) {
+    auto xml = vtkSmartPointer<vtkXMLImageDataReader>::New();
+    xml->SetFileName(path.c_str());
+    reader = xml;
+  } else {
+    throw Error(path, "unknown CT format (expected .mhd, .mha, .nii, .nii.gz, .nrrd, .nhdr, .vti or a DICOM folder)");
+  }
+
+  std::string vtk_error;
+  vtkNew<vtkCallbackCommand> on_error;
+  on_error->SetCallback(collect_error);
+  on_error->SetClientData(&vtk_error);
+  reader->AddObserver(vtkCommand::ErrorEvent, on_error);
+  vtkNew<vtkImageCast> cast;
+  cast->SetInputConnection(reader->GetOutputPort());
+  cast->SetOutputScalarTypeToFloat();
+  cast->AddObserver(vtkCommand::ErrorEvent, on_error);
+  cast->Update();
+
+  if (auto* nifti = vtkNIFTIImageReader::SafeDownCast(reader)) {
+    const double slope = nifti->GetRescaleSlope(), intercept = nifti->GetRescaleIntercept();
+    if (slope != 0) rescale = [slope, intercept](double v) { return slope * v + intercept; };
+  } else if (auto* dicom = vtkDICOMImageReader::SafeDownCast(reader)) {
+    const double slope = dicom->GetRescaleSlope(), intercept = dicom->GetRescaleOffset();
+    if (slope != 0) rescale = [slope, intercept](double v) { return slope * v + intercept; };
+  }
+
+  vtkImageData* image = cast->GetOutput();
+  vtkDataArray* scalars = image ? image->GetPointData()->GetScalars() : nullptr;
+  int dims[3] = {0, 0, 0};
+  if (image) image->GetDimensions(dims);
+  if (!scalars || scalars->GetNumberOfTuples() == 0)
+    throw Error(path, "could not read a volume" + (vtk_error.empty() ? std::string() : " (" + vtk_error + ")"));
+  if (dims[0] < 2 || dims[1] < 2 || dims[2] < 2)
+    throw Error(path, "is not a 3D volume (" + std::to_string(dims[0]) + " x " + std::to_string(dims[1]) + " x " +
+                          std::to_string(dims[2]) + " voxels)");
+
+  CtVolume ct;
+  ct.source = path;
+  GridGeometry& g = ct.intensity.geometry;
+  g.dims = {dims[0], dims[1], dims[2]};
+  double spacing[3], origin[3];
+  image->GetSpacing(spacing);
+  image->GetOrigin(origin);
+  for (int a = 0; a < 3; ++a) {
+    g.spacing(a) = std::abs(spacing[a]);
+    g.origin(a) = origin[a];
+  }
+  if (g.spacing.minCoeff() <= 0) throw Error(path, "has a zero voxel spacing");
+  ct.intensity.data.resize(g.size());
+  const int components = scalars->GetNumberOfComponents();
+  const auto* values = static_cast<const float*>(scalars->GetVoidPointer(0));
+  for (size_t i = 0; i < g.size(); ++i) ct.intensity.data[i] = static_cast<float>(rescale(values[i * components]));
+  return reorient(ct, orientation);
+}
+
+CtVolume reorient(const CtVolume& ct, const CtOrientation& orientation) {
+  const auto [anterior_axis, anterior_sign] = parse_axis(orientation.anterior, "anterior");
+  const auto [superior_axis, superior_sign] = parse_axis(orientation.superior, "superior");
+  if (anterior_axis == superior_axis)
+    throw Error("orientation", "anterior and superior must be different axes (got " + orientation.anterior + " and " +
+                                   orientation.superior + ")");
+  // New axis a reads the old axis source[a] with direction sign[a]; x = y cross z keeps the frame right-handed.
+  int source[3], sign[3];
+  source[1] = anterior_axis, sign[1] = anterior_sign;
+  source[2] = superior_axis, sign[2] = superior_sign;
+  source[0] = 3 - anterior_axis - superior_axis;
+  Eigen::Vector3d y = Eigen::Vector3d::Zero(), z = Eigen::Vector3d::Zero();
+  y(anterior_axis) = anterior_sign;
+  z(superior_axis) = superior_sign;
+  sign[0] = y.cross(z)(source[0]) > 0 ? 1 : -1;
+  if (source[0] == 0 && source[1] == 1 && sign[0] == 1 && sign[1] == 1 && sign[2] == 1) return ct;
+
+  const GridGeometry& old_g = ct.intensity.geometry;
+  CtVolume out;
+  out.source = ct.source;
+  GridGeometry& g = out.intensity.geometry;
+  for (int a = 0; a < 3; ++a) {
+    const int s = source[a];
+    g.dims[a] = old_g.dims[s];
+    g.spacing(a) = old_g.spacing(s);
+    // Physical coordinate along the new axis = sign * old coordinate, so the new frame is a rotation of the old one.
+    g.origin(a) = sign[a] > 0 ? old_g.origin(s) : -old_g.upper(s);
+  }
+  out.intensity.data.resize(g.size());
+  for (int k = 0; k < g.dims[2]; ++k)
+    for (int j = 0; j < g.dims[1]; ++j)
+      for (int i = 0; i < g.dims[0]; ++i) {
+        const int n[3] = {i, j, k};
+        int o[3];
+        for (int a = 0; a < 3; ++a) o[source[a]] = sign[a] > 0 ? n[a] : g.dims[a] - 1 - n[a];
+        out.intensity(i, j, k) = ct.intensity(o[0], o[1], o[2]);
+      }
+  return out;
+}
+
+}  // namespace facehex

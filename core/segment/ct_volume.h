@@ -1,0 +1,31 @@
+#pragma once
+// A CT volume in millimetres, in the segmentation frame: +y ANTERIOR (the face looks towards +y), +z SUPERIOR,
+// +x = y x z (right-handed; which ear that is depends on the scan, see core/sides.h).
+#include "core/segment/voxel_grid.h"
+
+#include <string>
+
+namespace facehex {
+
+struct CtVolume {
+  Field intensity;     // file units (Hounsfield units when the file says so; any monotone scale works)
+  std::string source;  // file or folder it was read from, for messages
+};
+
+// Which axis of the file's voxel grid points anterior and which superior: "+x", "-x", "+y", "-y", "+z" or "-z".
+// The default is the segmentation frame itself; e.g. a DICOM series in LPS order is anterior "-y", superior "+z".
+struct CtOrientation {
+  std::string anterior = "+y";
+  std::string superior = "+z";
+};
+
+// Reads a CT volume: .mhd/.mha (MetaImage), .nii/.nii.gz (NIfTI, scl_slope/inter applied), .nrrd/.nhdr, .vti, or a
+// folder of DICOM slices (rescale slope/intercept applied). Spacing and origin are the file's; the direction matrix
+// is ignored (state the orientation instead). Throws facehex::Error(path, ...) on a missing, unreadable or
+// non-3D file or an invalid orientation.
+CtVolume read_ct_volume(const std::string& path, const CtOrientation& orientation = {});
+
+// Permutes/flips the voxel grid so that `orientation.anterior` becomes +y and `orientation.superior` becomes +z.
+CtVolume reorient(const CtVolume& ct, const CtOrientation& orientation);
+
+}  // namespace facehex

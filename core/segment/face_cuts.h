@@ -1,0 +1,63 @@
+#pragma once
+// The cut planes that bound the facial soft-tissue model, and where they go when not given.
+//
+// In the segmentation frame (+y anterior, +z superior):
+//   top cut      z = top_z        (side v1): just above the eyebrows, or the top of the CT when that is lower;
+//   bottom cut   z = bottom_z     (side v0): below the chin;
+//   posterior    y = posterior_y  (sides u0 at x < centre_x, u1 at x > centre_x): in front of the ears;
+//   jaw cut      y + z = posterior_y + jaw_z (side v0 too), rising backwards at 45 degrees from the bottom cut to
+//                z = jaw_z on the posterior cut. Under the jaw the soft tissue runs back to the neck, so the posterior
+//                cut alone would cut it right across, joining u0 and u1 under the chin; the jaw cut takes away the
+//                back of the submental region so that the posterior cut meets two separate lateral pieces, as in the
+//                standard mesh (whose lower boundary also rises from the chin back towards the ears).
+// Automatic placement (each value can be given instead):
+//   centre_x    = mean x of the head voxels;
+//   bottom_z    = lowest bone voxel of the chin (within 15 mm of the mid-plane, in the anterior quarter of the
+//                 head's depth at its level) minus chin_clearance, but at least border_margin above the CT's bottom;
+//   top_z       = bottom_z + face_height, but at least border_margin below the CT's top;
+//   posterior_y = the front of the ears plus ear_clearance. The ears are where the head is widest (they stick out
+//                 further than anything else over the upper 60% of the face and the middle half of the head's
+//                 depth); their front is the most anterior coronal row within 5 mm of that width;
+//   jaw_z       = just above the highest model voxel on the posterior cut within one voxel of the mid-plane, in the
+//                 lower half of the face (find_jaw_cut, once the soft tissue is known); none if there is none.
+#include "core/segment/voxel_grid.h"
+#include "core/sides.h"
+
+#include <limits>
+#include <optional>
+#include <vector>
+
+namespace facehex {
+
+struct FaceCutOptions {
+  std::optional<double> top_z, bottom_z, posterior_y, centre_x;  // mm, segmentation frame
+  double face_height = 130.0;    // mm from the bottom to the top cut (menton to above the brows, plus clearance)
+  double chin_clearance = 10.0;  // mm below the lowest point of the mandible
+  double ear_clearance = 10.0;   // mm in front of the front of the ears
+  double border_margin = 3.0;    // mm: top and bottom cuts stay this far inside the CT
+};
+
+// A cut half-space boundary: points p with normal . p > offset are cut away (normal points out of the model).
+struct CutPlane {
+  Eigen::Vector3d normal;
+  double offset = 0;
+  Side side = V0;  // the posterior plane says U0: it is u0 at x < centre_x and u1 beyond
+  double distance(const Eigen::Vector3d& p) const { return normal.dot(p) - offset; }
+};
+
+struct FaceCuts {
+  double top_z = 0, bottom_z = 0, posterior_y = 0, centre_x = 0;
+  double jaw_z = -std::numeric_limits<double>::infinity();  // -infinity: no jaw cut
+
+  std::vector<CutPlane> planes() const;
+};
+
+// `head` is the body (with its ears), `bone` the bone voxels, on the same grid.
+// Throws facehex::Error("segment", ...) if the cuts leave no face (bottom above top, ...).
+FaceCuts find_face_cuts(const Mask& head, const Mask& bone, const FaceCutOptions& options);
+
+// Sets cuts.jaw_z from the model mask (before the cuts are applied): `clearance` mm above the highest model voxel in
+// the posterior plane's voxel row that lies within one voxel of the mid-plane x = centre_x.
+void find_jaw_cut(const Mask& model, double clearance, FaceCuts& cuts);
+
+}  // namespace facehex

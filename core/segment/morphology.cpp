@@ -1,0 +1,140 @@
+#include "core/segment/morphology.h"
+
+#include "core/segment/distance_transform.h"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+
+namespace facehex {
+namespace {
+
+Mask invert(const Mask& mask) {
+  Mask out = mask;
+  for (auto& v : out.data) v = !v;
+  return out;
+}
+
+// Calls visit(neighbour_index) for the face neighbours of voxel (i, j, k) inside the grid.
+template <class Visit>
+void for_face_neighbours(const GridGeometry& g, int i, int j, int k, Visit visit) {
+  static const int kOffsets[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (const auto& o : kOffsets) {
+    const int a = i + o[0], b = j + o[1], c = k + o[2];
+    if (g.contains(a, b, c)) visit(g.index(a, b, c));
+  }
+}
+
+}  // namespace
+
+Mask dilate(const Mask& mask, double radius) {
+  const Field d = distance_to(mask);
+  Mask out(mask.geometry, 0);
+  for (size_t i = 0; i < d.data.size(); ++i) out.data[i] = d.data[i] <= radius;
+  return out;
+}
+
+Mask erode(const Mask& mask, double radius) {
+  // Outside the grid is background: pad by one layer so the distance sees it.
+  const GridGeometry& g = mask.geometry;
+  GridGeometry padded = g;
+  for (int a = 0; a < 3; ++a) padded.dims[a] += 2, padded.origin(a) -= g.spacing(a);
+  Mask background(padded, 1);
+  for (int k = 0; k < g.dims[2]; ++k)
+    for (int j = 0; j < g.dims[1]; ++j)
+      for (int i = 0; i < g.dims[0]; ++i) background(i + 1, j + 1, k + 1) = !mask(i, j, k);
+  const Field d = distance_to(background);
+  Mask out(g, 0);
+  for (int k = 0; k < g.dims[2]; ++k)
+    for (int j = 0; j < g.dims[1]; ++j)
+      for (int i = 0; i < g.dims[0]; ++i) out(i, j, k) = d(i + 1, j + 1, k + 1) > radius;
+  return out;
+}
+
+Mask close(const Mask& mask, double radius) {
+  const GridGeometry& g = mask.geometry;
+  int pad[3];
+  GridGeometry padded = g;
+  for (int a = 0; a < 3; ++a) {
+    pad[a] = static_cast<int>(std::ceil(radius / g.spacing(a))) + 1;
+    padded.dims[a] += 2 * pad[a];
+    padded.origin(a) -= pad[a] * g.spacing(a);
+  }
+  Mask big(padded, 0);
+  for (int k = 0; k < padded.dims[2]; ++k)
+    for (int j = 0; j < padded.dims[1]; ++j)
+      for (int i = 0; i < padded.dims[0]; ++i)
+        big(i, j, k) = mask(std::clamp(i - pad[0], 0, g.dims[0] - 1), std::clamp(j - pad[1], 0, g.dims[1] - 1),
+                            std::clamp(k - pad[2], 0, g.dims[2] - 1));
+  // Erosion inside the padded grid: its border replicates the mask, so treating beyond-the-padding as background
+  // only reaches the padding, never the original voxels (pad > radius).
+  const Mask closed = erode(dilate(big, radius), radius);
+  Mask out(g, 0);
+  for (int k = 0; k < g.dims[2]; ++k)
+    for (int j = 0; j < g.dims[1]; ++j)
+      for (int i = 0; i < g.dims[0]; ++i) out(i, j, k) = closed(i + pad[0], j + pad[1], k + pad[2]);
+  return out;
+}
+
+Mask open(const Mask& mask, double radius) {
+  if (radius <= 0) return mask;
+  Mask out = dilate(largest_component(erode(mask, radius)), radius);
+  for (size_t i = 0; i < out.data.size(); ++i) out.data[i] &= mask.data[i];
+  return out;
+}
+
+int label_components(const Mask& mask, std::vector<int>& labels, std::vector<size_t>& sizes) {
+  const GridGeometry& g = mask.geometry;
+  labels.assign(g.size(), 0);
+  sizes.assign(1, 0);
+  std::deque<size_t> queue;
+  int n = 0;
+  for (size_t seed = 0; seed < g.size(); ++seed) {
+    if (!mask.data[seed] || labels[seed]) continue;
+    labels[seed] = ++n;
+    sizes.push_back(0);
+    queue.push_back(seed);
+    while (!queue.empty()) {
+      const size_t v = queue.front();
+      queue.pop_front();
+      ++sizes[n];
+      const auto [i, j, k] = g.ijk(v);
+      for_face_neighbours(g, i, j, k, [&](size_t w) {
+        if (mask.data[w] && !labels[w]) labels[w] = n, queue.push_back(w);
+      });
+    }
+  }
+  return n;
+}
+
+Mask largest_component(const Mask& mask) {
+  std::vector<int> labels;
+  std::vector<size_t> sizes;
+  const int n = label_components(mask, labels, sizes);
+  Mask out(mask.geometry, 0);
+  if (n == 0) return out;
+  const int best = static_cast<int>(std::max_element(sizes.begin(), sizes.end()) - sizes.begin());
+  for (size_t i = 0; i < labels.size(); ++i) out.data[i] = labels[i] == best;
+  return out;
+}
+
+Mask fill_cavities(const Mask& mask, const std::array<bool, 3>& open) {
+  const GridGeometry& g = mask.geometry;
+  std::vector<int> labels;
+  std::vector<size_t> sizes;
+  const int n = label_components(invert(mask), labels, sizes);
+  std::vector<char> exterior(n + 1, 0);
+  for (int k = 0; k < g.dims[2]; ++k)
+    for (int j = 0; j < g.dims[1]; ++j)
+      for (int i = 0; i < g.dims[0]; ++i) {
+        const bool on_open_face = (open[0] && (i == 0 || i == g.dims[0] - 1)) ||
+                                  (open[1] && (j == 0 || j == g.dims[1] - 1)) ||
+                                  (open[2] && (k == 0 || k == g.dims[2] - 1));
+        if (on_open_face) exterior[labels[g.index(i, j, k)]] = 1;
+      }
+  Mask out(g, 0);
+  for (size_t i = 0; i < labels.size(); ++i) out.data[i] = mask.data[i] || !exterior[labels[i]];
+  return out;
+}
+
+}  // namespace facehex

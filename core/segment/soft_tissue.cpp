@@ -1,0 +1,247 @@
+#include "core/segment/soft_tissue.h"
+
+#include "core/error.h"
+#include "core/segment/distance_transform.h"
+#include "core/segment/iso_surface.h"
+#include "core/segment/morphology.h"
+#include "core/segment/remesh.h"
+#include "core/segment/side_labels.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include <vtkCellArray.h>  // DEBUG-REMOVE
+#include <vtkCellData.h>  // DEBUG-REMOVE
+#include <vtkIntArray.h>  // DEBUG-REMOVE
+#include <vtkNew.h>  // DEBUG-REMOVE
+#include <vtkPoints.h>  // DEBUG-REMOVE
+#include <vtkPolyData.h>  // DEBUG-REMOVE
+#include <vtkXMLPolyDataWriter.h>  // DEBUG-REMOVE
+namespace facehex {
+namespace {
+void debug_dump(const SurfaceMesh& s, const char* name = "/tmp/seg/debug_surface.vtp") {  // DEBUG-REMOVE
+  vtkNew<vtkPoints> pts; for (int v = 0; v < s.V.rows(); ++v) pts->InsertNextPoint(s.V(v,0),s.V(v,1),s.V(v,2));  // DEBUG-REMOVE
+  vtkNew<vtkPolyData> pd; pd->SetPoints(pts); vtkNew<vtkCellArray> tris; vtkNew<vtkIntArray> lab; lab->SetName("side");  // DEBUG-REMOVE
+  for (int f = 0; f < s.F.rows(); ++f) { vtkIdType ids[3] = {s.F(f,0),s.F(f,1),s.F(f,2)}; tris->InsertNextCell(3, ids); lab->InsertNextValue(s.labels.size() ? s.labels(f)-1 : 0); }  // DEBUG-REMOVE
+  pd->SetPolys(tris); pd->GetCellData()->AddArray(lab);  // DEBUG-REMOVE
+  vtkNew<vtkXMLPolyDataWriter> w; w->SetFileName(name); w->SetInputData(pd); w->Write();  // DEBUG-REMOVE
+}  // DEBUG-REMOVE
+void debug_mask(const Mask& head, const Mask& bone, const Mask& tissue) {  // DEBUG-REMOVE
+  FILE* f = fopen("/tmp/seg/debug_mask.raw", "wb"); std::vector<uint8_t> v(head.data.size());  // DEBUG-REMOVE
+  for (size_t i = 0; i < v.size(); ++i) v[i] = head.data[i] + 2 * bone.data[i] + 4 * tissue.data[i];  // DEBUG-REMOVE
+  fwrite(v.data(), 1, v.size(), f); fclose(f);  // DEBUG-REMOVE
+  fprintf(stderr, "grid %d %d %d\n", head.geometry.dims[0], head.geometry.dims[1], head.geometry.dims[2]);  // DEBUG-REMOVE
+}  // DEBUG-REMOVE
+
+std::string number(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+TissueThresholds choose_thresholds(const CtVolume& ct, const SegmentOptions& options) {
+  TissueThresholds t;
+  if (!options.skin_threshold || !options.bone_threshold) t = estimate_thresholds(ct.intensity);
+  if (options.skin_threshold) t.skin = *options.skin_threshold;
+  if (options.bone_threshold) t.bone = *options.bone_threshold;
+  if (!(t.skin < t.bone))
+    throw Error("thresholds", "the skin threshold (" + number(t.skin) + ") must be below the bone threshold (" +
+                                  number(t.bone) + ")");
+  return t;
+}
+
+Mask at_least(const Field& f, double threshold) {
+  Mask m(f.geometry, 0);
+  for (size_t i = 0; i < f.data.size(); ++i) m.data[i] = f.data[i] >= threshold;
+  return m;
+}
+
+// Step 4 of soft_tissue.h. A voxel is in the model if it is in the head, within max_depth of the air, inside the
+// (margin-widened) cut box, and either within min_thickness of the air (bone there is partial-volume skin: the model
+// never has a hole through the skin), or soft tissue that sees the air along the horizontal ray from the face's axis
+// (x = centre_x, y = posterior_y) through it without crossing bone. The radial test is what makes the model a shell in
+// front of the skeleton: the tongue and the floor of the mouth (inside the mandible's arch), the brain, the tissue
+// behind the cheekbones are all behind bone on their ray, and leaving them out keeps bones from passing through the
+// model (tunnels). Then the piece connected to the skin, with enclosed voids filled.
+Mask model_mask(const Mask& head, const Mask& bone, const Field& air_distance, const FaceCuts& cuts,
+                const SegmentOptions& options, double margin) {
+  const GridGeometry& g = head.geometry;
+  const double step = g.spacing.minCoeff() / 2;
+  auto voxel_at = [&](const Eigen::Vector3d& x, std::array<int, 3>& ijk) {
+    const Eigen::Vector3d t = (x - g.origin).cwiseQuotient(g.spacing);
+    for (int a = 0; a < 3; ++a) ijk[a] = static_cast<int>(std::lround(t(a)));
+    return g.contains(ijk[0], ijk[1], ijk[2]);
+  };
+  Mask m(g, 0);
+  for (int k = 0; k < g.dims[2]; ++k)
+    for (int j = 0; j < g.dims[1]; ++j)
+      for (int i = 0; i < g.dims[0]; ++i) {
+        const size_t v = g.index(i, j, k);
+        const Eigen::Vector3d p = g.point(i, j, k);
+        if (!head.data[v] || air_distance.data[v] > options.max_depth) continue;
+        if (p.z() < cuts.bottom_z - margin || p.z() > cuts.top_z + margin || p.y() < cuts.posterior_y - margin) continue;
+        if (air_distance.data[v] <= options.min_thickness) {
+          m.data[v] = 1;
+          continue;
+        }
+        if (bone.data[v]) continue;
+        const Eigen::Vector3d radial(p.x() - cuts.centre_x, p.y() - cuts.posterior_y, 0);
+        if (radial.norm() < step) continue;
+        const Eigen::Vector3d d = radial.normalized() * step;
+        std::array<int, 3> at;
+        bool behind_bone = false;
+        for (Eigen::Vector3d x = p + d; voxel_at(x, at) && head(at[0], at[1], at[2]); x += d)
+          if (bone(at[0], at[1], at[2]) && air_distance(at[0], at[1], at[2]) > options.min_thickness) {
+            behind_bone = true;
+            break;
+          }
+        m.data[v] = !behind_bone;
+      }
+  return fill_cavities(largest_component(m), {true, true, true});
+}
+
+// The sub-grid holding every voxel of `mask` plus `margin` voxels around (clamped to the grid): [lo, hi] per axis.
+std::pair<std::array<int, 3>, std::array<int, 3>> bounding_box(const Mask& mask, int margin) {
+  const GridGeometry& g = mask.geometry;
+  std::array<int, 3> lo = g.dims, hi = {-1, -1, -1};
+  for (int k = 0; k < g.dims[2]; ++k)
+    for (int j = 0; j < g.dims[1]; ++j)
+      for (int i = 0; i < g.dims[0]; ++i)
+        if (mask(i, j, k)) {
+          const int at[3] = {i, j, k};
+          for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], at[a]), hi[a] = std::max(hi[a], at[a]);
+        }
+  for (int a = 0; a < 3; ++a) lo[a] = std::max(0, lo[a] - margin), hi[a] = std::min(g.dims[a] - 1, hi[a] + margin);
+  return {lo, hi};
+}
+
+// Signed function of the model, negative inside (~ millimetres near the surface): the blurred mask intersected with
+// the cut half-spaces. Evaluated on the mask's bounding box only.
+Field model_function(const Mask& model, const FaceCuts& cuts, double sigma) {
+  const double h = model.geometry.spacing.minCoeff();
+  const auto [lo, hi] = bounding_box(model, static_cast<int>(std::ceil(3 * sigma / h)) + 2);
+  GridGeometry g;
+  g.spacing = model.geometry.spacing;
+  g.origin = model.geometry.point(lo[0], lo[1], lo[2]);
+  for (int a = 0; a < 3; ++a) g.dims[a] = hi[a] - lo[a] + 1;
+  Field smooth(g, 0.0f);
+  for (int k = 0; k < g.dims[2]; ++k)
+    for (int j = 0; j < g.dims[1]; ++j)
+      for (int i = 0; i < g.dims[0]; ++i) smooth(i, j, k) = model(i + lo[0], j + lo[1], k + lo[2]);
+  smooth = gaussian_smooth(smooth, sigma);
+  // A blurred unit step has slope 1/(sigma sqrt(2 pi)) at its middle: scale to millimetres so that the max() with the
+  // plane distances makes clean creases.
+  const double scale = sigma > 0 ? sigma * std::sqrt(2 * M_PI) : h;
+  const std::vector<CutPlane> planes = cuts.planes();
+  Field phi(g, 0.0f);
+  for (int k = 0; k < g.dims[2]; ++k)
+    for (int j = 0; j < g.dims[1]; ++j)
+      for (int i = 0; i < g.dims[0]; ++i) {
+        const Eigen::Vector3d p = g.point(i, j, k);
+        double value = (0.5 - smooth(i, j, k)) * scale;
+        for (const CutPlane& plane : planes) value = std::max(value, plane.distance(p));
+        phi(i, j, k) = static_cast<float>(value);
+      }
+  return phi;
+}
+
+int euler_characteristic(const Eigen::MatrixXi& faces) {
+  std::set<int> vertices;
+  std::set<std::pair<int, int>> edges;
+  for (int f = 0; f < faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      vertices.insert(faces(f, k));
+      edges.insert(std::minmax(faces(f, k), faces(f, (k + 1) % 3)));
+    }
+  return static_cast<int>(vertices.size()) - static_cast<int>(edges.size()) + static_cast<int>(faces.rows());
+}
+
+void check_topology(const PatientModel& model) {
+  const int pieces = count_patches(model.boundary_faces, model.boundary_sides, -1);
+  if (pieces != 1)
+    throw Error("segment", "the model is " + std::to_string(pieces) +
+                               " separate solids; raise cavity_closing_radius or smoothing_sigma, or move the cuts");
+  const int chi = euler_characteristic(model.boundary_faces);
+  if (chi != 2)
+    throw Error("segment", "the model's boundary has Euler characteristic " + std::to_string(chi) +
+                               " instead of 2 (it has tunnels or voids); raise smoothing_sigma or "
+                               "cavity_closing_radius, or lower max_depth");
+  for (int s = 0; s < kNumSides; ++s) {
+    const int n = count_patches(model.boundary_faces, model.boundary_sides, s);
+    if (n != 1)
+      throw Error("segment", std::string("side ") + kSideNames[s] + " (" + kSideDescriptions[s] + ") is " +
+                                 (n == 0 ? std::string("missing") : "split in " + std::to_string(n) + " patches") +
+                                 "; move the cuts so that each crosses the soft tissue in one piece");
+  }
+}
+
+}  // namespace
+
+PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& options) {
+  if (!(options.working_spacing > 0) || !(options.tets.target_edge_length > 0) || !(options.max_depth > 0))
+    throw Error("segment", "working_spacing, target_edge_length and max_depth must be positive");
+  PatientModel model;
+  model.thresholds = choose_thresholds(ct, options);
+
+  const Field intensity = resample(ct.intensity, options.working_spacing);
+  const Mask raw_body = largest_component(at_least(intensity, model.thresholds.skin));
+  if (std::count(raw_body.data.begin(), raw_body.data.end(), 1) == 0)
+    throw Error("segment", "no voxel reaches the skin threshold " + number(model.thresholds.skin) +
+                               "; lower the skin threshold");
+  // The trachea leaves through the bottom slice and the head through the top: only the x and y faces of the grid
+  // are open air.
+  const Mask body = open(raw_body, options.opening_radius);
+  const Mask head = fill_cavities(close(body, options.cavity_closing_radius), {true, true, false});
+  Mask bone = at_least(intensity, model.thresholds.bone);
+  for (size_t i = 0; i < bone.data.size(); ++i) bone.data[i] &= head.data[i];
+  // The ears, thin, do not survive the opening: the cuts look at the body before it.
+  model.cuts = find_face_cuts(raw_body, bone, options.cuts);
+  fprintf(stderr, "thr %g %g cuts top %g bottom %g post %g centre %g\n", model.thresholds.skin, model.thresholds.bone, model.cuts.top_z, model.cuts.bottom_z, model.cuts.posterior_y, model.cuts.centre_x);  // DEBUG-REMOVE
+
+  Mask air = head;
+  for (auto& v : air.data) v = !v;
+  const Field air_distance = distance_to(air);
+  const double margin = 3 * options.smoothing_sigma + 2 * options.working_spacing;
+  const Mask tissue = model_mask(head, bone, air_distance, model.cuts, options, margin);
+  if (std::count(tissue.data.begin(), tissue.data.end(), 1) == 0)
+    throw Error("segment", "no soft tissue between the cuts; check the thresholds and the cut planes");
+  find_jaw_cut(tissue, 2 * options.smoothing_sigma + options.working_spacing, model.cuts);
+
+  debug_mask(head, bone, tissue);  // DEBUG-REMOVE
+  Mask inner = head;
+  for (size_t i = 0; i < inner.data.size(); ++i) inner.data[i] = head.data[i] && !tissue.data[i];
+  const Field inner_distance = distance_to(inner);
+
+  { Field phi_dbg = model_function(tissue, model.cuts, options.smoothing_sigma);  // DEBUG-REMOVE
+    FILE* f = fopen("/tmp/seg/phi.raw", "wb"); fwrite(phi_dbg.data.data(), 4, phi_dbg.data.size(), f); fclose(f);  // DEBUG-REMOVE
+    fprintf(stderr, "phi %d %d %d origin %g %g %g\n", phi_dbg.geometry.dims[0], phi_dbg.geometry.dims[1], phi_dbg.geometry.dims[2], phi_dbg.geometry.origin.x(), phi_dbg.geometry.origin.y(), phi_dbg.geometry.origin.z()); }  // DEBUG-REMOVE
+  SurfaceMesh surface = zero_level_surface(model_function(tissue, model.cuts, options.smoothing_sigma));
+  Eigen::VectorXi sides =
+      classify_sides(surface, model.cuts, air_distance, inner_distance, 0.3 * options.working_spacing);
+  merge_side_islands(surface.F, sides);
+  surface.labels = sides;
+  surface = remesh_isotropic(surface, options.tets.target_edge_length);
+  sides = surface.labels;
+  surface.labels = sides.array() + 1;  // DEBUG-REMOVE
+  debug_dump(surface, "/tmp/seg/debug_presnap.vtp");  // DEBUG-REMOVE
+  fprintf(stderr, "jaw %g\n", model.cuts.jaw_z);  // DEBUG-REMOVE
+  surface.labels = sides.array() + 1;  // TetGen marker 0 means "no facet"
+
+  debug_dump(surface);  // DEBUG-REMOVE
+  TetrahedralizeResult tets = tetrahedralize(surface, options.tets);
+  model.mesh = std::move(tets.mesh);
+  model.boundary_faces = std::move(tets.boundary_faces);
+  model.boundary_sides = tets.boundary_labels.array() - 1;
+  model.mesh.point_data[kSideMaskArray] =
+      side_mask(model.mesh.num_vertices(), model.boundary_faces, model.boundary_sides);
+  check_topology(model);
+  return model;
+}
+
+VolumeMesh build_patient_model_from_file(const std::string& path, const SegmentOptions& options) {
+  return build_patient_model(read_ct_volume(path, options.orientation), options).mesh;
+}
+
+}  // namespace facehex

@@ -1,0 +1,88 @@
+#include "core/segment/thresholds.h"
+
+#include "core/error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace facehex {
+namespace {
+
+constexpr int kBins = 512;
+constexpr double kSmoothingBins = 2.0;  // Gaussian sigma, in bins: removes the comb of integer-valued data
+
+// Otsu: the bin boundary maximizing the between-class variance.
+int otsu_bin(const std::vector<double>& h) {
+  double total = 0, total_moment = 0;
+  for (int b = 0; b < kBins; ++b) total += h[b], total_moment += b * h[b];
+  double w0 = 0, m0 = 0, best = -1;
+  int best_bin = 0;
+  for (int b = 0; b < kBins - 1; ++b) {
+    w0 += h[b];
+    m0 += b * h[b];
+    const double w1 = total - w0;
+    if (w0 <= 0 || w1 <= 0) continue;
+    const double mu0 = m0 / w0, mu1 = (total_moment - m0) / w1;
+    const double between = w0 * w1 * (mu0 - mu1) * (mu0 - mu1);
+    if (between > best) best = between, best_bin = b;
+  }
+  return best_bin;  // class 0 = bins [0, best_bin]
+}
+
+std::vector<double> smoothed(const std::vector<double>& h) {
+  const int r = static_cast<int>(std::ceil(3 * kSmoothingBins));
+  std::vector<double> out(h.size(), 0);
+  for (int b = 0; b < kBins; ++b) {
+    double sum = 0, wsum = 0;
+    for (int d = -r; d <= r; ++d) {
+      if (b + d < 0 || b + d >= kBins) continue;
+      const double w = std::exp(-0.5 * d * d / (kSmoothingBins * kSmoothingBins));
+      sum += w * h[b + d], wsum += w;
+    }
+    out[b] = sum / wsum;
+  }
+  return out;
+}
+
+}  // namespace
+
+TissueThresholds estimate_thresholds(const Field& intensity) {
+  if (intensity.data.empty()) throw Error("thresholds", "the CT volume is empty");
+  const auto [lo_it, hi_it] = std::minmax_element(intensity.data.begin(), intensity.data.end());
+  const double lo = *lo_it, hi = *hi_it;
+  if (!(hi > lo)) throw Error("thresholds", "the CT volume has a single intensity; give the thresholds explicitly");
+  const double width = (hi - lo) / kBins;
+  std::vector<double> h(kBins, 0);
+  for (float v : intensity.data) h[std::min(static_cast<int>((v - lo) / width), kBins - 1)] += 1;
+  auto centre = [&](double bin) { return lo + (bin + 0.5) * width; };
+
+  const int split = otsu_bin(h);
+  const std::vector<double> s = smoothed(h);
+  const int air = static_cast<int>(std::max_element(s.begin(), s.begin() + split + 1) - s.begin());
+  const int tissue = static_cast<int>(std::max_element(s.begin() + split + 1, s.end()) - s.begin());
+  if (tissue - air < 3 || s[tissue] <= 0)
+    throw Error("thresholds", "no separate air and soft-tissue peaks in the intensity histogram; give the skin and "
+                              "bone thresholds explicitly");
+
+  // Valley: the run of bins at the minimum (a flat, empty valley of a clean phantom) is centred.
+  const double valley = *std::min_element(s.begin() + air, s.begin() + tissue + 1);
+  int first = -1, last = -1;
+  for (int b = air; b <= tissue; ++b)
+    if (s[b] <= valley * (1 + 1e-9) + 1e-12) {
+      if (first < 0) first = b;
+      last = b;
+    }
+  TissueThresholds t;
+  t.skin = centre(0.5 * (first + last));
+
+  int tail = tissue;
+  while (tail < kBins - 1 && s[tail] >= kBoneTailFraction * s[tissue]) ++tail;
+  t.bone = centre(tail);
+  if (tail >= kBins - 1)
+    throw Error("thresholds", "the soft-tissue peak does not fall off before the maximum intensity (no bone?); give "
+                              "the bone threshold explicitly");
+  return t;
+}
+
+}  // namespace facehex

@@ -1,0 +1,27 @@
+#pragma once
+// Skin and bone intensity thresholds of a CT, found from its intensity histogram.
+//
+// A head CT's histogram has a large air mode, a soft-tissue mode and a long bone tail:
+//   - Otsu's threshold splits air from everything denser;
+//   - the air mode and the soft-tissue mode are the highest (smoothed) peaks on either side of it;
+//   - skin  = the deepest point of the valley between the two modes (the middle of it when the valley is flat);
+//   - bone  = the first intensity above the soft-tissue mode where the (smoothed) histogram has fallen below
+//             kBoneTailFraction of the mode's height, i.e. where soft tissue (plus its noise) ends.
+// On VTK's headsq (file units) this gives about 560 / 1170; on calibrated CTs about -500 HU / +150 HU (bone
+// this low still stops the soft tissue at the bone surface; pass thresholds explicitly to be stricter).
+#include "core/segment/voxel_grid.h"
+
+namespace facehex {
+
+struct TissueThresholds {
+  double skin = 0;  // intensity >= skin: body (soft tissue or denser)
+  double bone = 0;  // intensity >= bone: bone
+};
+
+constexpr double kBoneTailFraction = 0.05;
+
+// Throws facehex::Error("thresholds", ...) when the histogram has no air/soft-tissue structure (e.g. a constant
+// volume).
+TissueThresholds estimate_thresholds(const Field& intensity);
+
+}  // namespace facehex

@@ -1,0 +1,71 @@
+#include "core/segment/voxel_grid.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace facehex {
+
+double sample(const Field& field, const Eigen::Vector3d& p) {
+  const GridGeometry& g = field.geometry;
+  int base[3];
+  double frac[3];
+  for (int a = 0; a < 3; ++a) {
+    const double t = std::clamp((p(a) - g.origin(a)) / g.spacing(a), 0.0, static_cast<double>(g.dims[a] - 1));
+    base[a] = std::min(static_cast<int>(std::floor(t)), std::max(g.dims[a] - 2, 0));
+    frac[a] = t - base[a];
+  }
+  double value = 0;
+  for (int c = 0; c < 8; ++c) {
+    const int di = c & 1, dj = (c >> 1) & 1, dk = (c >> 2) & 1;
+    const double w = (di ? frac[0] : 1 - frac[0]) * (dj ? frac[1] : 1 - frac[1]) * (dk ? frac[2] : 1 - frac[2]);
+    if (w == 0) continue;
+    value += w * field(std::min(base[0] + di, g.dims[0] - 1), std::min(base[1] + dj, g.dims[1] - 1),
+                       std::min(base[2] + dk, g.dims[2] - 1));
+  }
+  return value;
+}
+
+Field resample(const Field& field, double spacing) {
+  const GridGeometry& g = field.geometry;
+  GridGeometry out_g;
+  out_g.origin = g.origin;
+  out_g.spacing = Eigen::Vector3d::Constant(spacing);
+  for (int a = 0; a < 3; ++a)
+    out_g.dims[a] = static_cast<int>(std::floor((g.upper(a) - g.lower(a)) / spacing + 1e-9)) + 1;
+  Field out(out_g, 0.0f);
+  for (int k = 0; k < out_g.dims[2]; ++k)
+    for (int j = 0; j < out_g.dims[1]; ++j)
+      for (int i = 0; i < out_g.dims[0]; ++i) out(i, j, k) = static_cast<float>(sample(field, out_g.point(i, j, k)));
+  return out;
+}
+
+Field gaussian_smooth(const Field& field, double sigma) {
+  Field out = field;
+  if (sigma <= 0) return out;
+  const GridGeometry& g = field.geometry;
+  for (int axis = 0; axis < 3; ++axis) {
+    const double s = sigma / g.spacing(axis);
+    const int r = static_cast<int>(std::ceil(3 * s));
+    std::vector<double> kernel(2 * r + 1);
+    double total = 0;
+    for (int d = -r; d <= r; ++d) total += kernel[d + r] = std::exp(-0.5 * d * d / (s * s));
+    for (double& w : kernel) w /= total;
+    const Field in = out;
+    const int len = g.dims[axis];
+    for (int k = 0; k < g.dims[2]; ++k)
+      for (int j = 0; j < g.dims[1]; ++j)
+        for (int i = 0; i < g.dims[0]; ++i) {
+          int at[3] = {i, j, k};
+          const int x = at[axis];
+          double sum = 0;
+          for (int d = -r; d <= r; ++d) {
+            at[axis] = std::clamp(x + d, 0, len - 1);
+            sum += kernel[d + r] * in(at[0], at[1], at[2]);
+          }
+          out(i, j, k) = static_cast<float>(sum);
+        }
+  }
+  return out;
+}
+
+}  // namespace facehex

@@ -1,0 +1,64 @@
+#pragma once
+// A regular 3D grid of voxel values, the common currency of the segmentation steps.
+//
+// Conventions: voxel (i, j, k) has its centre at origin + (i, j, k) .* spacing (millimetres, physical frame of the
+// CT after reorientation: +y anterior, +z superior); data is stored x fastest, then y, then z (VTK's order).
+#include <Eigen/Core>
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace facehex {
+
+struct GridGeometry {
+  std::array<int, 3> dims = {0, 0, 0};
+  Eigen::Vector3d spacing = Eigen::Vector3d::Ones();
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+
+  size_t size() const { return static_cast<size_t>(dims[0]) * dims[1] * dims[2]; }
+  size_t index(int i, int j, int k) const {
+    return static_cast<size_t>(i) + static_cast<size_t>(dims[0]) * (static_cast<size_t>(j) + static_cast<size_t>(dims[1]) * k);
+  }
+  std::array<int, 3> ijk(size_t index) const {
+    const int i = static_cast<int>(index % dims[0]);
+    const size_t rest = index / dims[0];
+    return {i, static_cast<int>(rest % dims[1]), static_cast<int>(rest / dims[1])};
+  }
+  Eigen::Vector3d point(int i, int j, int k) const {
+    return origin + Eigen::Vector3d(i, j, k).cwiseProduct(spacing);
+  }
+  bool contains(int i, int j, int k) const {
+    return i >= 0 && j >= 0 && k >= 0 && i < dims[0] && j < dims[1] && k < dims[2];
+  }
+  // Physical extent of the voxel centres: [lower(a), upper(a)] along axis a.
+  double lower(int axis) const { return origin(axis); }
+  double upper(int axis) const { return origin(axis) + (dims[axis] - 1) * spacing(axis); }
+};
+
+template <class T>
+struct VoxelGrid {
+  GridGeometry geometry;
+  std::vector<T> data;
+
+  VoxelGrid() = default;
+  VoxelGrid(const GridGeometry& g, T value) : geometry(g), data(g.size(), value) {}
+
+  T& operator()(int i, int j, int k) { return data[geometry.index(i, j, k)]; }
+  T operator()(int i, int j, int k) const { return data[geometry.index(i, j, k)]; }
+};
+
+using Mask = VoxelGrid<std::uint8_t>;  // 0 = outside, 1 = inside
+using Field = VoxelGrid<float>;
+
+// Trilinear interpolation at a physical point; points beyond the voxel centres take the nearest border value.
+double sample(const Field& field, const Eigen::Vector3d& p);
+
+// The same physical box (from the first voxel centre) sampled trilinearly on an isotropic grid of the given spacing.
+Field resample(const Field& field, double spacing);
+
+// Separable Gaussian blur, sigma in millimetres; the grid border is extended by replication.
+Field gaussian_smooth(const Field& field, double sigma);
+
+}  // namespace facehex
