@@ -5,6 +5,7 @@
 #include "app/terminal_progress.h"
 #include "core/constraint_set.h"
 #include "core/error.h"
+#include "core/io/fe_sets.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh_check.h"
 #include "core/resources.h"
@@ -14,16 +15,40 @@
 #include "core/text_file.h"
 #include "core/transfer_pipeline.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <set>
+#include <sstream>
 
 namespace facehex::cli {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
+
+constexpr const char* kForceExportHelp = "write .inp / .feb even if the mesh has inverted elements";
+
+MeshWriteOptions write_options(const Args& args) {
+  MeshWriteOptions o;
+  o.allow_inverted = args.has("force-export");
+  return o;
+}
+
+// "feb,inp,msh" -> {"feb", "inp", "msh"}, checked up front so that a typo does not cost a whole run.
+std::vector<std::string> export_formats(const std::string& list) {
+  std::vector<std::string> formats;
+  std::stringstream in(list);
+  const std::vector<std::string> writable = writable_volume_extensions();
+  for (std::string f; std::getline(in, f, ',');) {
+    if (f.empty()) continue;
+    if (std::find(writable.begin(), writable.end(), "." + f) == writable.end())
+      throw Error("--export", "cannot write '" + f + "' (use feb, inp, msh, vtk or vtu)");
+    formats.push_back(f);
+  }
+  return formats;
+}
 
 void add_field_options(Args& args) {
   args.option("iterations", "orthogonality-improvement iterations (paper: 6)", "6")
@@ -186,13 +211,13 @@ int cmd_info(const Argv& argv) {
 
 int cmd_convert(const Argv& argv) {
   Args args("convert", "Converts a mesh to another format (a closed surface is tetrahedralized first).");
-  args.positional("IN", "input mesh").positional("OUT", "output mesh (.vtu, .vtk, .msh)");
-  args.option("edge-length", "target edge length (mm) for surfaces", "2");
+  args.positional("IN", "input mesh").positional("OUT", "output mesh (.vtu, .vtk, .msh, .inp, .feb)");
+  args.option("edge-length", "target edge length (mm) for surfaces", "2").flag("force-export", kForceExportHelp);
   if (!args.parse(argv)) return 0;
   MeshReadOptions ro;
   ro.target_edge_length = args.number("edge-length");
   const VolumeMesh m = read_volume_mesh(args.get("IN"), ro);
-  write_volume_mesh(args.get("OUT"), m);
+  write_volume_mesh(args.get("OUT"), m, write_options(args));
   std::cout << "wrote " << args.get("OUT") << " (" << m.num_vertices() << " vertices, " << m.num_cells() << " cells)\n";
   return 0;
 }
@@ -303,10 +328,13 @@ int cmd_run(const Argv& argv) {
             "mapped onto it, and OUT/ gets patient_model.vtu, standard_hex.vtu, patient_hex.vtu and report.json.");
   args.positional("INPUT", "patient tet model or closed surface", false)
       .option("output", "output folder")
-      .option("constraints", "constraint set of the patient (default: bundled, or six sides from side_mask)");
+      .option("constraints", "constraint set of the patient (default: bundled, or six sides from side_mask)")
+      .option("export", "also write OUT/patient_hex.EXT for each listed format, e.g. feb,inp,msh (docs/export.md)")
+      .flag("force-export", kForceExportHelp);
   add_transfer_options(args);
   if (!args.parse(argv)) return 0;
   if (!args.has("output")) throw Error("facehex run", "missing -o OUTPUT_FOLDER");
+  const std::vector<std::string> exports = export_formats(args.get("export"));
   std::string input = args.get("INPUT"), constraints = args.get("constraints");
   if (input.empty()) {
     const BundledModel patient = default_patient();
@@ -328,6 +356,7 @@ int cmd_run(const Argv& argv) {
   out.run.patient_hex.point_data["uvw"] = hex_vertex_uvw(out.run, out.standard.num_vertices());
   if (side_mask_of(out.standard).size() > 0)
     out.run.patient_hex.point_data[kSideMaskArray] = out.standard.point_data.at(kSideMaskArray);
+  attach_fe_arrays(out.run.patient_hex);  // the FE sets and material frames, also in patient_hex.vtu
 
   write_volume_mesh((out_dir / "patient_model.vtu").string(), patient_model);
   write_volume_mesh((out_dir / "standard_hex.vtu").string(), standard_hex);
@@ -339,6 +368,10 @@ int cmd_run(const Argv& argv) {
   write_json((out_dir / "report.json").string(), report);
   std::cout << run_summary_text(out.run, out.standard_quality, out.patient_quality, out.distance) << "outputs in "
             << out_dir.string() << "/: patient_model.vtu, standard_hex.vtu, patient_hex.vtu, report.json\n";
+  for (const std::string& ext : exports) {
+    write_volume_mesh((out_dir / ("patient_hex." + ext)).string(), out.run.patient_hex, write_options(args));
+    std::cout << "exported " << (out_dir / ("patient_hex." + ext)).string() << "\n";
+  }
   return out.patient_quality.summary.inverted == 0 ? 0 : 3;
 }
 
