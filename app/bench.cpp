@@ -99,8 +99,10 @@ int cmd_bench(const Argv& argv) {
     stages.erase("orthogonality_improvement");
     TransferStatistics t;
     const Eigen::MatrixXd uvw = r.uvw.cwiseMax(0.0).cwiseMin(1.0);
-    transfer_hex_mesh(standard, standard_uvw, patient.V, patient.tets(), uvw, &t);
-    stages["locator_build"] = t.seconds_locator_build;
+    const Eigen::MatrixXi T = patient.tets();
+    const PatientMap patient_map(patient.V, T, uvw);
+    stages["locator_build"] = clock.lap();
+    transfer_hex_mesh(standard, standard_uvw, patient_map, &t);
     stages["point_location_and_interpolation"] = t.seconds_mapping;
     double total = 0;
     for (const auto& [name, s] : stages)

@@ -4,6 +4,7 @@
 #include "app/report.h"
 #include "app/terminal_progress.h"
 #include "core/constraint_set.h"
+#include "core/face_landmarks.h"
 #include "core/error.h"
 #include "core/io/fe_sets.h"
 #include "core/io/mesh_io.h"
@@ -12,6 +13,7 @@
 #include "core/shell_sides.h"
 #include "core/standard/closed_domain.h"
 #include "core/sides.h"
+#include "core/tet_topology.h"
 #include "core/text_file.h"
 #include "core/transfer_pipeline.h"
 
@@ -83,6 +85,24 @@ ConstraintSet load_constraints(const std::string& path, const VolumeMesh& mesh, 
   return side_constraints();
 }
 
+// Feature values of a standard's constraint set, by constraint name.
+std::map<std::string, double> feature_values(const ConstraintSet& standard) {
+  std::map<std::string, double> values;
+  for (const auto& c : standard.constraints) values[c.name] = c.value;
+  return values;
+}
+
+// The six sides plus the feature constraints at the model's landmarks, with the given feature values.
+ConstraintSet automatic_constraints(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
+                                    const std::map<std::string, double>& values, double band,
+                                    FaceLandmarks* landmarks_out = nullptr) {
+  const FaceLandmarks landmarks = find_face_landmarks(V, side_mask);
+  ConstraintSet set = side_constraints();
+  for (auto& c : feature_constraints(landmarks, values, band).constraints) set.constraints.push_back(c);
+  if (landmarks_out) *landmarks_out = landmarks;
+  return set;
+}
+
 // The tet domain a hex standard is parameterized on: "closed" (openings filled) or "auxiliary" (the paper's).
 StandardDomain standard_domain(const VolumeMesh& hex, const std::string& kind) {
   if (kind == "closed") return closed_domain(hex);
@@ -122,6 +142,8 @@ VolumeMesh parameterized_tet_mesh(const ModelParameterization& p, const VolumeMe
   return m;
 }
 
+constexpr double kFeatureBand = 2.0;  // mm, width of the slabs selecting feature vertices
+
 struct TransferInputs {
   BundledModel standard;
   std::string standard_constraints;  // empty: the standard's bundled/sibling constraints
@@ -147,7 +169,16 @@ TransferOutputs execute_transfer(const TransferInputs& in) {
   const ConstraintSet standard_set = read_constraint_set(std_constraints);
   std::cerr << "reading the patient " << in.patient << "\n";
   out.patient = load_tet_model(in.patient, in.edge_length);
-  const ConstraintSet patient_set = load_constraints(in.patient_constraints, out.patient, in.patient);
+  ConstraintSet patient_set = load_constraints(in.patient_constraints, out.patient, in.patient);
+  if (in.patient_constraints.empty()) {
+    // No set given: the sides plus feature constraints at the patient's landmarks, valued as the standard's.
+    FaceLandmarks landmarks;
+    patient_set = automatic_constraints(out.patient.V, side_mask_of(out.patient), feature_values(standard_set),
+                                        kFeatureBand, &landmarks);
+    std::cerr << "automatic constraints: six sides and " << feature_specs().size() << " features at the landmarks\n";
+    for (const auto& [name, p] : landmarks.points)
+      std::cerr << "  " << name << " at (" << p.x() << ", " << p.y() << ", " << p.z() << ") mm\n";
+  }
   out.run = run_transfer(out.standard, standard_domain(out.standard, in.standard_domain), standard_set, std_constraints, out.patient, patient_set,
                          in.patient_constraints.empty() ? in.patient : in.patient_constraints, in.options,
                          progress.callback());
@@ -373,6 +404,59 @@ int cmd_run(const Argv& argv) {
     std::cout << "exported " << (out_dir / ("patient_hex." + ext)).string() << "\n";
   }
   return out.patient_quality.summary.inverted == 0 ? 0 : 3;
+}
+
+int cmd_constraints(const Argv& argv) {
+  Args args("constraints",
+            "Writes the constraint set of a model with side labels: its six sides and the feature constraints at its "
+            "facial landmarks (mid-sagittal line, eyebrow, below-nose and middle lip lines). Feature values come "
+            "from the standard's set, or with --own-values from this model's own harmonic fields (to build a "
+            "standard's set). Landmark positions are printed for checking.");
+  args.positional("MODEL", "tet model or hex-dominant standard with side_mask")
+      .option("output", "output constraint-set JSON")
+      .option("standard", "standard whose feature values to use", "artisynth-refface")
+      .option("band", "slab width (mm) selecting feature vertices", "2")
+      .flag("own-values", "take the feature values from the model's own fields (for a standard)");
+  if (!args.parse(argv)) return 0;
+  if (!args.has("output")) throw Error("facehex constraints", "missing -o OUTPUT");
+  const std::string path = args.get("MODEL");
+  const VolumeMesh mesh = read_volume_mesh(path);
+  const Eigen::VectorXi mask = side_mask_of(mesh);
+  std::map<std::string, double> values;
+  FaceLandmarks landmarks;
+  if (args.has("own-values")) {
+    // Each feature's value is the mean of the model's side-only harmonic field over the vertices it selects.
+    const StandardDomain domain = mesh.is_tet_mesh()
+                                      ? StandardDomain{mesh.V, mesh.tets(), mask, mesh.num_vertices(), 0, ""}
+                                      : standard_domain(mesh, "closed");
+    HarmonicFieldsOptions plain;
+    plain.orthogonality_iterations = 0;
+    const ModelParameterization p = parameterize_model(domain.V, domain.T, domain.side_mask, side_constraints(), path, plain);
+    std::map<std::string, double> placeholder;
+    for (const auto& spec : feature_specs()) placeholder[spec.name] = 0.5;
+    const ConstraintSet probe = automatic_constraints(mesh.V, mask, placeholder, args.number("band"), &landmarks);
+    const std::vector<char> boundary =
+        boundary_vertex_flags(static_cast<int>(domain.V.rows()), boundary_faces(domain.T).F);
+    for (const auto& c : probe.constraints) {
+      if (c.select.side) continue;
+      const std::vector<int> sel = select_vertices(c.select, domain.V, boundary, domain.side_mask);
+      if (sel.empty()) throw Error(path, "feature '" + c.name + "' selects no vertex");
+      double sum = 0;
+      for (int v : sel) sum += p.fields.uvw(v, c.field);
+      values[c.name] = c.field == 0 ? 0.5 : sum / static_cast<double>(sel.size());
+    }
+  } else {
+    values = feature_values(read_constraint_set(find_standard(args.get("standard")).constraints));
+  }
+  const ConstraintSet set = automatic_constraints(mesh.V, mask, values, args.number("band"), &landmarks);
+  write_constraint_set(args.get("output"), set);
+  std::cout << "mid-sagittal plane x = " << landmarks.x_mid << " mm\n";
+  for (const auto& [name, p] : landmarks.points)
+    std::cout << name << " at (" << p.x() << ", " << p.y() << ", " << p.z() << ") mm\n";
+  for (const auto& c : set.constraints)
+    if (!c.select.side) std::cout << c.name << ": " << kFieldNames[c.field] << " = " << c.value << "\n";
+  std::cout << "wrote " << args.get("output") << "\n";
+  return 0;
 }
 
 int cmd_standards(const Argv& argv) {

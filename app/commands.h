@@ -17,5 +17,6 @@ int cmd_quality(const Argv& argv);
 int cmd_run(const Argv& argv);
 int cmd_standards(const Argv& argv);
 int cmd_bench(const Argv& argv);
+int cmd_constraints(const Argv& argv);
 
 }  // namespace facehex::cli

@@ -55,6 +55,12 @@ Selection parse_selection(const json& j) {
       p.within_radius = j.at("within").at("radius").get<double>();
       if (!(p.within_radius > 0)) throw std::runtime_error("within.radius must be positive");
     }
+    if (j.contains("exclude"))
+      for (const auto& name : j.at("exclude")) {
+        const auto side = side_from_name(name.get<std::string>());
+        if (!side) throw std::runtime_error("unknown side '" + name.get<std::string>() + "' in exclude");
+        p.exclude_sides |= side_bit(*side);
+      }
     s.plane = p;
   }
   if (kinds != 1) throw std::runtime_error("select needs exactly one of \"ids\", \"side\", \"plane\"");
@@ -71,6 +77,11 @@ json selection_json(const Selection& s) {
     j["band"] = p.band;
     j["region"] = p.region;
     if (p.within_center) j["within"] = {{"center", to_array(*p.within_center)}, {"radius", p.within_radius}};
+    if (p.exclude_sides) {
+      j["exclude"] = json::array();
+      for (int side = 0; side < kNumSides; ++side)
+        if (p.exclude_sides & side_bit(static_cast<Side>(side))) j["exclude"].push_back(kSideNames[side]);
+    }
   } else {
     j["ids"] = s.ids;
   }
@@ -149,8 +160,9 @@ std::vector<int> select_vertices(const Selection& selection, const Eigen::Matrix
     return out;
   }
   auto on_side = [&](int v, Side s) { return (side_mask(v) & side_bit(s)) != 0; };
-  const bool needs_mask =
-      selection.side || (selection.plane && selection.plane->region != "volume" && selection.plane->region != "boundary");
+  const bool needs_mask = selection.side || (selection.plane && ((selection.plane->region != "volume" &&
+                                                                  selection.plane->region != "boundary") ||
+                                                                 selection.plane->exclude_sides != 0));
   if (needs_mask && side_mask.size() != V.rows())
     throw std::runtime_error("selects by side but the model has no \"side_mask\" array");
   for (int v = 0; v < V.rows(); ++v) {
@@ -164,6 +176,7 @@ std::vector<int> select_vertices(const Selection& selection, const Eigen::Matrix
     if (p.region == "boundary" && !boundary_flags[v]) continue;
     if (p.region != "volume" && p.region != "boundary" && !on_side(v, *side_from_name(p.region))) continue;
     if (p.within_center && (x - *p.within_center).norm() > p.within_radius) continue;
+    if (side_mask(v) & p.exclude_sides) continue;
     out.push_back(v);
   }
   return out;

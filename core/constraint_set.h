@@ -19,7 +19,9 @@
 //  - "side":  every vertex whose point-data "side_mask" has that side's bit (see sides.h).
 //  - "plane": every vertex within band/2 (mm, default 1) of the plane, restricted to "region": "volume" (all
 //             vertices, the default), "boundary" (boundary vertices), or a side name; optionally only those within
-//             "within".radius of "within".center. A geometric selection re-applies to a remeshed model.
+//             "within".radius of "within".center, and not those on the sides listed in "exclude" (e.g. a feature
+//             line of v stops where it meets the top or bottom cut). A geometric selection re-applies to a remeshed
+//             model.
 #include "core/harmonic_solver.h"
 #include "core/mesh.h"
 #include "core/sides.h"
@@ -41,6 +43,7 @@ struct PlaneSelection {
   std::string region = "volume"; // "volume", "boundary" or a side name
   std::optional<Eigen::Vector3d> within_center;
   double within_radius = 0;
+  int exclude_sides = 0;         // side bits: vertices on these sides are not selected
 };
 
 struct Selection {
