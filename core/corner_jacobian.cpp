@@ -60,6 +60,20 @@ Eigen::Matrix3d corner_jacobian(CellType type, const CellNodes& X, int k) {
   return A;
 }
 
+const Eigen::Matrix<double, 8, 3>& hex_center_weights() {
+  static const Eigen::Matrix<double, 8, 3> W = [] {
+    Eigen::Matrix<double, 8, 3> w;
+    // Node i of the unit cube at (x, y, z): its weight along each axis is +-1/4 by the side it lies on.
+    const int cube[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+    for (int i = 0; i < 8; ++i)
+      for (int a = 0; a < 3; ++a) w(i, a) = cube[i][a] ? 0.25 : -0.25;
+    return w;
+  }();
+  return W;
+}
+
+Eigen::Matrix3d hex_center_jacobian(const CellNodes& X) { return X.transpose() * hex_center_weights(); }
+
 CornerValues corner_determinants(CellType type, const CellNodes& X) {
   CornerValues d = CornerValues::Zero();
   for (int k = 0; k < node_count(type); ++k) d(k) = corner_jacobian(type, X, k).determinant();
@@ -67,13 +81,19 @@ CornerValues corner_determinants(CellType type, const CellNodes& X) {
 }
 
 double min_corner_determinant(CellType type, const CellNodes& X) {
-  return corner_determinants(type, X).head(node_count(type)).minCoeff();
+  const double corners = corner_determinants(type, X).head(node_count(type)).minCoeff();
+  return type == CellType::Hex ? std::min(corners, hex_center_jacobian(X).determinant()) : corners;
 }
 
 double scaled_jacobian(CellType type, const CellNodes& X) {
   double lowest = 1;  // det(A) / lengths lies in [-1, 1] (Hadamard)
   for (int k = 0; k < node_count(type); ++k) {
     const Eigen::Matrix3d A = corner_jacobian(type, X, k);
+    const double lengths = A.col(0).norm() * A.col(1).norm() * A.col(2).norm();
+    lowest = std::min(lowest, lengths > 0 ? A.determinant() / lengths : 0.0);
+  }
+  if (type == CellType::Hex) {
+    const Eigen::Matrix3d A = hex_center_jacobian(X);
     const double lengths = A.col(0).norm() * A.col(1).norm() * A.col(2).norm();
     lowest = std::min(lowest, lengths > 0 ? A.determinant() / lengths : 0.0);
   }

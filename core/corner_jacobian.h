@@ -41,9 +41,17 @@ const std::array<int, 4>& corner_nodes(CellType type, int k);
 // A_k, 3 x 3, edge vectors as columns.
 Eigen::Matrix3d corner_jacobian(CellType type, const CellNodes& X, int k);
 
+// The Jacobian at the centre of a hex (Verdict's ninth sample point): columns are the mean edge vectors along its
+// three axes, (x1+x2+x5+x6 - x0-x3-x4-x7)/4 etc.; the unit cube gives the identity. A hex can be inverted at its
+// centre with all eight corners positive, so the inversion test and the scaled Jacobian include it (as Verdict).
+Eigen::Matrix3d hex_center_jacobian(const CellNodes& X);
+// Coefficients of node i in the centre Jacobian's columns: A = sum_i X.row(i)^T * hex_center_weights().row(i).
+const Eigen::Matrix<double, 8, 3>& hex_center_weights();
+
 // det(A_k) for k = 0 .. node_count(type)-1.
 CornerValues corner_determinants(CellType type, const CellNodes& X);
 
+// The smallest corner determinant (for hexes, the centre's too).
 double min_corner_determinant(CellType type, const CellNodes& X);
 
 // Scaled Jacobian: s * min over corners of det(A_k) / (|a_1| |a_2| |a_3|), a_i the columns of A_k, in [-1, 1].

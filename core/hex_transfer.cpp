@@ -1,63 +1,81 @@
 #include "core/hex_transfer.h"
 
-#include "core/param_locator.h"
 #include "core/stopwatch.h"
+
+#include <Eigen/Dense>
 
 namespace facehex {
 
-VolumeMesh transfer_hex_mesh(const VolumeMesh& standard, const Eigen::MatrixXd& standard_uvw,
-                             const Eigen::MatrixXd& patient_V, const Eigen::MatrixXi& patient_T,
-                             const Eigen::MatrixXd& patient_uvw, TransferStatistics* statistics,
-                             const ProgressCallback& progress) {
+PatientMap::PatientMap(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, const Eigen::MatrixXd& uvw)
+    : V_(V), T_(T), uvw_(uvw), locator_(uvw, T) {}
+
+PatientMap::Placement PatientMap::place(const Eigen::Vector3d& q, int hint) const {
+  const ParamLocator::Hit hit = locator_.locate(q, hint);
+  Placement p;
+  p.tet = hit.tet;
+  p.violation = hit.violation;
+  Eigen::Vector4d b = hit.bary;
+  // Weights of the patient tet's vertices that are not on q's side(s) go to zero (they are zero up to round-off).
+  bool on_side = false;
+  Eigen::Vector4d on_side_weights = b;
+  for (int d = 0; d < 3; ++d) {
+    if (q(d) != 0.0 && q(d) != 1.0) continue;
+    on_side = true;
+    for (int k = 0; k < 4; ++k)
+      if (uvw_(T_(hit.tet, k), d) != q(d)) on_side_weights(k) = 0;
+  }
+  on_side_weights = on_side_weights.cwiseMax(0.0);
+  if (on_side && on_side_weights.sum() > 0) {
+    b = on_side_weights;
+    p.snapped = true;
+  } else {
+    p.snap_failed = on_side;
+    b = b.cwiseMax(0.0);
+  }
+  b /= b.sum();
+  p.x.setZero();
+  for (int k = 0; k < 4; ++k) p.x += b(k) * V_.row(T_(hit.tet, k)).transpose();
+  return p;
+}
+
+Eigen::Matrix3d PatientMap::jacobian(int tet) const {
+  Eigen::Matrix3d dX, dQ;  // columns: edges from vertex 0 in space and in the parameter cube
+  for (int k = 0; k < 3; ++k) {
+    dX.col(k) = (V_.row(T_(tet, k + 1)) - V_.row(T_(tet, 0))).transpose();
+    dQ.col(k) = (uvw_.row(T_(tet, k + 1)) - uvw_.row(T_(tet, 0))).transpose();
+  }
+  return dX * dQ.inverse();
+}
+
+VolumeMesh transfer_hex_mesh(const VolumeMesh& standard, const Eigen::MatrixXd& standard_uvw, const PatientMap& patient,
+                             TransferStatistics* statistics, const ProgressCallback& progress) {
   TransferStatistics stats;
   Stopwatch clock;
-  const ParamLocator locator(patient_uvw, patient_T);
-  stats.seconds_locator_build = clock.lap();
-
   VolumeMesh out;
   out.C = standard.C;
   out.types = standard.types;
   out.V.resize(standard.V.rows(), 3);
   stats.vertices = static_cast<int>(standard.V.rows());
   stats.tet.resize(standard.V.rows());
+  const int walks_before = patient.locator().walk_hits();
   int hint = -1;
   for (Eigen::Index i = 0; i < standard.V.rows(); ++i) {
     if (i % 4096 == 0) report_progress(progress, "mapping vertices", static_cast<double>(i) / standard.V.rows());
-    const Eigen::Vector3d q = standard_uvw.row(i).transpose();
-    ParamLocator::Hit hit = locator.locate(q, hint);
-    hint = hit.tet;
-    stats.tet(i) = hit.tet;
-    Eigen::Vector4d b = hit.bary;
-    if (hit.violation > 0) {
+    const PatientMap::Placement p = patient.place(standard_uvw.row(i).transpose(), hint);
+    hint = p.tet;
+    stats.tet(i) = p.tet;
+    if (p.violation > 0) {
       ++stats.located_nearest;
-      stats.max_violation = std::max(stats.max_violation, hit.violation);
+      stats.max_violation = std::max(stats.max_violation, p.violation);
     } else {
       ++stats.located_inside;
     }
-    // Weights of the patient tet's vertices that are not on the standard vertex's side(s) go to zero.
-    bool on_side = false;
-    Eigen::Vector4d on_side_weights = b;
-    for (int d = 0; d < 3; ++d) {
-      if (q(d) != 0.0 && q(d) != 1.0) continue;
-      on_side = true;
-      for (int k = 0; k < 4; ++k)
-        if (patient_uvw(patient_T(hit.tet, k), d) != q(d)) on_side_weights(k) = 0;
-    }
-    on_side_weights = on_side_weights.cwiseMax(0.0);
-    if (on_side && on_side_weights.sum() > 0) {
-      b = on_side_weights;
-      ++stats.snapped_to_boundary;
-    } else {
-      stats.snap_failures += on_side;
-      b = b.cwiseMax(0.0);
-    }
-    b /= b.sum();
-    Eigen::RowVector3d x = Eigen::RowVector3d::Zero();
-    for (int k = 0; k < 4; ++k) x += b(k) * patient_V.row(patient_T(hit.tet, k));
-    out.V.row(i) = x;
+    stats.snapped_to_boundary += p.snapped;
+    stats.snap_failures += p.snap_failed;
+    out.V.row(i) = p.x.transpose();
   }
   stats.seconds_mapping = clock.lap();
-  stats.walk_hits = locator.walk_hits();
+  stats.walk_hits = patient.locator().walk_hits() - walks_before;
   if (statistics) *statistics = stats;
   return out;
 }

@@ -7,6 +7,7 @@
 // the patient's side with the same value: barycentric weights of patient tet vertices off that side are zeroed (they
 // are zero up to round-off anyway), so it lands exactly on a boundary triangle of the patient model.
 #include "core/mesh.h"
+#include "core/param_locator.h"
 #include "core/progress.h"
 
 #include <Eigen/Core>
@@ -22,14 +23,39 @@ struct TransferStatistics {
   int snap_failures = 0;        // on a side, but the tet found has no vertex on it (kept inside)
   int walk_hits = 0;            // located by walking from the previous hit
   Eigen::VectorXi tet;          // #Vs, the patient tet each standard vertex was placed in
-  double seconds_locator_build = 0, seconds_mapping = 0;
+  double seconds_mapping = 0;
+};
+
+// The patient's inverse parameterization phi_P: a point of the unit cube to its patient position.
+class PatientMap {
+ public:
+  struct Placement {
+    Eigen::Vector3d x;
+    int tet = -1;
+    double violation = 0;  // 0 when q lies in a parametric tet; else how far outside the nearest one
+    bool snapped = false;  // q on a cube face, x placed exactly on the patient's side
+    bool snap_failed = false;
+  };
+
+  // V (#V x 3), T (#T x 4), uvw (#V x 3) of the patient; kept by reference.
+  PatientMap(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, const Eigen::MatrixXd& uvw);
+
+  // hint: a tet to start the search from (the previous hit), or -1.
+  Placement place(const Eigen::Vector3d& q, int hint = -1) const;
+  // dx/dq on tet t (the inverse of the matrix whose rows are the gradients of u, v, w there).
+  Eigen::Matrix3d jacobian(int tet) const;
+  const ParamLocator& locator() const { return locator_; }
+
+ private:
+  const Eigen::MatrixXd& V_;
+  const Eigen::MatrixXi& T_;
+  const Eigen::MatrixXd& uvw_;
+  ParamLocator locator_;
 };
 
 // standard: hex-dominant mesh (#Vs vertices); standard_uvw: #Vs x 3; patient_V: #Vp x 3; patient_T: #Tp x 4;
 // patient_uvw: #Vp x 3. Returns the standard's cells on the mapped vertices (point and cell data dropped).
-VolumeMesh transfer_hex_mesh(const VolumeMesh& standard, const Eigen::MatrixXd& standard_uvw,
-                             const Eigen::MatrixXd& patient_V, const Eigen::MatrixXi& patient_T,
-                             const Eigen::MatrixXd& patient_uvw, TransferStatistics* statistics = nullptr,
-                             const ProgressCallback& progress = {});
+VolumeMesh transfer_hex_mesh(const VolumeMesh& standard, const Eigen::MatrixXd& standard_uvw, const PatientMap& patient,
+                             TransferStatistics* statistics = nullptr, const ProgressCallback& progress = {});
 
 }  // namespace facehex

@@ -3,6 +3,9 @@
 #include "core/error.h"
 #include "core/stopwatch.h"
 
+#include <algorithm>
+#include <memory>
+
 namespace facehex {
 namespace {
 
@@ -18,26 +21,27 @@ std::string health_problem(const ParamHealth& h) {
          " degenerate (the fields fold); check the constraint set (sides, feature values) of this model";
 }
 
-// How the untangler may move each mapped standard vertex. On a shape end (value 0 or 1) it lies exactly on the
-// patient's boundary: fixed. Pinned to a feature value only, it lies on the patient's feature surface (an iso-surface
-// of that field): it slides in the surface's tangent plane, normal to the patient's field gradient where it landed
-// (along a line for two features). Otherwise it is free.
-MotionConstraints motion_constraints(const TransferRun& run, int hex_vertices) {
-  MotionConstraints motion(hex_vertices, Eigen::Matrix3d::Identity());
-  const Eigen::MatrixXd uvw = hex_vertex_uvw(run, hex_vertices);
-  for (int v = 0; v < hex_vertices; ++v) {
-    Eigen::Matrix3d& P = motion[v];
-    for (int f = 0; f < 3; ++f) {
-      if (!run.standard.fixed(v, f)) continue;
-      if (uvw(v, f) == 0.0 || uvw(v, f) == 1.0) {
-        P.setZero();
-        break;
-      }
-      const Eigen::Vector3d n = run.patient.fields.gradients[f].row(run.transfer.tet(v)).transpose().normalized();
-      if (n.allFinite()) P = (Eigen::Matrix3d::Identity() - n * n.transpose()) * P;
-    }
-  }
-  return motion;
+// The untangler moves mapped standard vertices through their (u, v, w) and places them with the patient map: a
+// coordinate pinned in the standard (a shape end: on the patient's boundary; a feature value: on its feature surface)
+// stays pinned, so those vertices stay exactly on their side or feature.
+VertexPlacement parametric_placement(const TransferRun& run, const PatientMap& patient, int hex_vertices) {
+  VertexPlacement placement;
+  placement.p = hex_vertex_uvw(run, hex_vertices);
+  placement.movable.assign(hex_vertices, Eigen::Matrix3d::Identity());
+  for (int v = 0; v < hex_vertices; ++v)
+    for (int f = 0; f < 3; ++f)
+      if (run.standard.fixed(v, f)) placement.movable[v](f, f) = 0;
+  auto hints = std::make_shared<Eigen::VectorXi>(run.transfer.tet);
+  placement.place = [&patient, hints](int v, const Eigen::Vector3d& q, Eigen::Vector3d& x, Eigen::Matrix3d& dxdq) {
+    if ((q.array() < 0).any() || (q.array() > 1).any()) return false;  // outside the common domain
+    const PatientMap::Placement p = patient.place(q, (*hints)(v));
+    if (p.violation > 0) return false;
+    (*hints)(v) = p.tet;
+    x = p.x;
+    dxdq = patient.jacobian(p.tet);
+    return true;
+  };
+  return placement;
 }
 
 }  // namespace
@@ -87,11 +91,25 @@ TransferRun run_transfer(const VolumeMesh& standard, const StandardDomain& domai
     throw Error(patient_source,
                 "the model frame has the opposite handedness to the standard's (mirrored scan?): swap the u0 and u1 "
                 "sides of its constraint set");
-  run.patient_hex = transfer_hex_mesh(standard, hex_vertex_uvw(run, standard.num_vertices()), run.patient.V, run.patient.T,
-                                      run.patient.fields.uvw, &run.transfer, sub_progress(progress, 0.85, 1.0));
+  const PatientMap patient_map(run.patient.V, run.patient.T, run.patient.fields.uvw);
+  run.seconds["locator_build"] = clock.lap();
+  run.patient_hex = transfer_hex_mesh(standard, hex_vertex_uvw(run, standard.num_vertices()), patient_map,
+                                      &run.transfer, sub_progress(progress, 0.85, 1.0));
   run.seconds["mapping"] = clock.lap();
   if (options.untangle) {
-    run.untangle = untangle(run.patient_hex, motion_constraints(run, standard.num_vertices()), options.untangle_options);
+    VertexPlacement placement = parametric_placement(run, patient_map, standard.num_vertices());
+    // Widen the region that may move while inverted cells remain (a fold may need room beyond two rings).
+    UntangleOptions pass = options.untangle_options;
+    run.untangle = untangle(run.patient_hex, placement, pass);
+    for (int widening = 0; widening < 2 && run.untangle.inverted_after > 0; ++widening) {
+      pass.rings += 2;
+      const UntangleReport again = untangle(run.patient_hex, placement, pass);
+      run.untangle.inverted_after = again.inverted_after;
+      run.untangle.bad_after = again.bad_after;
+      run.untangle.min_scaled_jacobian_after = again.min_scaled_jacobian_after;
+      run.untangle.free_vertices = std::max(run.untangle.free_vertices, again.free_vertices);
+      run.untangle.sweeps += again.sweeps;
+    }
     run.seconds["untangle"] = clock.lap();
   }
   return run;

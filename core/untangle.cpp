@@ -11,8 +11,9 @@ namespace facehex {
 namespace {
 
 struct Corner {
-  int cell, k;
+  int cell, k;  // k: corner index, or kCentre for a hex's centre
 };
+constexpr int kCentre = 8;
 
 // Inverse ideal corner matrices W_k^-1 per cell type and corner.
 const Eigen::Matrix3d& ideal_inverse(CellType type, int k) {
@@ -28,26 +29,36 @@ const Eigen::Matrix3d& ideal_inverse(CellType type, int k) {
   return table[type == CellType::Tet ? 0 : type == CellType::Wedge ? 1 : 2][k];
 }
 
-struct Energy {
-  double delta2 = 0;  // delta^2
+// The corner's normalized determinant: sigma / s^3 with s^2 = |S|_F^2 / 3, in [-1, 1], 1 only for the ideal corner.
+// Regularizing it (rather than det S, which scales with the cell's volume) treats small and large cells alike.
+double normalized_determinant(const Eigen::Matrix3d& S) {
+  const double s2 = S.squaredNorm() / 3;
+  return S.determinant() / (s2 * std::sqrt(s2));
+}
 
-  // eta of one corner and, optionally, its gradient with respect to the corner matrix A.
+struct Energy {
+  double delta2 = 0;  // delta^2, dimensionless
+
+  // eta = h(sigma^)^(-2/3) of one corner (the inverse mean ratio |S|^2 / (3 det(S)^(2/3)) when delta = 0) and,
+  // optionally, its gradient with respect to the corner matrix A.
   double corner(const Eigen::Matrix3d& A, const Eigen::Matrix3d& Winv, Eigen::Matrix3d* dA) const {
     const Eigen::Matrix3d S = A * Winv;
-    const double sigma = S.determinant();
+    const double s2 = S.squaredNorm() / 3;
+    if (!(s2 > 0)) return std::numeric_limits<double>::infinity();
+    const double s3 = s2 * std::sqrt(s2);
+    const double sigma = S.determinant() / s3;
     const double root = std::sqrt(sigma * sigma + 4 * delta2);
     const double h = 0.5 * (sigma + root);
     if (!(h > 0)) return std::numeric_limits<double>::infinity();
-    const double f = S.squaredNorm();
-    const double h23 = std::cbrt(h * h);
-    const double eta = f / (3 * h23);
+    const double eta = 1.0 / std::cbrt(h * h);
     if (dA) {
       const double dh = 0.5 * (1 + sigma / root);
-      Eigen::Matrix3d cof;  // d sigma / d S
+      Eigen::Matrix3d cof;  // d det(S) / d S
       cof.col(0) = S.col(1).cross(S.col(2));
       cof.col(1) = S.col(2).cross(S.col(0));
       cof.col(2) = S.col(0).cross(S.col(1));
-      const Eigen::Matrix3d dS = 2 * S / (3 * h23) - (2.0 / 3.0) * eta / h * dh * cof;
+      const Eigen::Matrix3d dsigma = cof / s3 - sigma * S / s2;
+      const Eigen::Matrix3d dS = -(2.0 / 3.0) * eta / h * dh * dsigma;
       *dA = dS * Winv.transpose();
     }
     return eta;
@@ -56,14 +67,22 @@ struct Energy {
 
 }  // namespace
 
-MotionConstraints fixed_or_free(const std::vector<char>& fixed) {
-  MotionConstraints motion(fixed.size());
+VertexPlacement spatial_placement(const Eigen::MatrixXd& V, const std::vector<char>& fixed) {
+  VertexPlacement placement;
+  placement.p = V;
+  placement.movable.resize(fixed.size());
   for (size_t v = 0; v < fixed.size(); ++v)
-    motion[v] = fixed[v] ? Eigen::Matrix3d::Zero().eval() : Eigen::Matrix3d::Identity().eval();
-  return motion;
+    placement.movable[v] = fixed[v] ? Eigen::Matrix3d::Zero().eval() : Eigen::Matrix3d::Identity().eval();
+  placement.place = [](int, const Eigen::Vector3d& q, Eigen::Vector3d& x, Eigen::Matrix3d& dxdq) {
+    x = q;
+    dxdq.setIdentity();
+    return true;
+  };
+  return placement;
 }
 
-UntangleReport untangle(VolumeMesh& mesh, const MotionConstraints& motion, const UntangleOptions& options) {
+UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const UntangleOptions& options) {
+  const std::vector<Eigen::Matrix3d>& movable = placement.movable;
   UntangleReport report;
   const int nc = mesh.num_cells(), nv = mesh.num_vertices();
   auto scaled = [&](int c) { return scaled_jacobian(mesh.types[c], cell_nodes(mesh, c)); };
@@ -103,17 +122,20 @@ UntangleReport untangle(VolumeMesh& mesh, const MotionConstraints& motion, const
   }
   std::vector<int> free_vertices;
   for (int v : region)
-    if (!motion[v].isZero()) free_vertices.push_back(v);
+    if (!movable[v].isZero()) free_vertices.push_back(v);
   report.free_vertices = static_cast<int>(free_vertices.size());
 
-  // Corners touching each free vertex (the vertex is the corner node or one of its three neighbours).
+  // Corners touching each free vertex (the vertex is the corner node or one of its three neighbours), and the
+  // centre of every hex around it (k = kCentre).
   std::vector<std::vector<Corner>> corners_of(nv);
   for (int v : free_vertices)
-    for (int c : cells_of[v])
+    for (int c : cells_of[v]) {
+      if (mesh.types[c] == CellType::Hex) corners_of[v].push_back({c, kCentre});
       for (int k = 0; k < node_count(mesh.types[c]); ++k) {
         const auto& n = corner_nodes(mesh.types[c], k);
         if (std::any_of(n.begin(), n.end(), [&](int local) { return mesh.C(c, local) == v; })) corners_of[v].push_back({c, k});
       }
+    }
 
   Energy energy;
   auto vertex_energy = [&](int v, Eigen::Vector3d* gradient) {
@@ -122,8 +144,15 @@ UntangleReport untangle(VolumeMesh& mesh, const MotionConstraints& motion, const
     for (const Corner& corner : corners_of[v]) {
       const CellType type = mesh.types[corner.cell];
       const CellNodes X = cell_nodes(mesh, corner.cell);
-      const auto& n = corner_nodes(type, corner.k);
       Eigen::Matrix3d dA;
+      if (corner.k == kCentre) {  // A = X^T W: node i contributes dA * W.row(i)^T
+        e += energy.corner(hex_center_jacobian(X), Eigen::Matrix3d::Identity(), gradient ? &dA : nullptr);
+        if (gradient)
+          for (int i = 0; i < 8; ++i)
+            if (mesh.C(corner.cell, i) == v) *gradient += dA * hex_center_weights().row(i).transpose();
+        continue;
+      }
+      const auto& n = corner_nodes(type, corner.k);
       e += energy.corner(corner_jacobian(type, X, corner.k), ideal_inverse(type, corner.k), gradient ? &dA : nullptr);
       if (!gradient) continue;
       // A = [x_a - x_k, x_b - x_k, x_c - x_k]: column j is +x_(n[j+1]) and -x_(n[0]).
@@ -135,19 +164,18 @@ UntangleReport untangle(VolumeMesh& mesh, const MotionConstraints& motion, const
     return e;
   };
   // delta from the worst corner determinant, relative to the typical corner size so it is scale free.
+  // delta from the worst normalized corner determinant (Escobar et al.: delta^2 = eps (eps - sigma_min)).
   auto update_delta = [&] {
-    double sigma_min = std::numeric_limits<double>::infinity(), scale = 0;
-    int count = 0;
+    double sigma_min = std::numeric_limits<double>::infinity();
     for (int v : free_vertices)
       for (const Corner& corner : corners_of[v]) {
         const CellType type = mesh.types[corner.cell];
-        const Eigen::Matrix3d S =
-            corner_jacobian(type, cell_nodes(mesh, corner.cell), corner.k) * ideal_inverse(type, corner.k);
-        sigma_min = std::min(sigma_min, S.determinant());
-        scale += std::abs(S.determinant());
-        ++count;
+        const CellNodes X = cell_nodes(mesh, corner.cell);
+        const Eigen::Matrix3d S = corner.k == kCentre ? hex_center_jacobian(X)
+                                                      : corner_jacobian(type, X, corner.k) * ideal_inverse(type, corner.k);
+        sigma_min = std::min(sigma_min, normalized_determinant(S));
       }
-    const double eps = 1e-3 * scale / std::max(1, count);
+    constexpr double eps = 1e-3;
     energy.delta2 = sigma_min < eps ? eps * (eps - sigma_min) : 0.0;
   };
 
@@ -155,42 +183,63 @@ UntangleReport untangle(VolumeMesh& mesh, const MotionConstraints& motion, const
     update_delta();
     double moved = 0, size = 0;
     for (int v : free_vertices) {
-      Eigen::Vector3d g;
-      const double e0 = vertex_energy(v, &g);
-      g = motion[v] * g;  // allowed directions only
-      if (!(g.norm() > 0) || !std::isfinite(e0)) continue;
-      double edge = std::numeric_limits<double>::infinity();
-      for (const Corner& corner : corners_of[v])
-        for (int local : corner_nodes(mesh.types[corner.cell], corner.k))
-          if (mesh.C(corner.cell, local) != v)
-            edge = std::min(edge, (mesh.V.row(mesh.C(corner.cell, local)) - mesh.V.row(v)).norm());
+      Eigen::Vector3d gx;
+      const double e0 = vertex_energy(v, &gx);
+      const Eigen::Vector3d p0 = placement.p.row(v).transpose();
       const Eigen::RowVector3d x0 = mesh.V.row(v);
-      // Newton direction from a finite-difference Hessian of the analytic gradient, in the allowed subspace;
-      // steepest descent where the Hessian is not positive definite.
+      Eigen::Vector3d x_at_p0;
+      Eigen::Matrix3d J;
+      if (!std::isfinite(e0) || !placement.place(v, p0, x_at_p0, J)) continue;
+      const Eigen::Matrix3d& M = movable[v];
+      const Eigen::Vector3d g = M * (J.transpose() * gx);  // gradient in the movable parameter directions
+      if (!(g.norm() > 0)) continue;
+      // Typical edge length at v (the mean: in a fold some edges have collapsed and would stall the steps).
+      double edge = 0;
+      int edges = 0;
+      for (const Corner& corner : corners_of[v])
+        if (corner.k != kCentre)
+          for (int local : corner_nodes(mesh.types[corner.cell], corner.k))
+            if (mesh.C(corner.cell, local) != v) {
+              edge += (mesh.V.row(mesh.C(corner.cell, local)) - x0).norm();
+              ++edges;
+            }
+      edge /= std::max(1, edges);
+      // Newton direction: Hessian in space by finite differences of the analytic gradient, pulled back to the
+      // parameters (J^T H J) and restricted to the movable directions; steepest descent if not positive definite.
       const double h = 1e-5 * edge;
-      Eigen::Matrix3d H;
+      Eigen::Matrix3d Hx;
       for (int d = 0; d < 3; ++d) {
         Eigen::Vector3d gd;
         mesh.V(v, d) += h;
         vertex_energy(v, &gd);
         mesh.V(v, d) = x0(d);
-        H.col(d) = (motion[v] * gd - g) / h;
+        Hx.col(d) = (gd - gx) / h;
       }
-      H = 0.5 * (H + H.transpose()).eval();
-      H = (motion[v] * H * motion[v]).eval() + (Eigen::Matrix3d::Identity() - motion[v]) * H.norm();
-      Eigen::Vector3d step;
-      const Eigen::LLT<Eigen::Matrix3d> llt(H);
-      if (llt.info() == Eigen::Success && H.allFinite()) {
-        step = -(motion[v] * llt.solve(g));
-      } else {
-        step = -g;
-      }
-      if (step.norm() > 0.5 * edge) step *= 0.5 * edge / step.norm();  // no jumps across several cells
-      double t = 1;
+      Hx = 0.5 * (Hx + Hx.transpose()).eval();
+      const Eigen::Matrix3d Hp =
+          M * J.transpose() * Hx * J * M + (Eigen::Matrix3d::Identity() - M) * (J.transpose() * Hx * J).norm();
+      const Eigen::LLT<Eigen::Matrix3d> llt(Hp);
+      Eigen::Vector3d step = (llt.info() == Eigen::Success && Hp.allFinite()) ? Eigen::Vector3d(-(M * llt.solve(g)))
+                                                                              : Eigen::Vector3d(-g);
+      const double reach = (J * step).norm();
+      if (reach > 0.5 * edge) step *= 0.5 * edge / reach;  // no jumps across several cells
+      // A step never inverts a cell around v that was not inverted before: the count of inverted cells only falls.
+      auto inverted_around = [&] {
+        int n = 0;
+        for (int c : cells_of[v]) n += min_corner_determinant(mesh.types[c], cell_nodes(mesh, c)) <= 0;
+        return n;
+      };
+      const int inverted_before = inverted_around();
       bool improved = false;
+      double t = 1;
       for (int halving = 0; halving < 30 && !improved; ++halving, t *= 0.5) {
-        mesh.V.row(v) = x0 + t * step.transpose();
-        improved = vertex_energy(v, nullptr) < e0 + 1e-4 * t * g.dot(step);
+        Eigen::Vector3d x;
+        Eigen::Matrix3d unused;
+        const Eigen::Vector3d p = p0 + t * step;
+        if (!placement.place(v, p, x, unused)) continue;
+        mesh.V.row(v) = x.transpose();
+        improved = vertex_energy(v, nullptr) < e0 + 1e-4 * t * g.dot(step) && inverted_around() <= inverted_before;
+        if (improved) placement.p.row(v) = p.transpose();
       }
       if (!improved) mesh.V.row(v) = x0;
       moved = std::max(moved, (mesh.V.row(v) - x0).norm());

@@ -1,22 +1,27 @@
 #pragma once
 // Untangling and local smoothing of a hex-dominant mesh (the "never an inverted element" guarantee).
 //
-// Energy (Escobar et al., simultaneous untangling and smoothing): per corner k of a cell, with A_k the corner matrix
-// (corner_jacobian.h) and W_k the same corner of the ideal cell, S = A_k W_k^-1, sigma = det S,
-//     eta = |S|_F^2 / (3 h(sigma)^(2/3)),   h(sigma) = (sigma + sqrt(sigma^2 + 4 delta^2)) / 2.
-// eta is the inverse mean-ratio shape of the corner (1 for the ideal corner, larger when distorted); with delta > 0,
-// h stays positive for inverted corners, so the sum is finite and smooth and its minimum has sigma > 0 everywhere:
-// minimizing it untangles. delta is taken from the worst corner and shrinks to 0 once nothing is inverted.
+// Energy (after Escobar et al., simultaneous untangling and smoothing): per corner k of a cell, with A_k the corner
+// matrix (corner_jacobian.h) and W_k the same corner of the ideal cell, S = A_k W_k^-1, its normalized determinant
+// sigma = det S / (|S|_F^2 / 3)^(3/2) in [-1, 1], and
+//     eta = h(sigma)^(-2/3),   h(sigma) = (sigma + sqrt(sigma^2 + 4 delta^2)) / 2.
+// With delta = 0, eta = |S|_F^2 / (3 det(S)^(2/3)), the inverse mean-ratio shape of the corner (1 for the ideal
+// corner, larger when distorted); with delta > 0, h stays positive for inverted corners, so the sum is finite and
+// smooth and its minimum has sigma > 0 everywhere: minimizing it untangles. Normalizing sigma makes delta mean the
+// same for small and large cells. delta is taken from the worst corner and is 0 once nothing is inverted.
 //
 // Only vertices near bad cells move (within `rings` vertex rings of a cell that is inverted or whose scaled Jacobian
 // is below `min_scaled_jacobian`), so the rest of the mapped mesh keeps exactly the shape the mapping gave it.
-// Each vertex has a motion constraint: fixed (on the patient's surface), sliding in a plane (on a feature surface
-// such as the mid-sagittal sheet: it moves in the feature's tangent plane), or free. Each sweep visits the movable
-// vertices in order and moves each along its (projected) energy gradient with a backtracking line search (local
-// Gauss-Seidel descent).
+// Vertices move through parameters: the untangler changes a vertex's parameters p, and a placement function gives
+// its position x(p) and dx/dp. With p = x this is plain smoothing in space; with p = (u, v, w) and x = the patient's
+// inverse parameterization (hex_transfer.h), a vertex whose u is pinned (a shape end, or the mid-sagittal feature)
+// keeps exactly that u: it stays exactly on the patient's side or feature surface, and every vertex stays inside the
+// patient. Each sweep visits the movable vertices and takes a Newton step (finite-difference Hessian) in the movable
+// parameter directions with a backtracking line search (local Gauss-Seidel descent).
 #include "core/mesh.h"
 
 #include <Eigen/Core>
+#include <functional>
 #include <vector>
 
 namespace facehex {
@@ -35,12 +40,17 @@ struct UntangleReport {
   int sweeps = 0;
 };
 
-// How each vertex may move: P (3 x 3) projects a displacement onto the allowed directions: zero = fixed, identity =
-// free, I - n n^T = sliding in the plane of normal n.
-using MotionConstraints = std::vector<Eigen::Matrix3d>;
-MotionConstraints fixed_or_free(const std::vector<char>& fixed);
+struct VertexPlacement {
+  Eigen::MatrixXd p;                     // #V x 3 parameters of each vertex
+  std::vector<Eigen::Matrix3d> movable;  // #V projections onto the parameter directions that may change (0: fixed)
+  // Position x and dx/dp of vertex v at parameters q; false when q is not admissible.
+  std::function<bool(int v, const Eigen::Vector3d& q, Eigen::Vector3d& x, Eigen::Matrix3d& dxdq)> place;
+};
 
-// mesh: modified in place (V only). motion: #V projections.
-UntangleReport untangle(VolumeMesh& mesh, const MotionConstraints& motion, const UntangleOptions& options = {});
+// p = x: vertices move freely in space, except the fixed ones (#V flags, nonzero = fixed).
+VertexPlacement spatial_placement(const Eigen::MatrixXd& V, const std::vector<char>& fixed);
+
+// mesh: modified in place (V only); placement.p follows the moves.
+UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const UntangleOptions& options = {});
 
 }  // namespace facehex

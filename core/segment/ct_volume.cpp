@@ -1,8 +1,5 @@
 #include "core/segment/ct_volume.h"
 
-#include "core/error.h"
-
-#include <Eigen/Geometry>
 #include <vtkAlgorithm.h>
 #include <vtkCallbackCommand.h>
 #include <vtkDICOMImageReader.h>
@@ -17,10 +14,13 @@
 #include <vtkSmartPointer.h>
 #include <vtkXMLImageDataReader.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <functional>
+
+#include "core/error.h"
 
 namespace facehex {
 namespace {

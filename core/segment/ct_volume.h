@@ -1,9 +1,9 @@
 #pragma once
 // A CT volume in millimetres, in the segmentation frame: +y ANTERIOR (the face looks towards +y), +z SUPERIOR,
 // +x = y x z (right-handed; which ear that is depends on the scan, see core/sides.h).
-#include "core/segment/voxel_grid.h"
-
 #include <string>
+
+#include "core/segment/voxel_grid.h"
 
 namespace facehex {
 

@@ -1,10 +1,10 @@
 #pragma once
 // Exact Euclidean distance transform on an anisotropic voxel grid (Felzenszwalb & Huttenlocher's separable lower
 // envelope of parabolas), in millimetres, with the nearest feature voxel when asked.
-#include "core/segment/voxel_grid.h"
-
 #include <cstdint>
 #include <vector>
+
+#include "core/segment/voxel_grid.h"
 
 namespace facehex {
 

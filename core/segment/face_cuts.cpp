@@ -1,12 +1,12 @@
 #include "core/segment/face_cuts.h"
 
-#include "core/error.h"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
 #include <vector>
+
+#include "core/error.h"
 
 namespace facehex {
 namespace {

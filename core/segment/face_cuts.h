@@ -20,12 +20,12 @@
 //                 depth); their front is the most anterior coronal row within 5 mm of that width;
 //   jaw_z       = just above the highest model voxel on the posterior cut within one voxel of the mid-plane, in the
 //                 lower half of the face (find_jaw_cut, once the soft tissue is known); none if there is none.
-#include "core/segment/voxel_grid.h"
-#include "core/sides.h"
-
 #include <limits>
 #include <optional>
 #include <vector>
+
+#include "core/segment/voxel_grid.h"
+#include "core/sides.h"
 
 namespace facehex {
 

@@ -1,11 +1,9 @@
 #include "core/segment/iso_surface.h"
 
-#include "core/error.h"
-
 #include <vtkCellArray.h>
 #include <vtkCleanPolyData.h>
-#include <vtkFlyingEdges3D.h>
 #include <vtkFloatArray.h>
+#include <vtkFlyingEdges3D.h>
 #include <vtkIdList.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
@@ -15,8 +13,9 @@
 #include <vtkPolyDataConnectivityFilter.h>
 
 #include <Eigen/Geometry>
-
 #include <map>
+
+#include "core/error.h"
 
 namespace facehex {
 namespace {

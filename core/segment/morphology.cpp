@@ -1,10 +1,10 @@
 #include "core/segment/morphology.h"
 
-#include "core/segment/distance_transform.h"
-
 #include <algorithm>
 #include <cmath>
 #include <deque>
+
+#include "core/segment/distance_transform.h"
 
 namespace facehex {
 namespace {

@@ -1,9 +1,9 @@
 #pragma once
 // Binary morphology with Euclidean balls (radius in millimetres), built on the exact distance transform, and
 // connected components (6-connected: face neighbours).
-#include "core/segment/voxel_grid.h"
-
 #include <vector>
+
+#include "core/segment/voxel_grid.h"
 
 namespace facehex {
 

@@ -8,7 +8,6 @@
 #include <vtkStaticCellLocator.h>
 
 #include <Eigen/Geometry>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -20,12 +19,15 @@
 namespace facehex {
 namespace {
 
-constexpr double kSplitRatio = 4.0 / 3.0;    // Botsch & Kobbelt's thresholds: split above 4/3 L,
+constexpr double kSplitRatio = 4.0 / 3.0;     // Botsch & Kobbelt's thresholds: split above 4/3 L,
 constexpr double kCollapseRatio = 4.0 / 5.0;  // collapse below 4/5 L
 constexpr double kMinTurnCos = 0.5;           // a collapse or flip may not turn a face by more than 60 degrees
 constexpr double kFlipCoplanarCos = 0.9;      // only flip an edge whose faces are within ~25 degrees of coplanar
 
+constexpr double kDelaunayTolerance = 1e-6;  // radians
+
 enum Role { kFree, kFeature, kCorner };
+enum FlipRule { kValence, kDelaunay };  // flip towards valence 6, or to make the edge locally Delaunay
 
 // Closest points on a set of triangles or segments.
 class ClosestPoint {
@@ -77,9 +79,11 @@ class Remesher {
     for (int r = 0; r < rounds; ++r) {
       split_long_edges();
       collapse_short_edges();
-      flip_edges();
+      flip_edges(kValence);
       relax_and_project();
     }
+    // Valence flips and smoothing leave the odd thin triangle next to a feature line: Delaunay flips remove most.
+    flip_edges(kDelaunay);
   }
 
   SurfaceMesh result() const {
@@ -148,11 +152,14 @@ class Remesher {
     for (int n : neighbours(v)) feature_edges += is_feature_edge(v, n);
     return feature_edges == 2 ? kFeature : kCorner;
   }
-  Eigen::Vector3d normal(int a, int b, int c) const {
-    return (points_[b] - points_[a]).cross(points_[c] - points_[a]);
-  }
+  Eigen::Vector3d normal(int a, int b, int c) const { return (points_[b] - points_[a]).cross(points_[c] - points_[a]); }
   Eigen::Vector3d normal(int f) const { return normal(faces_[f][0], faces_[f][1], faces_[f][2]); }
   double length(int a, int b) const { return (points_[a] - points_[b]).norm(); }
+  // Angle at vertex v of the triangle (v, a, b).
+  double angle(int v, int a, int b) const {
+    const Eigen::Vector3d e = points_[a] - points_[v], f = points_[b] - points_[v];
+    return std::atan2(e.cross(f).norm(), e.dot(f));
+  }
   void remove_face_from(int v, int f) {
     auto& list = vertex_faces_[v];
     list.erase(std::remove(list.begin(), list.end(), f), list.end());
@@ -250,17 +257,17 @@ class Remesher {
   }
 
   // ---- flip ----
-  void flip_edges() {
+  void flip_edges(FlipRule rule) {
     for (size_t f = 0; f < faces_.size(); ++f) {
       if (!face_alive_[f]) continue;
       for (int k = 0; k < 3; ++k) {
         const int a = faces_[f][k], b = faces_[f][(k + 1) % 3];
-        if (a < b) flip(static_cast<int>(f), a, b);
+        if (a < b) flip(rule, static_cast<int>(f), a, b);
         if (faces_[f][k] != a) break;  // this face changed: its other edges are visited with the new faces
       }
     }
   }
-  void flip(int f1, int a, int b) {
+  void flip(FlipRule rule, int f1, int a, int b) {
     const std::vector<int> fs = edge_faces(a, b);
     if (fs.size() != 2 || labels_[fs[0]] != labels_[fs[1]]) return;
     const int f2 = fs[0] == f1 ? fs[1] : fs[0];
@@ -270,9 +277,13 @@ class Remesher {
     const int va = static_cast<int>(neighbours(a).size()), vb = static_cast<int>(neighbours(b).size());
     const int vc = static_cast<int>(neighbours(c).size()), vd = static_cast<int>(neighbours(d).size());
     if (va <= 3 || vb <= 3) return;
-    const int before = std::abs(va - 6) + std::abs(vb - 6) + std::abs(vc - 6) + std::abs(vd - 6);
-    const int after = std::abs(va - 7) + std::abs(vb - 7) + std::abs(vc - 5) + std::abs(vd - 5);
-    if (after >= before) return;
+    if (rule == kValence) {
+      const int before = std::abs(va - 6) + std::abs(vb - 6) + std::abs(vc - 6) + std::abs(vd - 6);
+      const int after = std::abs(va - 7) + std::abs(vb - 7) + std::abs(vc - 5) + std::abs(vd - 5);
+      if (after >= before) return;
+    } else if (angle(c, a, b) + angle(d, a, b) <= M_PI + kDelaunayTolerance) {
+      return;  // already locally Delaunay
+    }
     const Eigen::Vector3d n1 = normal(f1), n2 = normal(f2);
     if (n1.norm() == 0 || n2.norm() == 0 || n1.normalized().dot(n2.normalized()) < kFlipCoplanarCos) return;
     // f1 = (a, b, c) and f2 = (b, a, d) up to rotation become (a, d, c) and (b, c, d).

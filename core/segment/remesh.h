@@ -1,9 +1,9 @@
 #pragma once
 // Isotropic remeshing of a closed, labelled triangle surface (Botsch & Kobbelt 2004, "A remeshing approach to
 // multiresolution modeling"): repeated rounds of splitting long edges, collapsing short ones, flipping edges towards
-// valence 6 and tangential smoothing, with the vertices projected back onto the input surface. The result has
-// near-equilateral triangles of about the target edge length, which TetGen needs to mesh the volume without refining
-// the boundary many times over (marching-cubes triangles are slivers).
+// valence 6 and tangential smoothing, with the vertices projected back onto the input surface; then Delaunay flips. The
+// result has near-equilateral triangles of about the target edge length, which TetGen needs to mesh the volume without
+// refining the boundary many times over (marching-cubes triangles are slivers).
 //
 // Face labels are kept: an edge between faces of different labels is a feature edge. Feature edges are only split
 // and collapsed along themselves, never flipped; their vertices slide along the feature line and are projected onto

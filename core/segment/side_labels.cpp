@@ -1,7 +1,6 @@
 #include "core/segment/side_labels.h"
 
 #include <Eigen/Geometry>
-
 #include <algorithm>
 #include <cmath>
 #include <deque>

@@ -8,12 +8,12 @@
 //                  otherwise -> w0 (bone, or the depth limit).
 // Then every side is made one connected patch: smaller patches of a side (specks at creases, where a cut plane
 // meets the skin at a grazing angle) take the side of the faces around them.
+#include <Eigen/Core>
+
 #include "core/mesh.h"
 #include "core/segment/face_cuts.h"
 #include "core/segment/voxel_grid.h"
 #include "core/sides.h"
-
-#include <Eigen/Core>
 
 namespace facehex {
 

@@ -1,5 +1,10 @@
 #include "core/segment/soft_tissue.h"
 
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+
 #include "core/error.h"
 #include "core/segment/distance_transform.h"
 #include "core/segment/iso_surface.h"
@@ -7,33 +12,10 @@
 #include "core/segment/remesh.h"
 #include "core/segment/side_labels.h"
 
-#include <algorithm>
-#include <cmath>
-#include <set>
-#include <sstream>
-
-#include <vtkCellArray.h>  // DEBUG-REMOVE
-#include <vtkCellData.h>  // DEBUG-REMOVE
-#include <vtkIntArray.h>  // DEBUG-REMOVE
-#include <vtkNew.h>  // DEBUG-REMOVE
-#include <vtkPoints.h>  // DEBUG-REMOVE
-#include <vtkPolyData.h>  // DEBUG-REMOVE
-#include <vtkXMLPolyDataWriter.h>  // DEBUG-REMOVE
 namespace facehex {
 namespace {
-void debug_dump(const SurfaceMesh& s, const char* name = "/tmp/seg/debug_surface.vtp") {  // DEBUG-REMOVE
-  vtkNew<vtkPoints> pts; for (int v = 0; v < s.V.rows(); ++v) pts->InsertNextPoint(s.V(v,0),s.V(v,1),s.V(v,2));  // DEBUG-REMOVE
-  vtkNew<vtkPolyData> pd; pd->SetPoints(pts); vtkNew<vtkCellArray> tris; vtkNew<vtkIntArray> lab; lab->SetName("side");  // DEBUG-REMOVE
-  for (int f = 0; f < s.F.rows(); ++f) { vtkIdType ids[3] = {s.F(f,0),s.F(f,1),s.F(f,2)}; tris->InsertNextCell(3, ids); lab->InsertNextValue(s.labels.size() ? s.labels(f)-1 : 0); }  // DEBUG-REMOVE
-  pd->SetPolys(tris); pd->GetCellData()->AddArray(lab);  // DEBUG-REMOVE
-  vtkNew<vtkXMLPolyDataWriter> w; w->SetFileName(name); w->SetInputData(pd); w->Write();  // DEBUG-REMOVE
-}  // DEBUG-REMOVE
-void debug_mask(const Mask& head, const Mask& bone, const Mask& tissue) {  // DEBUG-REMOVE
-  FILE* f = fopen("/tmp/seg/debug_mask.raw", "wb"); std::vector<uint8_t> v(head.data.size());  // DEBUG-REMOVE
-  for (size_t i = 0; i < v.size(); ++i) v[i] = head.data[i] + 2 * bone.data[i] + 4 * tissue.data[i];  // DEBUG-REMOVE
-  fwrite(v.data(), 1, v.size(), f); fclose(f);  // DEBUG-REMOVE
-  fprintf(stderr, "grid %d %d %d\n", head.geometry.dims[0], head.geometry.dims[1], head.geometry.dims[2]);  // DEBUG-REMOVE
-}  // DEBUG-REMOVE
+
+constexpr double kCtBlur = 0.4;  // Gaussian sigma of the resampled CT, in units of its coarsest voxel spacing
 
 std::string number(double v) {
   std::ostringstream s;
@@ -81,7 +63,8 @@ Mask model_mask(const Mask& head, const Mask& bone, const Field& air_distance, c
         const size_t v = g.index(i, j, k);
         const Eigen::Vector3d p = g.point(i, j, k);
         if (!head.data[v] || air_distance.data[v] > options.max_depth) continue;
-        if (p.z() < cuts.bottom_z - margin || p.z() > cuts.top_z + margin || p.y() < cuts.posterior_y - margin) continue;
+        if (p.z() < cuts.bottom_z - margin || p.z() > cuts.top_z + margin || p.y() < cuts.posterior_y - margin)
+          continue;
         if (air_distance.data[v] <= options.min_thickness) {
           m.data[v] = 1;
           continue;
@@ -159,6 +142,9 @@ int euler_characteristic(const Eigen::MatrixXi& faces) {
 }
 
 void check_topology(const PatientModel& model) {
+  const auto unlabelled = (model.boundary_sides.array() < 0).count();
+  if (unlabelled > 0)
+    throw Error("segment", std::to_string(unlabelled) + " boundary triangles of the tet mesh are on no side");
   const int pieces = count_patches(model.boundary_faces, model.boundary_sides, -1);
   if (pieces != 1)
     throw Error("segment", "the model is " + std::to_string(pieces) +
@@ -166,8 +152,8 @@ void check_topology(const PatientModel& model) {
   const int chi = euler_characteristic(model.boundary_faces);
   if (chi != 2)
     throw Error("segment", "the model's boundary has Euler characteristic " + std::to_string(chi) +
-                               " instead of 2 (it has tunnels or voids); raise smoothing_sigma or "
-                               "cavity_closing_radius, or lower max_depth");
+                               " instead of 2 (it has tunnels or voids); raise min_thickness, bone_gap_radius, "
+                               "cavity_closing_radius or smoothing_sigma, or lower max_depth");
   for (int s = 0; s < kNumSides; ++s) {
     const int n = count_patches(model.boundary_faces, model.boundary_sides, s);
     if (n != 1)
@@ -185,51 +171,49 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   PatientModel model;
   model.thresholds = choose_thresholds(ct, options);
 
-  const Field intensity = resample(ct.intensity, options.working_spacing);
+  // Trilinear interpolation of a coarse CT has creases along its voxel planes, which the thresholded surface would
+  // show as terraces: blur by a fraction of the CT's coarsest spacing first.
+  const Field intensity = gaussian_smooth(resample(ct.intensity, options.working_spacing),
+                                          kCtBlur * ct.intensity.geometry.spacing.maxCoeff());
   const Mask raw_body = largest_component(at_least(intensity, model.thresholds.skin));
   if (std::count(raw_body.data.begin(), raw_body.data.end(), 1) == 0)
-    throw Error("segment", "no voxel reaches the skin threshold " + number(model.thresholds.skin) +
-                               "; lower the skin threshold");
+    throw Error("segment",
+                "no voxel reaches the skin threshold " + number(model.thresholds.skin) + "; lower the skin threshold");
+  const Mask body = open(raw_body, options.opening_radius);
   // The trachea leaves through the bottom slice and the head through the top: only the x and y faces of the grid
   // are open air.
-  const Mask body = open(raw_body, options.opening_radius);
   const Mask head = fill_cavities(close(body, options.cavity_closing_radius), {true, true, false});
   Mask bone = at_least(intensity, model.thresholds.bone);
   for (size_t i = 0; i < bone.data.size(); ++i) bone.data[i] &= head.data[i];
   // The ears, thin, do not survive the opening: the cuts look at the body before it.
   model.cuts = find_face_cuts(raw_body, bone, options.cuts);
-  fprintf(stderr, "thr %g %g cuts top %g bottom %g post %g centre %g\n", model.thresholds.skin, model.thresholds.bone, model.cuts.top_z, model.cuts.bottom_z, model.cuts.posterior_y, model.cuts.centre_x);  // DEBUG-REMOVE
 
   Mask air = head;
   for (auto& v : air.data) v = !v;
   const Field air_distance = distance_to(air);
+  // The mask reaches this far beyond the cuts, so that its blur does not round the creases where they cut it.
   const double margin = 3 * options.smoothing_sigma + 2 * options.working_spacing;
-  const Mask tissue = model_mask(head, bone, air_distance, model.cuts, options, margin);
+  // Bone with its narrow gaps closed (between the teeth, in thin orbital walls) hides what is behind it.
+  Mask hiding_bone = close(bone, options.bone_gap_radius);
+  for (size_t i = 0; i < hiding_bone.data.size(); ++i) hiding_bone.data[i] &= head.data[i];
+  const Mask tissue = model_mask(head, hiding_bone, air_distance, model.cuts, options, margin);
   if (std::count(tissue.data.begin(), tissue.data.end(), 1) == 0)
     throw Error("segment", "no soft tissue between the cuts; check the thresholds and the cut planes");
+  // Clear of the blurred mask's edge, so the posterior cut meets two separate pieces.
   find_jaw_cut(tissue, 2 * options.smoothing_sigma + options.working_spacing, model.cuts);
 
-  debug_mask(head, bone, tissue);  // DEBUG-REMOVE
   Mask inner = head;
   for (size_t i = 0; i < inner.data.size(); ++i) inner.data[i] = head.data[i] && !tissue.data[i];
   const Field inner_distance = distance_to(inner);
 
-  { Field phi_dbg = model_function(tissue, model.cuts, options.smoothing_sigma);  // DEBUG-REMOVE
-    FILE* f = fopen("/tmp/seg/phi.raw", "wb"); fwrite(phi_dbg.data.data(), 4, phi_dbg.data.size(), f); fclose(f);  // DEBUG-REMOVE
-    fprintf(stderr, "phi %d %d %d origin %g %g %g\n", phi_dbg.geometry.dims[0], phi_dbg.geometry.dims[1], phi_dbg.geometry.dims[2], phi_dbg.geometry.origin.x(), phi_dbg.geometry.origin.y(), phi_dbg.geometry.origin.z()); }  // DEBUG-REMOVE
   SurfaceMesh surface = zero_level_surface(model_function(tissue, model.cuts, options.smoothing_sigma));
   Eigen::VectorXi sides =
       classify_sides(surface, model.cuts, air_distance, inner_distance, 0.3 * options.working_spacing);
   merge_side_islands(surface.F, sides);
   surface.labels = sides;
   surface = remesh_isotropic(surface, options.tets.target_edge_length);
-  sides = surface.labels;
-  surface.labels = sides.array() + 1;  // DEBUG-REMOVE
-  debug_dump(surface, "/tmp/seg/debug_presnap.vtp");  // DEBUG-REMOVE
-  fprintf(stderr, "jaw %g\n", model.cuts.jaw_z);  // DEBUG-REMOVE
-  surface.labels = sides.array() + 1;  // TetGen marker 0 means "no facet"
+  surface.labels.array() += 1;  // TetGen's marker 0 means "on no input facet"
 
-  debug_dump(surface);  // DEBUG-REMOVE
   TetrahedralizeResult tets = tetrahedralize(surface, options.tets);
   model.mesh = std::move(tets.mesh);
   model.boundary_faces = std::move(tets.boundary_faces);

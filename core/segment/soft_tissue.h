@@ -2,7 +2,8 @@
 // From a CT to the labelled patient tet model of the facial soft tissue: the "bent thin cuboid" between the skin and
 // the bone, from below the chin to above the brows, wrapping around the cheeks to just in front of the ears.
 //
-// Steps (all on an isotropic working grid resampled from the CT; docs/segmentation.md has the reasoning):
+// Steps (all on an isotropic working grid resampled from the CT and blurred by 0.4 of its coarsest spacing;
+// docs/segmentation.md has the reasoning):
 //  1. thresholds: skin/bone from the histogram (thresholds.h) unless given;
 //  2. body  = largest connected region with intensity >= skin, opened with a ball of opening_radius (drops thin
 //             things stuck to the skin: tubes, straps, the head rest's padding);
@@ -11,42 +12,53 @@
 //  3. bone  = head voxels with intensity >= bone;
 //  4. model = head voxels at most max_depth below the skin that are either within min_thickness of it, or soft
 //             tissue not behind bone on the horizontal ray from the face's vertical axis (x = centre_x,
-//             y = posterior_y): no tongue or floor of the mouth inside the mandible, no brain, nothing behind the
-//             cheekbones, so no bone passes through the model; connected to the skin; enclosed voids filled;
+//             y = posterior_y; bone closed by bone_gap_radius, so the gap between the teeth counts): no tongue or
+//             floor of the mouth inside the mandible, no brain, nothing behind the cheekbones, so no bone passes
+//             through the model; connected to the skin; enclosed voids filled;
 //  5. cut by the planes of face_cuts.h (top v1, bottom and jaw v0, posterior u0/u1);
-//  6. surface = zero level of max(smoothed model mask, cut planes), decimated to target_edge_length;
-//  7. faces labelled by side (side_labels.h), TetGen with the labels, side_mask per vertex;
+//  6. surface = zero level of max(smoothed model mask, cut planes) (iso_surface.h), faces labelled by side
+//     (side_labels.h), remeshed to near-equilateral triangles of target_edge_length keeping the sides (remesh.h);
+//  7. TetGen with the side labels as facet markers, side_mask per vertex from the labelled boundary triangles;
 //  8. checks: one solid, boundary of Euler characteristic 2 (a ball), each of the six sides one connected patch.
+#include <optional>
+#include <string>
+
 #include "core/mesh.h"
 #include "core/segment/ct_volume.h"
 #include "core/segment/face_cuts.h"
 #include "core/segment/thresholds.h"
 #include "core/tetgen/tetrahedralize.h"
 
-#include <optional>
-#include <string>
-
 namespace facehex {
+
+// The remeshed surface already has triangles of the target size: TetGen keeps it (-Y) instead of splitting it, which
+// would multiply the tet count (its volume bound encroaches on the boundary everywhere).
+inline TetrahedralizeOptions patient_tet_options() {
+  TetrahedralizeOptions o;
+  o.preserve_surface = true;
+  return o;
+}
 
 struct SegmentOptions {
   std::optional<double> skin_threshold, bone_threshold;  // file units; estimated from the histogram when unset
-  double working_spacing = 1.0;         // mm, isotropic grid the CT is resampled to
-  double opening_radius = 3.5;          // mm: things attached to the skin thinner than twice this are removed
-  double cavity_closing_radius = 4.0;   // mm: openings (nostrils, lips, eyelids) narrower than twice this are closed
-  double max_depth = 25.0;              // mm below the skin where no bone is nearer
-  double min_thickness = 3.0;           // mm below the skin always in the model (bone this close is partial volume)
-  double smoothing_sigma = 1.5;         // mm, Gaussian blur of the model mask before its surface is extracted
+  double working_spacing = 1.0;                          // mm, isotropic grid the CT is resampled to
+  double opening_radius = 3.5;         // mm: things attached to the skin thinner than twice this are removed
+  double cavity_closing_radius = 4.0;  // mm: openings (nostrils, lips, eyelids) narrower than twice this are closed
+  double max_depth = 25.0;             // mm below the skin where no bone is nearer
+  double min_thickness = 3.0;          // mm below the skin always in the model (bone this close is partial volume)
+  double bone_gap_radius = 5.0;        // mm: gaps in the bone narrower than twice this (teeth) still hide tissue
+  double smoothing_sigma = 1.5;        // mm, Gaussian blur of the model mask before its surface is extracted
   FaceCutOptions cuts;
-  TetrahedralizeOptions tets;           // target_edge_length also sets the surface's triangle size
-  CtOrientation orientation;            // only used when reading a file
+  TetrahedralizeOptions tets = patient_tet_options();  // target_edge_length also sets the surface's edge length
+  CtOrientation orientation;                           // only used when reading a file
 };
 
 struct PatientModel {
-  VolumeMesh mesh;                // positive tets; point data "side_mask" (core/sides.h)
-  Eigen::MatrixXi boundary_faces; // #B x 3 outward boundary triangles of `mesh`
-  Eigen::VectorXi boundary_sides; // #B side (Side) of each boundary triangle
-  TissueThresholds thresholds;    // as used
-  FaceCuts cuts;                  // as used
+  VolumeMesh mesh;                 // positive tets; point data "side_mask" (core/sides.h)
+  Eigen::MatrixXi boundary_faces;  // #B x 3 outward boundary triangles of `mesh`
+  Eigen::VectorXi boundary_sides;  // #B side (Side) of each boundary triangle
+  TissueThresholds thresholds;     // as used
+  FaceCuts cuts;                   // as used
 };
 
 // Throws facehex::Error naming the stage ("thresholds", "segment", "tetgen") with what to change.

@@ -1,10 +1,10 @@
 #include "core/segment/thresholds.h"
 
-#include "core/error.h"
-
 #include <algorithm>
 #include <cmath>
 #include <vector>
+
+#include "core/error.h"
 
 namespace facehex {
 namespace {
@@ -12,22 +12,29 @@ namespace {
 constexpr int kBins = 512;
 constexpr double kSmoothingBins = 2.0;  // Gaussian sigma, in bins: removes the comb of integer-valued data
 
-// Otsu: the bin boundary maximizing the between-class variance.
+// Otsu: the bin boundary maximizing the between-class variance; the middle of the run of boundaries that all reach
+// it (an empty valley between the modes of a clean phantom).
 int otsu_bin(const std::vector<double>& h) {
   double total = 0, total_moment = 0;
   for (int b = 0; b < kBins; ++b) total += h[b], total_moment += b * h[b];
-  double w0 = 0, m0 = 0, best = -1;
-  int best_bin = 0;
+  std::vector<double> between(kBins - 1, -1);
+  double w0 = 0, m0 = 0;
   for (int b = 0; b < kBins - 1; ++b) {
     w0 += h[b];
     m0 += b * h[b];
     const double w1 = total - w0;
     if (w0 <= 0 || w1 <= 0) continue;
     const double mu0 = m0 / w0, mu1 = (total_moment - m0) / w1;
-    const double between = w0 * w1 * (mu0 - mu1) * (mu0 - mu1);
-    if (between > best) best = between, best_bin = b;
+    between[b] = w0 * w1 * (mu0 - mu1) * (mu0 - mu1);
   }
-  return best_bin;  // class 0 = bins [0, best_bin]
+  const double best = *std::max_element(between.begin(), between.end());
+  int first = -1, last = -1;
+  for (int b = 0; b < kBins - 1; ++b)
+    if (between[b] >= best * (1 - 1e-12)) {
+      if (first < 0) first = b;
+      last = b;
+    }
+  return (first + last) / 2;  // class 0 = bins [0, result]
 }
 
 std::vector<double> smoothed(const std::vector<double>& h) {
@@ -62,8 +69,9 @@ TissueThresholds estimate_thresholds(const Field& intensity) {
   const int air = static_cast<int>(std::max_element(s.begin(), s.begin() + split + 1) - s.begin());
   const int tissue = static_cast<int>(std::max_element(s.begin() + split + 1, s.end()) - s.begin());
   if (tissue - air < 3 || s[tissue] <= 0)
-    throw Error("thresholds", "no separate air and soft-tissue peaks in the intensity histogram; give the skin and "
-                              "bone thresholds explicitly");
+    throw Error("thresholds",
+                "no separate air and soft-tissue peaks in the intensity histogram; give the skin and "
+                "bone thresholds explicitly");
 
   // Valley: the run of bins at the minimum (a flat, empty valley of a clean phantom) is centred.
   const double valley = *std::min_element(s.begin() + air, s.begin() + tissue + 1);
@@ -80,8 +88,9 @@ TissueThresholds estimate_thresholds(const Field& intensity) {
   while (tail < kBins - 1 && s[tail] >= kBoneTailFraction * s[tissue]) ++tail;
   t.bone = centre(tail);
   if (tail >= kBins - 1)
-    throw Error("thresholds", "the soft-tissue peak does not fall off before the maximum intensity (no bone?); give "
-                              "the bone threshold explicitly");
+    throw Error("thresholds",
+                "the soft-tissue peak does not fall off before the maximum intensity (no bone?); give "
+                "the bone threshold explicitly");
   return t;
 }
 

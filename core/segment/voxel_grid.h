@@ -4,7 +4,6 @@
 // Conventions: voxel (i, j, k) has its centre at origin + (i, j, k) .* spacing (millimetres, physical frame of the
 // CT after reorientation: +y anterior, +z superior); data is stored x fastest, then y, then z (VTK's order).
 #include <Eigen/Core>
-
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -19,16 +18,15 @@ struct GridGeometry {
 
   size_t size() const { return static_cast<size_t>(dims[0]) * dims[1] * dims[2]; }
   size_t index(int i, int j, int k) const {
-    return static_cast<size_t>(i) + static_cast<size_t>(dims[0]) * (static_cast<size_t>(j) + static_cast<size_t>(dims[1]) * k);
+    return static_cast<size_t>(i) +
+           static_cast<size_t>(dims[0]) * (static_cast<size_t>(j) + static_cast<size_t>(dims[1]) * k);
   }
   std::array<int, 3> ijk(size_t index) const {
     const int i = static_cast<int>(index % dims[0]);
     const size_t rest = index / dims[0];
     return {i, static_cast<int>(rest % dims[1]), static_cast<int>(rest / dims[1])};
   }
-  Eigen::Vector3d point(int i, int j, int k) const {
-    return origin + Eigen::Vector3d(i, j, k).cwiseProduct(spacing);
-  }
+  Eigen::Vector3d point(int i, int j, int k) const { return origin + Eigen::Vector3d(i, j, k).cwiseProduct(spacing); }
   bool contains(int i, int j, int k) const {
     return i >= 0 && j >= 0 && k >= 0 && i < dims[0] && j < dims[1] && k < dims[2];
   }

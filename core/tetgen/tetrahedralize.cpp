@@ -11,15 +11,12 @@
 // that dies becomes a facehex::Error. POSIX only, like the rest of the Debian toolchain this builds on.
 #include "core/tetgen/tetrahedralize.h"
 
-#include "core/error.h"
-
-#include <Eigen/Geometry>
-#include <tetgen.h>
-
 #include <fcntl.h>
 #include <sys/wait.h>
+#include <tetgen.h>
 #include <unistd.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cerrno>
@@ -30,6 +27,8 @@
 #include <map>
 #include <string>
 #include <vector>
+
+#include "core/error.h"
 
 namespace facehex {
 namespace {
@@ -74,15 +73,20 @@ double signed_volume(const Eigen::MatrixXd& V, int a, int b, int c, int d) {
 
 std::string tetgen_failure(int code) {
   switch (code) {
-    case 1: return "out of memory";
-    case 3: return "the surface intersects itself";
-    case 4: return "the surface has a feature (edge or gap) too small for TetGen's tolerance";
-    case 5: return "the surface has two (nearly) coincident facets";
-    case 10: return "the input surface is invalid";
-    default: return "TetGen failed (internal error " + std::to_string(code) + ")";
+    case 1:
+      return "out of memory";
+    case 3:
+      return "the surface intersects itself";
+    case 4:
+      return "the surface has a feature (edge or gap) too small for TetGen's tolerance";
+    case 5:
+      return "the surface has two (nearly) coincident facets";
+    case 10:
+      return "the input surface is invalid";
+    default:
+      return "TetGen failed (internal error " + std::to_string(code) + ")";
   }
 }
-
 
 // TetGen's output, 0-based: #points x 3 coordinates, #tets x 4 corners, boundary subfaces x 3 and their markers.
 struct RawMesh {
@@ -151,7 +155,8 @@ void write_array(int fd, const T* data, std::int64_t count) {
     for (size_t i = 0; i < faces.size(); ++i) faces[i] = out.trifacelist[i] - out.firstnumber;
     write_array(fd, faces.data(), static_cast<std::int64_t>(faces.size()));
     std::vector<int> markers(out.numberoftrifaces, 0);
-    if (out.trifacemarkerlist) std::copy(out.trifacemarkerlist, out.trifacemarkerlist + out.numberoftrifaces, markers.begin());
+    if (out.trifacemarkerlist)
+      std::copy(out.trifacemarkerlist, out.trifacemarkerlist + out.numberoftrifaces, markers.begin());
     write_array(fd, markers.data(), static_cast<std::int64_t>(markers.size()));
   } catch (int code) {  // only reached where TetGen threw before building its mesh
     const std::int32_t message[2] = {kFailed, code};
@@ -255,7 +260,8 @@ TetrahedralizeResult tetrahedralize(const SurfaceMesh& surface, const Tetrahedra
   }
 
   const RawMesh out = run_tetgen(in, options);
-  if (out.tets.empty()) throw Error("tetgen", "TetGen produced no tetrahedra (is the surface closed and non-degenerate?)");
+  if (out.tets.empty())
+    throw Error("tetgen", "TetGen produced no tetrahedra (is the surface closed and non-degenerate?)");
 
   const int num_points = static_cast<int>(out.points.size() / 3), num_tets = static_cast<int>(out.tets.size() / 4);
   Eigen::MatrixXd V(num_points, 3);

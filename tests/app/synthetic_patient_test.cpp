@@ -34,8 +34,9 @@ TEST(SyntheticPatient, BundledStandardTransfersWithNoInvertedElement) {
   const BundledModel files = default_standard();
   const VolumeMesh standard = read_volume_mesh(files.mesh);
   const VolumeMesh patient = shell_patient(6.0);
-  const TransferRun run = run_transfer(standard, closed_domain(standard), read_constraint_set(files.constraints),
-                                       files.constraints, patient, side_constraints(), "shell", TransferOptions{});
+  // Both with the same semantics: the six sides only (the shell has no lips or brows to place features on).
+  const TransferRun run = run_transfer(standard, closed_domain(standard), side_constraints(), files.constraints,
+                                       patient, side_constraints(), "shell", TransferOptions{});
   EXPECT_TRUE(run.patient.health.ok());
   EXPECT_EQ(run.transfer.snap_failures, 0);
   const QualitySummary q = summarize(run.patient_hex, element_quality(run.patient_hex));

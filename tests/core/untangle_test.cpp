@@ -25,7 +25,8 @@ TEST(Untangle, RepairsADeliberatelyInvertedMeshWithoutMovingTheBoundary) {
   const int inverted_before = static_cast<int>(check_corner_jacobians(m).inverted.size());
   ASSERT_GT(inverted_before, 0);
   const std::vector<char> fixed = boundary_fixed(m);
-  const UntangleReport r = untangle(m, fixed_or_free(fixed));
+  VertexPlacement placement = spatial_placement(m.V, fixed);
+  const UntangleReport r = untangle(m, placement);
   EXPECT_EQ(r.inverted_before, inverted_before);
   EXPECT_EQ(r.inverted_after, 0);
   EXPECT_TRUE(check_corner_jacobians(m).inverted.empty());
@@ -40,7 +41,8 @@ TEST(Untangle, LeavesAGoodMeshUntouched) {
   VolumeMesh m = test::hex_box(3, 3, 3);
   test::jitter_interior(m, 0.05);
   const Eigen::MatrixXd before = m.V;
-  const UntangleReport r = untangle(m, fixed_or_free(boundary_fixed(m)));
+  VertexPlacement placement = spatial_placement(m.V, boundary_fixed(m));
+  const UntangleReport r = untangle(m, placement);
   EXPECT_EQ(r.bad_before, 0);
   EXPECT_EQ(m.V, before);
 }

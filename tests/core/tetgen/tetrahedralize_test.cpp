@@ -1,14 +1,14 @@
 #include "core/tetgen/tetrahedralize.h"
 
-#include "core/error.h"
-
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <map>
 #include <set>
 #include <utility>
+
+#include "core/error.h"
 
 namespace facehex {
 namespace {
@@ -19,12 +19,12 @@ SurfaceMesh box(double a, double b, double c) {
   s.V.resize(8, 3);
   for (int i = 0; i < 8; ++i) s.V.row(i) << (i & 1 ? a : 0), (i & 2 ? b : 0), (i & 4 ? c : 0);
   s.F.resize(12, 3);
-  s.F << 0, 4, 6, 0, 6, 2,   // -x
-      1, 3, 7, 1, 7, 5,      // +x
-      0, 1, 5, 0, 5, 4,      // -y
-      2, 6, 7, 2, 7, 3,      // +y
-      0, 2, 3, 0, 3, 1,      // -z
-      4, 5, 7, 4, 7, 6;      // +z
+  s.F << 0, 4, 6, 0, 6, 2,  // -x
+      1, 3, 7, 1, 7, 5,     // +x
+      0, 1, 5, 0, 5, 4,     // -y
+      2, 6, 7, 2, 7, 3,     // +y
+      0, 2, 3, 0, 3, 1,     // -z
+      4, 5, 7, 4, 7, 6;     // +z
   s.labels.resize(12);
   for (int f = 0; f < 12; ++f) s.labels(f) = f / 2 + 1;
   return s;
@@ -33,8 +33,8 @@ SurfaceMesh box(double a, double b, double c) {
 // Icosahedron subdivided `levels` times, projected on the sphere of radius r.
 SurfaceMesh icosphere(double r, int levels) {
   const double t = (1 + std::sqrt(5.0)) / 2;
-  std::vector<Eigen::Vector3d> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                                    {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  std::vector<Eigen::Vector3d> v = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                                    {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
   std::vector<std::array<int, 3>> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
                                        {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
                                        {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},

@@ -1,0 +1,72 @@
+#include "core/segment/ct_volume.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+
+#include "core/error.h"
+
+namespace facehex {
+namespace {
+
+// A 3 x 4 x 5 MetaImage volume whose voxel value is i + 10 j + 100 k.
+std::string write_small_mhd(const std::filesystem::path& dir) {
+  std::filesystem::create_directories(dir);
+  std::ofstream header(dir / "small.mhd");
+  header << "ObjectType = Image\nNDims = 3\nBinaryData = True\nBinaryDataByteOrderMSB = False\n"
+            "ElementSpacing = 0.5 1 2\nOffset = 10 20 30\nDimSize = 3 4 5\nElementType = MET_SHORT\n"
+            "ElementDataFile = small.raw\n";
+  std::ofstream raw(dir / "small.raw", std::ios::binary);
+  for (int k = 0; k < 5; ++k)
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 3; ++i) {
+        const std::int16_t v = static_cast<std::int16_t>(i + 10 * j + 100 * k);
+        raw.write(reinterpret_cast<const char*>(&v), sizeof v);
+      }
+  return (dir / "small.mhd").string();
+}
+
+std::filesystem::path scratch() { return std::filesystem::temp_directory_path() / "facehex_ct_volume_test"; }
+
+TEST(CtVolume, ReadsMetaImageWithSpacingAndOrigin) {
+  const CtVolume ct = read_ct_volume(write_small_mhd(scratch()));
+  const GridGeometry& g = ct.intensity.geometry;
+  EXPECT_EQ(g.dims, (std::array<int, 3>{3, 4, 5}));
+  EXPECT_TRUE(g.spacing.isApprox(Eigen::Vector3d(0.5, 1, 2)));
+  EXPECT_TRUE(g.origin.isApprox(Eigen::Vector3d(10, 20, 30)));
+  EXPECT_EQ(ct.intensity(2, 3, 4), 432.0f);
+}
+
+TEST(CtVolume, ReorientsSoThatAnteriorIsPlusYAndSuperiorPlusZ) {
+  // The file's -z is anterior and its +y superior: new y = old -z, new z = old y, new x = y cross z = old x.
+  const CtVolume ct = read_ct_volume(write_small_mhd(scratch()), {"-z", "+y"});
+  const GridGeometry& g = ct.intensity.geometry;
+  EXPECT_EQ(g.dims, (std::array<int, 3>{3, 5, 4}));
+  EXPECT_TRUE(g.spacing.isApprox(Eigen::Vector3d(0.5, 2, 1)));
+  // New voxel (i, j, k) is old (i, k, 4 - j).
+  EXPECT_EQ(ct.intensity(1, 0, 2), 1 + 10 * 2 + 100 * 4);
+  EXPECT_EQ(ct.intensity(1, 4, 2), 1 + 10 * 2);
+  EXPECT_NEAR(g.origin.y(), -(30 + 4 * 2), 1e-12);  // physical y = -old z
+}
+
+TEST(CtVolume, ErrorsNameTheFile) {
+  try {
+    read_ct_volume("/no/such/file.nii.gz");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.subject(), "/no/such/file.nii.gz");
+  }
+  const auto dir = scratch();
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "volume.xyz") << "not a volume";
+  EXPECT_THROW(read_ct_volume((dir / "volume.xyz").string()), Error);
+  std::ofstream(dir / "broken.mhd") << "ObjectType = Image\nNDims = 3\n";
+  EXPECT_THROW(read_ct_volume((dir / "broken.mhd").string()), Error);
+  EXPECT_THROW(read_ct_volume(write_small_mhd(dir), {"+q", "+z"}), Error);
+  EXPECT_THROW(read_ct_volume(write_small_mhd(dir), {"+z", "-z"}), Error);
+}
+
+}  // namespace
+}  // namespace facehex

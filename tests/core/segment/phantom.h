@@ -1,0 +1,46 @@
+#pragma once
+// A synthetic "head" CT for the segmentation tests: an ellipsoid of soft tissue (1000) around a 6 mm bone shell (2000)
+// around more soft tissue (the "brain"), in air (0), with a deterministic pseudo-random noise of +-noise. The
+// soft-tissue layer over the bone is `thickness` mm thick.
+#include <cmath>
+#include <cstdint>
+
+#include "core/segment/ct_volume.h"
+
+namespace facehex::testing {
+
+inline CtVolume ellipsoid_phantom(double spacing = 2.0, double thickness = 10.0, double noise = 40.0) {
+  CtVolume ct;
+  ct.source = "phantom";
+  GridGeometry& g = ct.intensity.geometry;
+  g.dims = {80, 90, 80};
+  g.spacing = Eigen::Vector3d::Constant(spacing);
+  g.origin = Eigen::Vector3d::Zero();
+  ct.intensity.data.resize(g.size());
+  const Eigen::Vector3d centre =
+      g.origin + 0.5 * Eigen::Vector3d(g.dims[0] - 1, g.dims[1] - 1, g.dims[2] - 1) * spacing;
+  const Eigen::Vector3d head(60, 75, 70), bone = head.array() - thickness, brain = bone.array() - 6.0;
+  std::uint32_t state = 12345;
+  for (int k = 0; k < g.dims[2]; ++k)
+    for (int j = 0; j < g.dims[1]; ++j)
+      for (int i = 0; i < g.dims[0]; ++i) {
+        const Eigen::Vector3d p = g.point(i, j, k) - centre;
+        const double in_head = p.cwiseQuotient(head).squaredNorm(), in_bone = p.cwiseQuotient(bone).squaredNorm(),
+                     in_brain = p.cwiseQuotient(brain).squaredNorm();
+        state = state * 1664525u + 1013904223u;
+        const double jitter = noise * (2.0 * (state >> 8) / double(1u << 24) - 1.0);
+        ct.intensity(i, j, k) = static_cast<float>((in_brain <= 1  ? 1000
+                                                    : in_bone <= 1 ? 2000
+                                                    : in_head <= 1 ? 1000
+                                                                   : 0) +
+                                                   jitter);
+      }
+  return ct;
+}
+
+inline Eigen::Vector3d phantom_centre(const CtVolume& ct) {
+  const GridGeometry& g = ct.intensity.geometry;
+  return g.origin + 0.5 * Eigen::Vector3d(g.dims[0] - 1, g.dims[1] - 1, g.dims[2] - 1).cwiseProduct(g.spacing);
+}
+
+}  // namespace facehex::testing

@@ -1,0 +1,153 @@
+#include "core/segment/soft_tissue.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <array>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <set>
+
+#include "core/error.h"
+#include "core/sides.h"
+#include "tests/core/segment/phantom.h"
+
+namespace facehex {
+namespace {
+
+// Edge-connected pieces of a set of triangles.
+int pieces(const std::vector<std::array<int, 3>>& faces) {
+  std::map<std::pair<int, int>, std::vector<int>> by_edge;
+  for (size_t f = 0; f < faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) by_edge[std::minmax(faces[f][k], faces[f][(k + 1) % 3])].push_back(static_cast<int>(f));
+  std::vector<int> parent(faces.size());
+  for (size_t f = 0; f < faces.size(); ++f) parent[f] = static_cast<int>(f);
+  std::function<int(int)> root = [&](int f) { return parent[f] == f ? f : parent[f] = root(parent[f]); };
+  for (const auto& [edge, fs] : by_edge)
+    for (int f : fs) parent[root(f)] = root(fs[0]);
+  std::set<int> roots;
+  for (size_t f = 0; f < faces.size(); ++f) roots.insert(root(static_cast<int>(f)));
+  return static_cast<int>(roots.size());
+}
+
+std::vector<std::array<int, 3>> faces_of(const PatientModel& m, int side) {
+  std::vector<std::array<int, 3>> out;
+  for (int f = 0; f < m.boundary_faces.rows(); ++f)
+    if (side < 0 || m.boundary_sides(f) == side)
+      out.push_back({m.boundary_faces(f, 0), m.boundary_faces(f, 1), m.boundary_faces(f, 2)});
+  return out;
+}
+
+int euler_characteristic(const std::vector<std::array<int, 3>>& faces) {
+  std::set<int> vertices;
+  std::set<std::pair<int, int>> edges;
+  for (const auto& f : faces)
+    for (int k = 0; k < 3; ++k) vertices.insert(f[k]), edges.insert(std::minmax(f[k], f[(k + 1) % 3]));
+  return static_cast<int>(vertices.size() - edges.size() + faces.size());
+}
+
+// Everything a patient model promises: positive tets, one closed solid with a ball's boundary, six one-piece sides,
+// a side bit on every boundary vertex and none inside.
+void expect_valid_patient(const PatientModel& m) {
+  ASSERT_TRUE(m.mesh.is_tet_mesh());
+  for (int t = 0; t < m.mesh.num_cells(); ++t) {
+    const Eigen::Vector3d p0 = m.mesh.V.row(m.mesh.C(t, 0)), p1 = m.mesh.V.row(m.mesh.C(t, 1)),
+                          p2 = m.mesh.V.row(m.mesh.C(t, 2)), p3 = m.mesh.V.row(m.mesh.C(t, 3));
+    ASSERT_GT((p1 - p0).dot((p2 - p0).cross(p3 - p0)), 0) << "tet " << t;
+  }
+  const auto all = faces_of(m, -1);
+  EXPECT_EQ(pieces(all), 1);
+  EXPECT_EQ(euler_characteristic(all), 2);
+  for (int s = 0; s < kNumSides; ++s) {
+    const auto side = faces_of(m, s);
+    EXPECT_FALSE(side.empty()) << kSideNames[s];
+    EXPECT_EQ(pieces(side), 1) << kSideNames[s];
+  }
+  ASSERT_TRUE(m.mesh.point_data.count(kSideMaskArray));
+  const Eigen::MatrixXd& mask = m.mesh.point_data.at(kSideMaskArray);
+  ASSERT_EQ(mask.rows(), m.mesh.num_vertices());
+  std::vector<char> on_boundary(m.mesh.num_vertices(), 0);
+  for (const auto& f : all)
+    for (int v : f) on_boundary[v] = 1;
+  for (int v = 0; v < m.mesh.num_vertices(); ++v) {
+    const int bits = static_cast<int>(mask(v, 0));
+    if (on_boundary[v])
+      EXPECT_GT(bits, 0) << "boundary vertex " << v << " has no side";
+    else
+      EXPECT_EQ(bits, 0) << "interior vertex " << v << " has a side";
+  }
+}
+
+SegmentOptions phantom_options(const CtVolume& ct) {
+  const Eigen::Vector3d c = testing::phantom_centre(ct);
+  SegmentOptions o;
+  o.working_spacing = 1.5;
+  o.tets.target_edge_length = 3.0;
+  o.cuts.top_z = c.z() + 35;
+  o.cuts.bottom_z = c.z() - 35;
+  o.cuts.posterior_y = c.y();
+  o.cuts.centre_x = c.x();
+  return o;
+}
+
+TEST(SoftTissue, PhantomGivesOneShellWithSixSides) {
+  const CtVolume ct = testing::ellipsoid_phantom();
+  const PatientModel m = build_patient_model(ct, phantom_options(ct));
+  EXPECT_NEAR(m.thresholds.skin, 500, 150);
+  EXPECT_GT(m.thresholds.bone, 1000);
+  EXPECT_LT(m.thresholds.bone, 2000);
+  expect_valid_patient(m);
+  // The shell is the 10 mm soft-tissue layer: the model stays between the two ellipsoids.
+  const Eigen::Vector3d c = testing::phantom_centre(ct), head(60, 75, 70), bone = head.array() - 10;
+  for (int v = 0; v < m.mesh.num_vertices(); ++v) {
+    const Eigen::Vector3d p = Eigen::Vector3d(m.mesh.V.row(v).transpose()) - c;
+    EXPECT_LT(p.cwiseQuotient(head * 1.05).squaredNorm(), 1.0) << "vertex " << v << " outside the skin";
+    EXPECT_GT(p.cwiseQuotient(bone * 0.95).squaredNorm(), 1.0) << "vertex " << v << " inside the bone";
+    EXPECT_GE(p.y(), -0.5) << "vertex " << v << " behind the posterior cut";
+  }
+}
+
+TEST(SoftTissue, RealCtMakesASixSidedModel) {
+  const std::string path = std::string(FACEHEX_SHARED_DIR) + "/data/ct/headsq.mhd";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is not available";
+  const PatientModel m = build_patient_model(read_ct_volume(path));
+  // The data's README: skin at about 500, bone at about 1150 (file units).
+  EXPECT_NEAR(m.thresholds.skin, 550, 150);
+  EXPECT_NEAR(m.thresholds.bone, 1150, 100);
+  expect_valid_patient(m);
+}
+
+void expect_error(const std::function<void()>& run, const std::string& subject, const std::string& words) {
+  try {
+    run();
+    FAIL() << "expected facehex::Error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.subject(), subject) << e.what();
+    EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+  }
+}
+
+TEST(SoftTissue, RejectsThresholdsInTheWrongOrder) {
+  const CtVolume ct = testing::ellipsoid_phantom();
+  SegmentOptions o = phantom_options(ct);
+  o.skin_threshold = 1500;
+  o.bone_threshold = 500;
+  expect_error([&] { build_patient_model(ct, o); }, "thresholds", "must be below");
+}
+
+TEST(SoftTissue, RejectsAVolumeWithoutSkin) {
+  CtVolume ct = testing::ellipsoid_phantom();
+  for (float& v : ct.intensity.data) v = std::min(v, 100.0f);  // air only
+  SegmentOptions o = phantom_options(ct);
+  o.skin_threshold = 500;
+  o.bone_threshold = 1150;
+  expect_error([&] { build_patient_model(ct, o); }, "segment", "skin threshold");
+}
+
+TEST(SoftTissue, RejectsAMissingFile) {
+  expect_error([] { build_patient_model_from_file("/no/such/ct.mhd"); }, "/no/such/ct.mhd", "no such file");
+}
+
+}  // namespace
+}  // namespace facehex
