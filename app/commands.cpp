@@ -10,6 +10,7 @@
 #include "core/io/mesh_io.h"
 #include "core/mesh_check.h"
 #include "core/resources.h"
+#include "core/segment/soft_tissue.h"
 #include "core/shell_sides.h"
 #include "core/standard/closed_domain.h"
 #include "core/sides.h"
@@ -18,7 +19,9 @@
 #include "core/transfer_pipeline.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <set>
@@ -67,10 +70,44 @@ HarmonicFieldsOptions field_options(const Args& args) {
   return o;
 }
 
-// A patient (tet) model from a tet mesh or a closed surface, checked and positively oriented.
-VolumeMesh load_tet_model(const std::string& path, double edge_length) {
+// A CT volume (rather than a mesh): a MetaImage, NIfTI or NRRD file, or a DICOM folder.
+bool is_ct_input(const std::string& path) {
+  if (fs::is_directory(path)) return true;
+  std::string name = fs::path(path).filename().string();
+  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
+  for (const char* ext : {".mhd", ".mha", ".nii", ".nii.gz", ".nrrd", ".nhdr"})
+    if (name.size() > std::strlen(ext) && name.compare(name.size() - std::strlen(ext), std::strlen(ext), ext) == 0)
+      return true;
+  return false;
+}
+
+void add_segment_options(Args& args) {
+  args.option("skin", "skin threshold in the file's units (default: from the histogram)")
+      .option("bone", "bone threshold in the file's units (default: from the histogram)")
+      .option("anterior", "direction the face looks to in the volume: +x -x +y -y +z -z", "+y")
+      .option("superior", "direction of the top of the head in the volume", "+z");
+}
+
+SegmentOptions segment_options(const Args& args) {
+  SegmentOptions o;
+  if (args.has("skin")) o.skin_threshold = args.number("skin");
+  if (args.has("bone")) o.bone_threshold = args.number("bone");
+  o.orientation.anterior = args.get("anterior");
+  o.orientation.superior = args.get("superior");
+  o.tets.target_edge_length = args.number("edge-length");
+  return o;
+}
+
+// A patient (tet) model from a tet mesh, a closed surface or a CT volume (segmented), checked and oriented.
+VolumeMesh load_tet_model(const std::string& path, double edge_length, const SegmentOptions* ct_options = nullptr) {
   MeshReadOptions ro;
   ro.target_edge_length = edge_length;
+  if (ct_options && is_ct_input(path)) {
+    std::cerr << "segmenting the facial soft tissue from the CT " << path << "\n";
+    VolumeMesh model = build_patient_model_from_file(path, *ct_options);
+    check_and_orient_tet_mesh(model, path);
+    return model;
+  }
   VolumeMesh mesh = read_volume_mesh(path, ro);
   const TetMeshCheck check = check_and_orient_tet_mesh(mesh, path);
   if (check.reoriented) std::cerr << "note: " << path << ": all tets were negatively oriented; flipped\n";
@@ -150,6 +187,7 @@ struct TransferInputs {
   std::string patient, patient_constraints;
   double edge_length = 2.0;
   std::string standard_domain = "closed";
+  SegmentOptions segment;
   TransferOptions options;
 };
 
@@ -168,7 +206,7 @@ TransferOutputs execute_transfer(const TransferInputs& in) {
   const std::string std_constraints = in.standard_constraints.empty() ? in.standard.constraints : in.standard_constraints;
   const ConstraintSet standard_set = read_constraint_set(std_constraints);
   std::cerr << "reading the patient " << in.patient << "\n";
-  out.patient = load_tet_model(in.patient, in.edge_length);
+  out.patient = load_tet_model(in.patient, in.edge_length, &in.segment);
   ConstraintSet patient_set = load_constraints(in.patient_constraints, out.patient, in.patient);
   if (in.patient_constraints.empty()) {
     // No set given: the sides plus feature constraints at the patient's landmarks, valued as the standard's.
@@ -192,11 +230,12 @@ TransferOutputs execute_transfer(const TransferInputs& in) {
 void add_transfer_options(Args& args) {
   args.option("standard", "bundled standard name or a hex mesh file", "artisynth-refface")
       .option("standard-constraints", "constraint set of the standard (default: the one bundled with it)")
-      .option("edge-length", "target edge length (mm) when the patient is a closed surface", "2")
+      .option("edge-length", "target edge length (mm) when the patient is a closed surface or a CT", "2")
       .option("standard-domain",
               "tet domain of the standard: closed (openings filled) or auxiliary (paper: split hexes only)", "closed")
       .flag("allow-inverted", "continue even if the patient parameterization has inverted tets");
   add_field_options(args);
+  add_segment_options(args);
 }
 
 TransferInputs transfer_inputs(const Args& args, const std::string& patient, const std::string& patient_constraints) {
@@ -207,6 +246,7 @@ TransferInputs transfer_inputs(const Args& args, const std::string& patient, con
   in.patient_constraints = patient_constraints;
   in.edge_length = args.number("edge-length");
   in.standard_domain = args.get("standard-domain");
+  in.segment = segment_options(args);
   in.options.fields = field_options(args);
   in.options.allow_inverted_parameterization = args.has("allow-inverted");
   return in;
@@ -355,9 +395,10 @@ int cmd_quality(const Argv& argv) {
 
 int cmd_run(const Argv& argv) {
   Args args("run",
-            "End to end: the patient model (default: the bundled sample patient) is parameterized, the standard "
-            "mapped onto it, and OUT/ gets patient_model.vtu, standard_hex.vtu, patient_hex.vtu and report.json.");
-  args.positional("INPUT", "patient tet model or closed surface", false)
+            "End to end: the patient (a CT is segmented first; default: the bundled sample CT) is parameterized with "
+            "automatic constraints (or --constraints), the standard mapped onto it, and OUT/ gets patient_model.vtu, "
+            "standard_hex.vtu, patient_hex.vtu and report.json.");
+  args.positional("INPUT", "patient CT volume, tet model or closed surface", false)
       .option("output", "output folder")
       .option("constraints", "constraint set of the patient (default: bundled, or six sides from side_mask)")
       .option("export", "also write OUT/patient_hex.EXT for each listed format, e.g. feb,inp,msh (docs/export.md)")
@@ -368,10 +409,8 @@ int cmd_run(const Argv& argv) {
   const std::vector<std::string> exports = export_formats(args.get("export"));
   std::string input = args.get("INPUT"), constraints = args.get("constraints");
   if (input.empty()) {
-    const BundledModel patient = default_patient();
-    input = patient.mesh;
-    if (constraints.empty() && fs::exists(patient.constraints)) constraints = patient.constraints;
-    std::cerr << "no input given: running the bundled demo patient '" << patient.name << "'\n";
+    input = default_ct();
+    std::cerr << "no input given: running the bundled demo, the whole chain from the sample CT " << input << "\n";
   }
   const fs::path out_dir = args.get("output");
   std::error_code ec;
@@ -404,6 +443,31 @@ int cmd_run(const Argv& argv) {
     std::cout << "exported " << (out_dir / ("patient_hex." + ext)).string() << "\n";
   }
   return out.patient_quality.summary.inverted == 0 ? 0 : 3;
+}
+
+int cmd_segment(const Argv& argv) {
+  Args args("segment",
+            "From a head CT (MetaImage, NIfTI, NRRD, or a DICOM folder) to the labelled patient tet model of the "
+            "facial soft tissue: thresholds from the histogram, cavities closed, cut at the forehead, below the chin "
+            "and in front of the ears, six sides labelled (point data side_mask). See docs/segmentation.md.");
+  args.positional("CT", "CT volume file or DICOM folder").option("output", "output tet model (.vtu)");
+  args.option("edge-length", "target mean edge length of the tets (mm)", "2");
+  add_segment_options(args);
+  if (!args.parse(argv)) return 0;
+  if (!args.has("output")) throw Error("facehex segment", "missing -o OUTPUT");
+  const SegmentOptions options = segment_options(args);
+  if (!is_ct_input(args.get("CT")))
+    throw Error(args.get("CT"), "not a CT volume (.mhd, .mha, .nii, .nii.gz, .nrrd, or a DICOM folder)");
+  const VolumeMesh model = load_tet_model(args.get("CT"), args.number("edge-length"), &options);
+  write_volume_mesh(args.get("output"), model);
+  const Eigen::VectorXi mask = side_mask_of(model);
+  std::cout << model.num_vertices() << " vertices, " << model.num_cells() << " tets; side vertices:";
+  for (int s = 0; s < kNumSides; ++s)
+    std::cout << " " << kSideNames[s] << " "
+              << std::count_if(mask.data(), mask.data() + mask.size(),
+                               [&](int m) { return (m & side_bit(static_cast<Side>(s))) != 0; });
+  std::cout << "\nwrote " << args.get("output") << "\n";
+  return 0;
 }
 
 int cmd_constraints(const Argv& argv) {

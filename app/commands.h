@@ -18,5 +18,6 @@ int cmd_run(const Argv& argv);
 int cmd_standards(const Argv& argv);
 int cmd_bench(const Argv& argv);
 int cmd_constraints(const Argv& argv);
+int cmd_segment(const Argv& argv);
 
 }  // namespace facehex::cli

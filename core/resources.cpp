@@ -66,4 +66,10 @@ BundledModel default_patient() {
   return all.front();
 }
 
+std::string default_ct() {
+  const fs::path ct = fs::path(resource_dir()) / "ct" / "headsq" / "headsq.mhd";
+  if (!fs::exists(ct)) throw Error(ct.string(), "the bundled sample CT is missing");
+  return ct.string();
+}
+
 }  // namespace facehex

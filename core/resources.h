@@ -4,6 +4,7 @@
 //
 // Layout: resources/standards/NAME/{standard.vtu, constraints.json, README.md}
 //         resources/patients/NAME/{patient.vtu, constraints.json}
+//         resources/ct/NAME/NAME.mhd (+ .raw)
 #include <string>
 #include <vector>
 
@@ -26,5 +27,7 @@ std::vector<BundledModel> bundled_patients();
 BundledModel find_standard(const std::string& name_or_path);
 BundledModel default_standard();
 BundledModel default_patient();
+// The bundled sample CT (resources/ct/headsq/headsq.mhd).
+std::string default_ct();
 
 }  // namespace facehex

@@ -1,6 +1,7 @@
 #include "core/shell_sides.h"
 
 #include "core/cell_faces.h"
+#include "core/side_mask.h"
 #include "core/sides.h"
 
 #include <Eigen/Geometry>
@@ -146,16 +147,7 @@ ShellSides label_shell_sides(const VolumeMesh& mesh, const ShellFrame& frame) {
     ++out.faces_per_side[side[i]];
     for (int v : faces[i].v) out.side_mask(v) |= side_bit(static_cast<Side>(side[i]));
   }
-  // Where opposite sides of one field meet (the zero-thickness rim of an opening, where skin and bone side touch),
-  // a vertex cannot take both values: it is left free for that field.
-  for (int v = 0; v < out.side_mask.size(); ++v)
-    for (int field = 0; field < 3; ++field) {
-      const int both = side_bit(static_cast<Side>(2 * field)) | side_bit(static_cast<Side>(2 * field + 1));
-      if ((out.side_mask(v) & both) == both) {
-        out.side_mask(v) &= ~both;
-        ++out.conflicting_vertices;
-      }
-    }
+  out.conflicting_vertices = clear_opposite_sides(out.side_mask);
   return out;
 }
 

@@ -14,4 +14,17 @@ Eigen::VectorXi side_mask_from_faces(int num_vertices, const Eigen::MatrixXi& F,
   return mask;
 }
 
+int clear_opposite_sides(Eigen::VectorXi& side_mask) {
+  int cleared = 0;
+  for (Eigen::Index v = 0; v < side_mask.size(); ++v)
+    for (int field = 0; field < 3; ++field) {
+      const int both = side_bit(static_cast<Side>(2 * field)) | side_bit(static_cast<Side>(2 * field + 1));
+      if ((side_mask(v) & both) == both) {
+        side_mask(v) &= ~both;
+        ++cleared;
+      }
+    }
+  return cleared;
+}
+
 }  // namespace facehex

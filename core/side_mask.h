@@ -8,4 +8,9 @@ namespace facehex {
 // -1 for a face on no side.
 Eigen::VectorXi side_mask_from_faces(int num_vertices, const Eigen::MatrixXi& F, const Eigen::VectorXi& side);
 
+// Where opposite sides of one field meet (a zero-thickness rim: skin touching bone, or the two lateral ends), a vertex
+// cannot take both values; such vertices lose both bits and are left free for that field. Returns how many
+// (vertex, field) pairs were cleared.
+int clear_opposite_sides(Eigen::VectorXi& side_mask);
+
 }  // namespace facehex

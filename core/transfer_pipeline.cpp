@@ -84,9 +84,10 @@ TransferRun run_transfer(const VolumeMesh& standard, const StandardDomain& domai
                                    patient_source, options.fields, sub_progress(progress, 0.3, 0.85));
   run.seconds["patient_parameterization"] = clock.lap();
 
-  if (!options.allow_inverted_parameterization) {
-    if (!run.patient.health.ok()) throw Error(patient_source, "parameterization: " + health_problem(run.patient.health));
-  }
+  const ParamHealth& health = run.patient.health;
+  const int folded = health.inverted + health.degenerate - health.flat_by_constraint;
+  if (!options.allow_inverted_parameterization && folded > options.max_inverted_fraction * health.tets)
+    throw Error(patient_source, "parameterization: " + health_problem(health));
   if (run.standard.health.orientation != run.patient.health.orientation)
     throw Error(patient_source,
                 "the model frame has the opposite handedness to the standard's (mirrored scan?): swap the u0 and u1 "

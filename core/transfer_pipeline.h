@@ -34,7 +34,10 @@ ModelParameterization parameterize_model(const Eigen::MatrixXd& V, const Eigen::
 
 struct TransferOptions {
   HarmonicFieldsOptions fields;
-  // A parameterization with inverted tets is not a bijection: by default the run stops with an error naming them.
+  // A parameterization with inverted tets is not a bijection. Local folds (at most max_inverted_fraction of the
+  // patient's tets) are reported and their effect on the hex mesh repaired by the untangler; more stop the run with
+  // an error, unless allow_inverted_parameterization.
+  double max_inverted_fraction = 0.01;
   bool allow_inverted_parameterization = false;
   // After the mapping, cells that are inverted or below untangle_options.min_scaled_jacobian are repaired by moving
   // nearby vertices that are on no side and no feature (untangle.h).

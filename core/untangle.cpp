@@ -248,7 +248,8 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
     int inverted = 0;
     for (int v : free_vertices)
       for (int c : cells_of[v]) inverted += min_corner_determinant(mesh.types[c], cell_nodes(mesh, c)) <= 0;
-    if (inverted == 0 && moved < 1e-4 * size) break;
+    // Done when nothing is inverted and the smoothing has settled (or had a fair number of sweeps).
+    if (inverted == 0 && (moved < 1e-3 * size || report.sweeps >= 30)) break;
   }
   tally(report.inverted_after, report.bad_after, report.min_scaled_jacobian_after);
   return report;

@@ -29,7 +29,7 @@ namespace facehex {
 struct UntangleOptions {
   double min_scaled_jacobian = 0.2;  // cells below this count as bad, besides inverted ones
   int rings = 2;
-  int max_sweeps = 100;
+  int max_sweeps = 60;
 };
 
 struct UntangleReport {

@@ -100,16 +100,6 @@ void merge_side_islands(const Eigen::MatrixXi& faces, Eigen::VectorXi& sides) {
   }
 }
 
-Eigen::MatrixXd side_mask(int num_vertices, const Eigen::MatrixXi& faces, const Eigen::VectorXi& sides) {
-  std::vector<int> bits(num_vertices, 0);
-  for (int f = 0; f < faces.rows(); ++f)
-    if (sides(f) >= 0)
-      for (int k = 0; k < 3; ++k) bits[faces(f, k)] |= side_bit(static_cast<Side>(sides(f)));
-  Eigen::MatrixXd mask(num_vertices, 1);
-  for (int v = 0; v < num_vertices; ++v) mask(v, 0) = bits[v];
-  return mask;
-}
-
 int count_patches(const Eigen::MatrixXi& faces, const Eigen::VectorXi& sides, int side) {
   std::vector<int> selected;
   for (int f = 0; f < faces.rows(); ++f)

@@ -25,10 +25,6 @@ Eigen::VectorXi classify_sides(const SurfaceMesh& surface, const FaceCuts& cuts,
 // Relabels all but the largest edge-connected patch of each side with the sides around them.
 void merge_side_islands(const Eigen::MatrixXi& faces, Eigen::VectorXi& sides);
 
-// Per-vertex side bitmask (#V x 1): OR of side_bit() of the labelled faces around each vertex. `sides` holds a Side
-// per face, or -1 for none.
-Eigen::MatrixXd side_mask(int num_vertices, const Eigen::MatrixXi& faces, const Eigen::VectorXi& sides);
-
 // Number of edge-connected patches of the faces with sides(f) == side (all faces when side < 0).
 int count_patches(const Eigen::MatrixXi& faces, const Eigen::VectorXi& sides, int side);
 

@@ -1,5 +1,7 @@
 #include "core/segment/soft_tissue.h"
 
+#include "core/side_mask.h"
+
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -218,8 +220,9 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   model.mesh = std::move(tets.mesh);
   model.boundary_faces = std::move(tets.boundary_faces);
   model.boundary_sides = tets.boundary_labels.array() - 1;
-  model.mesh.point_data[kSideMaskArray] =
-      side_mask(model.mesh.num_vertices(), model.boundary_faces, model.boundary_sides);
+  Eigen::VectorXi mask = side_mask_from_faces(model.mesh.num_vertices(), model.boundary_faces, model.boundary_sides);
+  clear_opposite_sides(mask);  // skin touching bone at a zero-thickness rim: that vertex is left free in w
+  model.mesh.point_data[kSideMaskArray] = mask.cast<double>();
   check_topology(model);
   return model;
 }
