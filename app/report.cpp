@@ -152,6 +152,7 @@ json run_report(const TransferRun& run, const MeshQualityReport& standard_qualit
             {"min_scaled_jacobian_before", run.untangle.min_scaled_jacobian_before},
             {"min_scaled_jacobian_after", run.untangle.min_scaled_jacobian_after},
             {"free_vertices", run.untangle.free_vertices},
+            {"released_feature_vertices", run.untangle.released_feature_vertices},
             {"sweeps", run.untangle.sweeps}}},
           {"patient_hex", {{"quality", to_json(patient_quality)}}}};
 }

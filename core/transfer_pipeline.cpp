@@ -1,5 +1,6 @@
 #include "core/transfer_pipeline.h"
 
+#include "core/corner_jacobian.h"
 #include "core/error.h"
 #include "core/stopwatch.h"
 
@@ -99,11 +100,24 @@ TransferRun run_transfer(const VolumeMesh& standard, const StandardDomain& domai
   run.seconds["mapping"] = clock.lap();
   if (options.untangle) {
     VertexPlacement placement = parametric_placement(run, patient_map, standard.num_vertices());
-    // Widen the region that may move while inverted cells remain (a fold may need room beyond two rings).
+    // While inverted cells remain: widen the region that may move (a fold may need room beyond two rings), then
+    // release the feature pins (never the sides) of the vertices of the cells still inverted: where the patient's
+    // anatomy squeezes a feature (a flat nose), a valid element matters more than an exact feature line.
     UntangleOptions pass = options.untangle_options;
     run.untangle = untangle(run.patient_hex, placement, pass);
-    for (int widening = 0; widening < 2 && run.untangle.inverted_after > 0; ++widening) {
-      pass.rings += 2;
+    for (int attempt = 0; attempt < 3 && run.untangle.inverted_after > 0; ++attempt) {
+      if (attempt < 2) {
+        pass.rings += 2;
+      } else {
+        const Eigen::MatrixXd uvw = hex_vertex_uvw(run, standard.num_vertices());
+        for (int c : check_corner_jacobians(run.patient_hex).inverted)
+          for (int i = 0; i < node_count(standard.types[c]); ++i) {
+            const int v = standard.C(c, i);
+            for (int f = 0; f < 3; ++f)
+              if (uvw(v, f) != 0.0 && uvw(v, f) != 1.0) placement.movable[v](f, f) = 1;
+            ++run.untangle.released_feature_vertices;
+          }
+      }
       const UntangleReport again = untangle(run.patient_hex, placement, pass);
       run.untangle.inverted_after = again.inverted_after;
       run.untangle.bad_after = again.bad_after;

@@ -38,6 +38,7 @@ struct UntangleReport {
   double min_scaled_jacobian_before = 0, min_scaled_jacobian_after = 0;
   int free_vertices = 0;  // vertices allowed to move
   int sweeps = 0;
+  int released_feature_vertices = 0;  // feature pins released to untangle the last folds (transfer_pipeline)
 };
 
 struct VertexPlacement {
