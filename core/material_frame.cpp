@@ -1,6 +1,7 @@
 #include "core/material_frame.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <Eigen/QR>
 #include <cmath>
 
@@ -15,12 +16,23 @@ Eigen::Matrix3d parametric_gradient(const Eigen::MatrixXd& X, const Eigen::Matri
 
 std::optional<Eigen::Matrix3d> frame_from_gradient(const Eigen::Matrix3d& G) {
   const Eigen::Vector3d gu = G.row(0), gv = G.row(1), gw = G.row(2);
-  // A relative test: |det G| / (|gu| |gv| |gw|) is the volume of the parallelepiped of the unit gradients.
-  const double scale = gu.norm() * gv.norm() * gw.norm();
-  if (!(scale > 0) || !(std::abs(G.determinant()) > 1e-9 * scale)) return std::nullopt;
+  // A field pinned to one value over the whole cell (a feature line through it) has no gradient there: the frame
+  // is then built from the other two. Otherwise the three must span 3-D: |det G| / (|gu| |gv| |gw|) is the volume of
+  // the parallelepiped of the unit gradients.
+  const double largest = std::max({gu.norm(), gv.norm(), gw.norm()});
+  const bool has_u = gu.norm() > 1e-9 * largest, has_v = gv.norm() > 1e-9 * largest;
+  if (!(largest > 0) || !(gw.norm() > 1e-9 * largest) || (!has_u && !has_v)) return std::nullopt;
+  if (has_u && has_v && !(std::abs(G.determinant()) > 1e-9 * gu.norm() * gv.norm() * gw.norm())) return std::nullopt;
   const Eigen::Vector3d e3 = gw.normalized();
-  Eigen::Vector3d e1 = (gu - gu.dot(e3) * e3).normalized();
-  if (e3.cross(e1).dot(gv) < 0) e1 = -e1;
+  Eigen::Vector3d e1;
+  if (has_u) {
+    e1 = (gu - gu.dot(e3) * e3).normalized();
+    if (has_v && e3.cross(e1).dot(gv) < 0) e1 = -e1;
+  } else {
+    const Eigen::Vector3d e2 = (gv - gv.dot(e3) * e3).normalized();
+    e1 = e2.cross(e3);
+  }
+  if (!e1.allFinite()) return std::nullopt;
   Eigen::Matrix3d frame;
   frame << e1, e3.cross(e1), e3;
   return frame;

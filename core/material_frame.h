@@ -34,8 +34,9 @@ struct MaterialFrames {
 // n points X (n x 3), n >= 4. Zero where the points do not span 3-D (minimum-norm solution).
 Eigen::Matrix3d parametric_gradient(const Eigen::MatrixXd& X, const Eigen::MatrixXd& P);
 
-// The frame (columns e1, e2, e3) of a parametric gradient as described above; nullopt when G is (numerically)
-// singular, i.e. |det G| <= 1e-9 |grad u| |grad v| |grad w|.
+// The frame (columns e1, e2, e3) of a parametric gradient as described above. A u or v pinned over the cell (zero
+// gradient, a feature line) is left out: e1 comes from the other. nullopt when grad w vanishes, when both u and v
+// do, or when all three are present but (numerically) dependent: |det G| <= 1e-9 |grad u| |grad v| |grad w|.
 std::optional<Eigen::Matrix3d> frame_from_gradient(const Eigen::Matrix3d& G);
 
 // Frames of every cell of `mesh` from the per-vertex parametric coordinates uvw (#V x 3).

@@ -111,21 +111,7 @@ SurfaceMesh read_surface_mesh(const std::string& path) {
   io::run_vtk(path, "triangulating the surface", clean);
   vtkPolyData* poly = clean->GetOutput();
 
-  SurfaceMesh s;
-  s.V.resize(poly->GetNumberOfPoints(), 3);
-  for (vtkIdType i = 0; i < poly->GetNumberOfPoints(); ++i) {
-    double p[3];
-    poly->GetPoint(i, p);
-    s.V.row(i) << p[0], p[1], p[2];
-  }
-  vtkCellArray* polys = poly->GetPolys();
-  s.F.resize(polys->GetNumberOfCells(), 3);
-  vtkNew<vtkIdList> ids;
-  for (vtkIdType f = 0; f < polys->GetNumberOfCells(); ++f) {
-    polys->GetCellAtId(f, ids);
-    if (ids->GetNumberOfIds() != 3) throw Error(path, "polygon " + std::to_string(f) + " was not triangulated");
-    s.F.row(f) << static_cast<int>(ids->GetId(0)), static_cast<int>(ids->GetId(1)), static_cast<int>(ids->GetId(2));
-  }
+  SurfaceMesh s = io::triangles_of(path, poly);
   // Verts and lines were not passed, so cell i is triangle i.
   if (vtkDataArray* labels = poly->GetCellData()->GetArray(kLabels);
       labels && labels->GetNumberOfTuples() == s.F.rows() && labels->GetNumberOfComponents() == 1) {

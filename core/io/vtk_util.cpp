@@ -3,6 +3,9 @@
 #include "core/error.h"
 
 #include <vtkAlgorithm.h>
+#include <vtkCellArray.h>
+#include <vtkIdList.h>
+#include <vtkPolyData.h>
 #include <vtkCallbackCommand.h>
 #include <vtkCommand.h>
 #include <vtkDataArray.h>
@@ -157,6 +160,25 @@ void matrices_to_vtk_arrays(const std::map<std::string, Eigen::MatrixXd>& arrays
       for (Eigen::Index c = 0; c < m.cols(); ++c) array->SetComponent(r, static_cast<int>(c), m(r, c));
     out->AddArray(array);
   }
+}
+
+SurfaceMesh triangles_of(const std::string& subject, vtkPolyData* poly) {
+  SurfaceMesh s;
+  s.V.resize(poly->GetNumberOfPoints(), 3);
+  for (vtkIdType i = 0; i < poly->GetNumberOfPoints(); ++i) {
+    double p[3];
+    poly->GetPoint(i, p);
+    s.V.row(i) << p[0], p[1], p[2];
+  }
+  vtkCellArray* polys = poly->GetPolys();
+  s.F.resize(polys->GetNumberOfCells(), 3);
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType f = 0; f < polys->GetNumberOfCells(); ++f) {
+    polys->GetCellAtId(f, ids);
+    if (ids->GetNumberOfIds() != 3) throw Error(subject, "polygon " + std::to_string(f) + " is not a triangle");
+    s.F.row(f) << static_cast<int>(ids->GetId(0)), static_cast<int>(ids->GetId(1)), static_cast<int>(ids->GetId(2));
+  }
+  return s;
 }
 
 }  // namespace facehex::io

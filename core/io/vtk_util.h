@@ -1,5 +1,6 @@
 #pragma once
-// VTK plumbing shared by the volume (vtk_mesh_io.cpp) and surface (surface_io.cpp) formats. Not public API.
+// VTK plumbing shared by the volume (vtk_mesh_io.cpp) and surface (surface_io.cpp) formats and the segmentation's
+// surface extraction.
 //
 // VTK readers and writers do not throw: they print to stderr and return empty or half-filled output. Every VTK
 // pipeline call of core/io therefore goes through run_vtk(), which silences that output, collects the messages and
@@ -10,7 +11,10 @@
 #include <map>
 #include <string>
 
+#include "core/mesh.h"
+
 class vtkAlgorithm;
+class vtkPolyData;
 class vtkFieldData;
 class vtkDataSetAttributes;
 
@@ -28,5 +32,9 @@ void vtk_arrays_to_matrices(const std::string& path, vtkFieldData* data, int row
                             std::map<std::string, Eigen::MatrixXd>* out);
 // Each matrix as a double array with as many components as columns.
 void matrices_to_vtk_arrays(const std::map<std::string, Eigen::MatrixXd>& arrays, vtkDataSetAttributes* out);
+
+// The points and triangles of a polydata (polygons must all be triangles: throws facehex::Error(subject, ...)
+// otherwise). Labels are left empty.
+SurfaceMesh triangles_of(const std::string& subject, vtkPolyData* poly);
 
 }  // namespace facehex::io

@@ -16,26 +16,10 @@
 #include <map>
 
 #include "core/error.h"
+#include "core/io/vtk_util.h"
 
 namespace facehex {
 namespace {
-
-SurfaceMesh to_surface(vtkPolyData* poly) {
-  SurfaceMesh s;
-  s.V.resize(poly->GetNumberOfPoints(), 3);
-  for (vtkIdType i = 0; i < poly->GetNumberOfPoints(); ++i) {
-    double p[3];
-    poly->GetPoint(i, p);
-    s.V.row(i) << p[0], p[1], p[2];
-  }
-  s.F.resize(poly->GetNumberOfPolys(), 3);
-  vtkNew<vtkIdList> ids;
-  vtkCellArray* polys = poly->GetPolys();
-  polys->InitTraversal();
-  for (int f = 0; polys->GetNextCell(ids); ++f)
-    for (int k = 0; k < 3; ++k) s.F(f, k) = static_cast<int>(ids->GetId(k));
-  return s;
-}
 
 double enclosed_volume(const SurfaceMesh& s) {
   double v = 0;
@@ -97,7 +81,7 @@ SurfaceMesh zero_level_surface(const Field& phi) {
   vtkNew<vtkCleanPolyData> compact;
   compact->SetInputConnection(largest->GetOutputPort());
   compact->Update();
-  SurfaceMesh full = to_surface(compact->GetOutput());
+  SurfaceMesh full = io::triangles_of("surface extraction", compact->GetOutput());
   if (enclosed_volume(full) < 0) full.F.col(1).swap(full.F.col(2));
 
   if (!is_closed_manifold(full))
