@@ -390,7 +390,7 @@ int cmd_quality(const Argv& argv) {
     std::cout << to_json(q).dump(2) << "\n";
   else
     std::cout << args.get("MESH") << "\n" << quality_text(q);
-  return q.summary.inverted == 0 ? 0 : 3;
+  return q.summary.inverted + q.summary.degenerate == 0 ? 0 : 3;
 }
 
 int cmd_run(const Argv& argv) {
@@ -442,7 +442,11 @@ int cmd_run(const Argv& argv) {
     write_volume_mesh((out_dir / ("patient_hex." + ext)).string(), out.run.patient_hex, write_options(args));
     std::cout << "exported " << (out_dir / ("patient_hex." + ext)).string() << "\n";
   }
-  return out.patient_quality.summary.inverted == 0 ? 0 : 3;
+  const QualitySummary& q = out.patient_quality.summary;
+  if (q.inverted + q.degenerate > 0)
+    std::cerr << "warning: " << q.inverted << " inverted and " << q.degenerate
+              << " degenerate cells remain in patient_hex.vtu (cell data scaled_jacobian shows where)\n";
+  return q.inverted + q.degenerate == 0 ? 0 : 3;
 }
 
 int cmd_segment(const Argv& argv) {

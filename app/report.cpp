@@ -65,6 +65,7 @@ json to_json(const MeshQualityReport& q) {
             {"hexes", s.hexes},
             {"wedges", s.wedges},
             {"inverted", s.inverted},
+            {"degenerate", s.degenerate},
             {"shape_min", s.shape_min},
             {"shape_mean", s.shape_mean},
             {"scaled_jacobian_min", s.scaled_jacobian_min},
@@ -88,7 +89,8 @@ json to_json(const MeshQualityReport& q) {
 std::string quality_text(const MeshQualityReport& q) {
   const QualitySummary& s = q.summary;
   std::ostringstream os;
-  os << "  cells " << s.cells << " (" << s.hexes << " hex, " << s.wedges << " wedge), inverted " << s.inverted << "\n"
+  os << "  cells " << s.cells << " (" << s.hexes << " hex, " << s.wedges << " wedge), inverted " << s.inverted
+     << ", degenerate " << s.degenerate << "\n"
      << "  shape           min " << fmt("%.3f", s.shape_min) << "  mean " << fmt("%.3f", s.shape_mean) << "\n"
      << "  scaled Jacobian min " << fmt("%.3f", s.scaled_jacobian_min) << "  mean "
      << fmt("%.3f", s.scaled_jacobian_mean) << "  below 0.3: " << fmt("%.2f", 100 * s.fraction_scaled_jacobian_below_0_3)
@@ -153,6 +155,7 @@ json run_report(const TransferRun& run, const MeshQualityReport& standard_qualit
             {"min_scaled_jacobian_after", run.untangle.min_scaled_jacobian_after},
             {"free_vertices", run.untangle.free_vertices},
             {"released_feature_vertices", run.untangle.released_feature_vertices},
+            {"released_side_vertices", run.untangle.released_side_vertices},
             {"sweeps", run.untangle.sweeps}}},
           {"patient_hex", {{"quality", to_json(patient_quality)}}}};
 }

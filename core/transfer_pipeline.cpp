@@ -125,6 +125,20 @@ TransferRun run_transfer(const VolumeMesh& standard, const StandardDomain& domai
       run.untangle.free_vertices = std::max(run.untangle.free_vertices, again.free_vertices);
       run.untangle.sweeps += again.sweeps;
     }
+    if (run.untangle.inverted_after > 0) {
+      // Last resort: the vertices of the cells still inverted move freely in space, even off their side by a
+      // little (reported as side_vertex_distance), since a valid element matters more than an exact boundary there.
+      std::vector<char> fixed(standard.num_vertices(), 1);
+      for (int c : check_corner_jacobians(run.patient_hex).inverted)
+        for (int i = 0; i < node_count(standard.types[c]); ++i) fixed[standard.C(c, i)] = 0;
+      for (int v = 0; v < standard.num_vertices(); ++v) run.untangle.released_side_vertices += !fixed[v];
+      VertexPlacement spatial = spatial_placement(run.patient_hex.V, fixed);
+      const UntangleReport last = untangle(run.patient_hex, spatial, pass);
+      run.untangle.inverted_after = last.inverted_after;
+      run.untangle.bad_after = last.bad_after;
+      run.untangle.min_scaled_jacobian_after = last.min_scaled_jacobian_after;
+      run.untangle.sweeps += last.sweeps;
+    }
     run.seconds["untangle"] = clock.lap();
   }
   return run;

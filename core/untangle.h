@@ -39,6 +39,7 @@ struct UntangleReport {
   int free_vertices = 0;  // vertices allowed to move
   int sweeps = 0;
   int released_feature_vertices = 0;  // feature pins released to untangle the last folds (transfer_pipeline)
+  int released_side_vertices = 0;     // vertices moved in space, off exact sides, to untangle what remained
 };
 
 struct VertexPlacement {

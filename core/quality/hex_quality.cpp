@@ -166,6 +166,7 @@ QualitySummary summarize(const VolumeMesh& mesh, const ElementQuality& quality) 
   s.scaled_jacobian_min = quality.scaled_jacobian.minCoeff();
   s.scaled_jacobian_mean = quality.scaled_jacobian.mean();
   s.fraction_scaled_jacobian_below_0_3 = (quality.scaled_jacobian.array() < 0.3).count() / double(s.cells);
+  s.degenerate = static_cast<int>((quality.scaled_jacobian.array() < 1e-6).count()) - s.inverted;
   return s;
 }
 

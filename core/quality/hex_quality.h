@@ -29,7 +29,8 @@ ElementQuality element_quality(const VolumeMesh& mesh);
 
 struct QualitySummary {
   int cells = 0, hexes = 0, wedges = 0;
-  int inverted = 0;  // cells with a corner Jacobian <= 0
+  int inverted = 0;    // cells with a corner Jacobian <= 0
+  int degenerate = 0;  // not inverted, but flat: scaled Jacobian below 1e-6 (unusable in a solver as well)
   double shape_min = 0, shape_mean = 0;
   double scaled_jacobian_min = 0, scaled_jacobian_mean = 0;
   double fraction_scaled_jacobian_below_0_3 = 0;  // share of cells, in [0, 1]

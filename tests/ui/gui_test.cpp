@@ -5,22 +5,26 @@
 // scripted state renders visible 3D content. (The box pair keeps the computations within seconds and their results
 // exactly checkable, whatever the size and state of the bundled models.)
 #include "core/error.h"
+#include "core/face_landmarks.h"
 #include "core/hex_to_tets.h"
 #include "core/io/mesh_io.h"
 #include "core/quality/hex_quality.h"
 #include "core/tet_topology.h"
 #include "tests/core/test_meshes.h"
+#include "ui/autosave.h"
 #include "ui/main_window.h"
 #include "ui/model_view.h"
 #include "ui/scripted_states.h"
 #include "ui/transfer_controller.h"
 
+#include <QAction>
 #include <QApplication>
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFile>
 #include <QLineEdit>
 #include <QPushButton>
+#include <QSignalSpy>
 #include <QStandardPaths>
 #include <QSurfaceFormat>
 #include <QTemporaryDir>
@@ -39,6 +43,8 @@ class GuiTest : public QObject {
   void opensTheBundledDemo();
   void planeWidgetPlacesAConstraint();
   void undoAndRedoAConstraintEdit();
+  void facialFeaturesAreAButtonAway();
+  void cancelStopsTheWorker();
   void opensModelsFromFiles();
   void computesTheFields();
   void scriptedFieldStatesShowTheModels();
@@ -134,6 +140,31 @@ void GuiTest::undoAndRedoAConstraintEdit() {
   QCOMPARE(constraintCount(), n);
   session()->removeConstraint(Role::Patient, last);
   QCOMPARE(constraintCount(), n - 1);
+  // Every edit was autosaved.
+  QVERIFY(ConstraintAutosave::exists(Role::Patient));
+  QCOMPARE(int(read_constraint_set(ConstraintAutosave::path(Role::Patient).toStdString()).constraints.size()), n - 1);
+}
+
+void GuiTest::facialFeaturesAreAButtonAway() {
+  const int n = constraintCount();
+  window_->findChild<QAction*>("Facial_features")->trigger();
+  QVERIFY2(error_.isEmpty(), qPrintable(error_));
+  QCOMPARE(constraintCount(), n + int(feature_specs().size()));
+  for (int i = n; i < constraintCount(); ++i) QVERIFY(!session()->constraintVertices(Role::Patient, i).empty());
+  session()->undoStack()->undo();
+  QCOMPARE(constraintCount(), n);
+}
+
+void GuiTest::cancelStopsTheWorker() {
+  QSignalSpy finished(window_->controller(), &TransferController::finished);
+  QVERIFY(window_->controller()->computeFields());
+  window_->findChild<QPushButton*>("cancelButton")->click();
+  QVERIFY(window_->controller()->waitUntilIdle());
+  QCOMPARE(finished.count(), 1);
+  const QString status = finished.first().first().toString();
+  QVERIFY2(status.endsWith("cancelled"), qPrintable(status));
+  QVERIFY(!session()->parameterization(Role::Patient));
+  QVERIFY(error_.isEmpty());
 }
 
 void GuiTest::opensModelsFromFiles() {
