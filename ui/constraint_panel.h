@@ -1,0 +1,50 @@
+#pragma once
+// Placing and editing constraints: which model the plane acts on, the plane's band and region and the number of
+// vertices it selects, a form that turns the selection into a constraint (name, field, value), and the editable
+// list (rename, change field or value, show/hide, delete). File operations and undo/redo are the main window's
+// actions, shown here as buttons. Everything goes through the SessionModel.
+#include "ui/session_model.h"
+
+#include <QWidget>
+
+class QAction;
+class QComboBox;
+class QDoubleSpinBox;
+class QLabel;
+class QLineEdit;
+class QPushButton;
+class QTableWidget;
+
+namespace facehex::gui {
+
+class ConstraintPanel : public QWidget {
+  Q_OBJECT
+
+ public:
+  // actions: the main window's (facial features, load, merge, save, ...), shown as buttons under the list.
+  ConstraintPanel(SessionModel* session, const QList<QAction*>& actions, QWidget* parent = nullptr);
+
+ private:
+  void refreshModelChoice();
+  void refreshPlane();
+  void refreshList();
+  void onCellChanged(int row, int column);
+  void addFromPlane();
+  void snapNormal(int axis);
+  void editPlane(const std::function<void(PlanePose&)>& change);
+
+  SessionModel* session_;
+  QComboBox* modelChoice_;
+  QDoubleSpinBox* band_;
+  QComboBox* region_;
+  QLabel* selectionCount_;
+  QLineEdit* name_;
+  QComboBox* field_;
+  QDoubleSpinBox* value_;
+  QPushButton* add_;
+  QTableWidget* table_;
+  QPushButton* remove_;
+  QPushButton* sides_;
+};
+
+}  // namespace facehex::gui

@@ -1,0 +1,393 @@
+#include "ui/main_window.h"
+
+#include "core/io/mesh_io.h"
+#include "core/resources.h"
+#include "ui/angle_histogram.h"
+#include "ui/autosave.h"
+#include "ui/constraint_panel.h"
+#include "ui/display_panel.h"
+#include "ui/model_view.h"
+#include "ui/quality_panel.h"
+#include "ui/transfer_controller.h"
+
+#include <QAction>
+#include <QComboBox>
+#include <QDockWidget>
+#include <QDragEnterEvent>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QLabel>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QMimeData>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QSettings>
+#include <QSplitter>
+#include <QStatusBar>
+#include <QTabWidget>
+#include <QToolBar>
+#include <QUndoStack>
+
+namespace facehex::gui {
+namespace {
+
+constexpr int kMaxRecent = 8;
+const char* kRecentKey = "recentPatients";
+
+QString filter(const QString& what, const std::vector<std::string>& extensions) {
+  QStringList patterns;
+  for (const auto& e : extensions) patterns << "*" + QString::fromStdString(e);
+  return QString("%1 (%2)").arg(what, patterns.join(' '));
+}
+
+}  // namespace
+
+MainWindow::MainWindow(QWidget* parent)
+    : QMainWindow(parent),
+      session_(new SessionModel(this)),
+      controller_(new TransferController(session_, this)),
+      autosave_(new ConstraintAutosave(session_, this)),
+      reportError_([this](const QString& message) { QMessageBox::critical(this, tr("FaceHex"), message); }) {
+  setObjectName("mainWindow");
+  setWindowTitle(tr("FaceHex \u2014 patient-specific hex meshes of the face"));
+  setAcceptDrops(true);
+  views_[static_cast<int>(Role::Standard)] = new ModelView(session_, Role::Standard, this);
+  views_[static_cast<int>(Role::Patient)] = new ModelView(session_, Role::Patient, this);
+  auto* splitter = new QSplitter(Qt::Horizontal, this);
+  splitter->addWidget(view(Role::Standard));
+  splitter->addWidget(view(Role::Patient));
+  splitter->setChildrenCollapsible(false);
+  splitter->setSizes({1, 1});
+  setCentralWidget(splitter);
+  // Rotating one view turns the other the same way (each keeps its own centre and zoom).
+  for (Role r : kRoles) {
+    ModelView* other = view(r == Role::Standard ? Role::Patient : Role::Standard);
+    connect(view(r), &ModelView::cameraOrientationChanged, other, &ModelView::setCameraOrientation);
+  }
+
+  createActions();
+  createMenusAndToolbar();
+  createDocks();
+  createStatusBar();
+
+  connect(controller_, &TransferController::failed, this, [this](const QString& m) { reportError(m); });
+  connect(controller_, &TransferController::finished, this, [this](const QString& m) { statusBar()->showMessage(m); });
+  connect(controller_, &TransferController::busyChanged, this, &MainWindow::updateActions);
+  connect(controller_, &TransferController::progress, this, [this](const QString& stage, double f) {
+    progress_->setValue(static_cast<int>(1000 * f));
+    progress_->setFormat(stage + "  %p%");
+  });
+  connect(autosave_, &ConstraintAutosave::failed, this, [this](const QString& m) {
+    statusBar()->showMessage(tr("Autosave failed: %1").arg(m));
+  });
+  connect(session_, &SessionModel::modelChanged, this, [this](Role r) {
+    updateSizes();
+    updateActions();
+    if (r == Role::Standard) updateStandardChoice();
+    if (r == Role::Patient && !session_->model(r).path.isEmpty()) addRecent(session_->model(r).path);
+  });
+  connect(session_, &SessionModel::resultsChanged, this, &MainWindow::updateActions);
+  connect(session_, &SessionModel::constraintsChanged, this, &MainWindow::updateActions);
+  updateSizes();
+  updateActions();
+  resize(1500, 950);
+}
+
+MainWindow::~MainWindow() = default;
+
+void MainWindow::createActions() {
+  auto action = [this](const QString& text, const QKeySequence& key, auto slot) {
+    auto* a = new QAction(text, this);
+    if (!key.isEmpty()) a->setShortcut(key);
+    connect(a, &QAction::triggered, this, slot);
+    return a;
+  };
+  openPatient_ = action(tr("Open &patient..."), QKeySequence::Open, &MainWindow::openPatientDialog);
+  openPatient_->setToolTip(tr("Open a patient tet model or closed surface (VTU, VTK, Gmsh, TetGen, ANSYS, STL, "
+                              "OBJ, PLY, VTP)"));
+  openDemo_ = action(tr("Open &demo"), QKeySequence(), [this] { controller_->openDemo(); });
+  openStandardFile_ = action(tr("Open standard &file..."), QKeySequence(), [this] { onStandardChosen(-1); });
+  loadConstraints_ = action(tr("&Load constraints..."), QKeySequence(), [this] { constraintsDialog(false); });
+  mergeConstraints_ = action(tr("&Merge constraints..."), QKeySequence(), [this] { constraintsDialog(true); });
+  saveConstraints_ = action(tr("&Save constraints..."), QKeySequence::Save, &MainWindow::saveConstraintsDialog);
+  recover_ = action(tr("&Recover autosaved"), QKeySequence(), &MainWindow::recoverAutosave);
+  features_ = action(tr("Facial &features"), QKeySequence(), [this] {
+    controller_->addFeatureConstraints(session_->activeRole(), session_->plane().band);
+  });
+  features_->setToolTip(tr("Add the feature lines (mid-sagittal, eyebrow, below the nose, lips) at the model's "
+                           "landmarks, valued as the standard's, selected with the band width above"));
+  recover_->setToolTip(tr("Load the constraints autosaved after the last edit of this model (after a crash)"));
+  export_ = action(tr("&Export hex mesh..."), QKeySequence(tr("Ctrl+E")), &MainWindow::exportDialog);
+  screenshot_ = action(tr("Save screens&hot..."), QKeySequence(), &MainWindow::screenshotDialog);
+  quit_ = action(tr("&Quit"), QKeySequence::Quit, &QWidget::close);
+  undo_ = session_->undoStack()->createUndoAction(this, tr("&Undo"));
+  undo_->setShortcut(QKeySequence::Undo);
+  undo_->setIconText(tr("Undo"));  // the toolbar keeps it short; the menu and tooltip say what is undone
+  redo_ = session_->undoStack()->createRedoAction(this, tr("&Redo"));
+  redo_->setShortcut(QKeySequence::Redo);
+  redo_->setIconText(tr("Redo"));
+  computeFields_ = action(tr("Compute &fields"), QKeySequence(tr("F5")), [this] { controller_->computeFields(); });
+  computeFields_->setToolTip(tr("Compute u, v, w on both models with their constraints (paper 3.2-3.3)"));
+  transfer_ = action(tr("&Transfer"), QKeySequence(tr("F6")), [this] { controller_->runTransfer(); });
+  transfer_->setToolTip(tr("Map the standard hex mesh onto the patient (paper 3.4)"));
+  cancel_ = action(tr("&Cancel"), QKeySequence(Qt::Key_Escape), [this] { controller_->cancel(); });
+  allowInverted_ = action(tr("Continue despite &inverted tets"), QKeySequence(), [this](bool on) {
+    TransferOptions o = controller_->options();
+    o.allow_inverted_parameterization = on;
+    controller_->setOptions(o);
+  });
+  allowInverted_->setCheckable(true);
+  allowInverted_->setToolTip(tr("Map even when the patient parameterization folds (the CLI's --allow-inverted)"));
+  about_ = action(tr("&About FaceHex"), QKeySequence(), &MainWindow::about);
+  for (QAction* a : {openPatient_, openDemo_, loadConstraints_, mergeConstraints_, saveConstraints_, export_,
+                     computeFields_, transfer_, cancel_, recover_, features_})
+    a->setObjectName(a->text().remove('&').remove("...").replace(' ', '_'));
+}
+
+void MainWindow::createMenusAndToolbar() {
+  QMenu* file = menuBar()->addMenu(tr("&File"));
+  file->addAction(openPatient_);
+  recentMenu_ = file->addMenu(tr("Open &recent"));
+  file->addAction(openDemo_);
+  QMenu* standards = file->addMenu(tr("Open &standard"));
+  for (const BundledModel& s : bundled_standards()) {
+    const QString name = QString::fromStdString(s.name);
+    standards->addAction(name, this, [this, name] { controller_->openStandard(name); });
+  }
+  standards->addSeparator();
+  standards->addAction(openStandardFile_);
+  file->addSeparator();
+  for (QAction* a : {loadConstraints_, mergeConstraints_, saveConstraints_, recover_}) file->addAction(a);
+  file->addSeparator();
+  file->addAction(export_);
+  file->addAction(screenshot_);
+  file->addSeparator();
+  file->addAction(quit_);
+  QMenu* edit = menuBar()->addMenu(tr("&Edit"));
+  edit->addAction(undo_);
+  edit->addAction(redo_);
+  QMenu* run = menuBar()->addMenu(tr("&Run"));
+  for (QAction* a : {computeFields_, transfer_, cancel_}) run->addAction(a);
+  run->addSeparator();
+  run->addAction(allowInverted_);
+  menuBar()->addMenu(tr("&Help"))->addAction(about_);
+  rebuildRecentMenu();
+
+  QToolBar* tools = addToolBar(tr("Main"));
+  tools->setObjectName("mainToolbar");
+  tools->setToolButtonStyle(Qt::ToolButtonTextOnly);
+  tools->addAction(openPatient_);
+  tools->addWidget(new QLabel(tr("  Standard: "), this));
+  standardChoice_ = new QComboBox(this);
+  standardChoice_->setObjectName("standardChoice");
+  standardChoice_->setMinimumContentsLength(18);
+  for (const BundledModel& s : bundled_standards())  // the bundled ones first, then any file
+    standardChoice_->addItem(QString::fromStdString(s.name), QString::fromStdString(s.name));
+  standardChoice_->insertSeparator(standardChoice_->count());
+  standardChoice_->addItem(tr("Other file..."));
+  standardChoice_->setCurrentIndex(-1);
+  connect(standardChoice_, qOverload<int>(&QComboBox::activated), this, &MainWindow::onStandardChosen);
+  tools->addWidget(standardChoice_);
+  tools->addSeparator();
+  for (QAction* a : {undo_, redo_}) tools->addAction(a);
+  tools->addSeparator();
+  for (QAction* a : {computeFields_, transfer_, export_, screenshot_}) tools->addAction(a);
+}
+
+void MainWindow::createDocks() {
+  constraintPanel_ = new ConstraintPanel(
+      session_, {features_, loadConstraints_, mergeConstraints_, saveConstraints_, recover_}, this);
+  // The panels on the right run the full height; the analysis tabs sit under the views only.
+  setCorner(Qt::BottomRightCorner, Qt::RightDockWidgetArea);
+  auto* constraints = new QDockWidget(tr("Constraints"), this);
+  constraints->setObjectName("constraintsDock");
+  constraints->setWidget(constraintPanel_);
+  addDockWidget(Qt::RightDockWidgetArea, constraints);
+  auto* display = new QDockWidget(tr("Display"), this);
+  display->setObjectName("displayDock");
+  display->setWidget(new DisplayPanel(session_, this));
+  addDockWidget(Qt::RightDockWidgetArea, display);
+
+  auto* tabs = new QTabWidget(this);
+  tabs->setObjectName("analysisTabs");
+  tabs->addTab(new AngleHistogram(session_, this), tr("Gradient angles"));
+  tabs->addTab(new QualityPanel(session_, this), tr("Quality"));
+  auto* analysis = new QDockWidget(tr("Analysis"), this);
+  analysis->setObjectName("analysisDock");
+  analysis->setWidget(tabs);
+  addDockWidget(Qt::BottomDockWidgetArea, analysis);
+  resizeDocks({constraints, display}, {600, 250}, Qt::Vertical);
+  resizeDocks({constraints}, {470}, Qt::Horizontal);
+  resizeDocks({analysis}, {240}, Qt::Vertical);
+}
+
+void MainWindow::createStatusBar() {
+  sizes_ = new QLabel(this);
+  progress_ = new QProgressBar(this);
+  progress_->setRange(0, 1000);
+  progress_->setMinimumWidth(320);
+  cancelButton_ = new QPushButton(tr("Cancel"), this);
+  cancelButton_->setObjectName("cancelButton");
+  connect(cancelButton_, &QPushButton::clicked, controller_, &TransferController::cancel);
+  statusBar()->addPermanentWidget(progress_);
+  statusBar()->addPermanentWidget(cancelButton_);
+  statusBar()->addPermanentWidget(sizes_);
+}
+
+void MainWindow::updateActions() {
+  const bool busy = controller_->busy();
+  const bool active = session_->hasModel(session_->activeRole());
+  const bool both = session_->hasModel(Role::Standard) && session_->hasModel(Role::Patient);
+  for (QAction* a : {openPatient_, openDemo_, openStandardFile_}) a->setEnabled(!busy);
+  standardChoice_->setEnabled(!busy);
+  for (QAction* a : {loadConstraints_, mergeConstraints_, saveConstraints_}) a->setEnabled(active);
+  features_->setEnabled(active && session_->model(session_->activeRole()).domain.side_mask.size() > 0);
+  recover_->setEnabled(active && ConstraintAutosave::exists(session_->activeRole()));
+  computeFields_->setEnabled(!busy && (session_->hasModel(Role::Standard) || session_->hasModel(Role::Patient)));
+  transfer_->setEnabled(!busy && both);
+  export_->setEnabled(!busy && session_->transfer());
+  cancel_->setEnabled(busy);
+  progress_->setVisible(busy);
+  cancelButton_->setVisible(busy);
+  if (!busy) progress_->setValue(0);
+}
+
+void MainWindow::updateSizes() {
+  QStringList parts;
+  for (Role r : kRoles)
+    if (session_->hasModel(r)) {
+      const VolumeMesh& m = session_->model(r).mesh;
+      parts << tr("%1: %L2 vertices, %L3 cells").arg(roleName(r)).arg(m.num_vertices()).arg(m.num_cells());
+    }
+  sizes_->setText(parts.isEmpty() ? tr("no model loaded") : parts.join("  \u00b7  "));
+}
+
+void MainWindow::updateStandardChoice() {
+  const int i = standardChoice_->findData(session_->model(Role::Standard).name);
+  if (i >= 0) {
+    standardChoice_->setCurrentIndex(i);
+    return;
+  }
+  // A standard from a file: list it above the separator so the choice shows what is loaded.
+  const QString name = session_->model(Role::Standard).name;
+  standardChoice_->insertItem(0, name, session_->model(Role::Standard).path);
+  standardChoice_->setCurrentIndex(0);
+}
+
+void MainWindow::onStandardChosen(int index) {
+  const QVariant data = index >= 0 ? standardChoice_->itemData(index) : QVariant();
+  if (data.isValid()) {
+    controller_->openStandard(data.toString());
+    return;
+  }
+  const QString path = QFileDialog::getOpenFileName(this, tr("Open a standard hex mesh"), QString(),
+                                                    filter(tr("Hex-dominant meshes"), {".vtu", ".vtk", ".msh"}));
+  if (!path.isEmpty()) controller_->openStandard(path);
+  else if (session_->hasModel(Role::Standard)) updateStandardChoice();
+}
+
+void MainWindow::openPatientDialog() {
+  const QString path = QFileDialog::getOpenFileName(
+      this, tr("Open a patient model"), QSettings().value(kRecentKey).toStringList().value(0),
+      filter(tr("Tet models and closed surfaces"), readable_volume_extensions()) + ";;" + tr("All files (*)"));
+  if (!path.isEmpty()) openPatient(path);
+}
+
+void MainWindow::openPatient(const QString& path) {
+  if (!controller_->openPatient(path)) statusBar()->showMessage(tr("Busy: wait for the running job or cancel it"));
+}
+
+void MainWindow::constraintsDialog(bool merge) {
+  const QString path = QFileDialog::getOpenFileName(
+      this, merge ? tr("Merge a constraint set") : tr("Load a constraint set"), QString(),
+      tr("Constraint sets (*.json)"));
+  if (!path.isEmpty()) controller_->loadConstraints(session_->activeRole(), path, merge);
+}
+
+void MainWindow::saveConstraintsDialog() {
+  const QString path = QFileDialog::getSaveFileName(this, tr("Save the constraint set"),
+                                                    session_->model(session_->activeRole()).constraintsPath,
+                                                    tr("Constraint sets (*.json)"));
+  if (!path.isEmpty() && controller_->saveConstraints(session_->activeRole(), path))
+    statusBar()->showMessage(tr("Saved %1").arg(path));
+}
+
+void MainWindow::recoverAutosave() {
+  controller_->loadConstraints(session_->activeRole(), ConstraintAutosave::path(session_->activeRole()), false);
+}
+
+void MainWindow::exportDialog() {
+  const QString path = QFileDialog::getSaveFileName(this, tr("Export the patient hex mesh"), "patient_hex.vtu",
+                                                    filter(tr("Volume meshes"), writable_volume_extensions()));
+  if (!path.isEmpty() && controller_->exportHex(path)) statusBar()->showMessage(tr("Exported %1").arg(path));
+}
+
+QImage MainWindow::snapshot() {
+  for (ModelView* v : views_) v->render();
+  return grab().toImage();
+}
+
+bool MainWindow::saveScreenshot(const QString& path) {
+  if (snapshot().save(path, "PNG")) return true;
+  reportError(tr("%1: cannot write the screenshot").arg(path));
+  return false;
+}
+
+void MainWindow::screenshotDialog() {
+  const QString path =
+      QFileDialog::getSaveFileName(this, tr("Save a screenshot"), "facehex.png", tr("PNG images (*.png)"));
+  if (!path.isEmpty() && saveScreenshot(path)) statusBar()->showMessage(tr("Saved %1").arg(path));
+}
+
+void MainWindow::about() {
+  QMessageBox::about(
+      this, tr("About FaceHex"),
+      tr("<h3>FaceHex %1</h3>"
+         "<p>Patient-specific hexahedral finite-element meshes of the facial soft tissue, by mapping a standard hex "
+         "mesh onto a patient model through three harmonic fields.</p>"
+         "<p><b>Data credits</b></p><ul>"
+         "<li>Reference face standard mesh: the ArtiSynth face model (ArtiSynth Models license); "
+         "Nazari, Perrier, Chabanas, Payan, <i>Simulation of dynamic orofacial movements using a constitutive "
+         "law varying with muscle activation</i>, CMBBE 2010; Lloyd, Stavness, Fels, <i>ArtiSynth: a fast "
+         "interactive biomechanical modeling toolkit combining multibody and finite element simulation</i>, 2012."
+         "</li><li>CT sample data: the VTK headsq data set, Kitware.</li></ul>"
+         "<p>Built with Qt %2 and VTK.</p>")
+          .arg(FACEHEX_VERSION, qVersion()));
+}
+
+void MainWindow::addRecent(const QString& path) {
+  QSettings settings;
+  QStringList recent = settings.value(kRecentKey).toStringList();
+  recent.removeAll(path);
+  recent.prepend(path);
+  while (recent.size() > kMaxRecent) recent.removeLast();
+  settings.setValue(kRecentKey, recent);
+  rebuildRecentMenu();
+}
+
+void MainWindow::rebuildRecentMenu() {
+  recentMenu_->clear();
+  for (const QString& path : QSettings().value(kRecentKey).toStringList())
+    recentMenu_->addAction(QFileInfo(path).fileName(), this, [this, path] { openPatient(path); })->setToolTip(path);
+  recentMenu_->setEnabled(!recentMenu_->isEmpty());
+}
+
+void MainWindow::dragEnterEvent(QDragEnterEvent* event) {
+  if (event->mimeData()->hasUrls()) event->acceptProposedAction();
+}
+
+void MainWindow::dropEvent(QDropEvent* event) {
+  // A constraint set goes to the active model; anything else is opened as the patient (errors say what is wrong).
+  for (const QUrl& url : event->mimeData()->urls()) {
+    const QString path = url.toLocalFile();
+    if (path.isEmpty()) continue;
+    if (path.endsWith(".json", Qt::CaseInsensitive))
+      controller_->loadConstraints(session_->activeRole(), path, false);
+    else
+      openPatient(path);
+  }
+  event->acceptProposedAction();
+}
+
+}  // namespace facehex::gui

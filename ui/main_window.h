@@ -1,0 +1,85 @@
+#pragma once
+// The FaceHex main window: the standard and patient views side by side, the constraint and display panels, the
+// analysis tabs (angle histogram, quality tables), menus and toolbar, and a status bar with the mesh sizes, the
+// progress of the running job and its cancel button. It owns the session, the controller and the autosave, and
+// routes every error to one replaceable reporter (a message box by default) with the core's message unchanged.
+#include "ui/session_model.h"
+
+#include <QMainWindow>
+#include <functional>
+
+class QComboBox;
+class QLabel;
+class QMenu;
+class QProgressBar;
+class QPushButton;
+
+namespace facehex::gui {
+
+class ConstraintAutosave;
+class ConstraintPanel;
+class ModelView;
+class TransferController;
+
+class MainWindow : public QMainWindow {
+  Q_OBJECT
+
+ public:
+  explicit MainWindow(QWidget* parent = nullptr);
+  ~MainWindow() override;
+
+  SessionModel* session() const { return session_; }
+  TransferController* controller() const { return controller_; }
+  ModelView* view(Role role) const { return views_[static_cast<int>(role)]; }
+  ConstraintAutosave* autosave() const { return autosave_; }
+
+  using ErrorReporter = std::function<void(const QString& message)>;
+  void setErrorReporter(ErrorReporter reporter) { reportError_ = std::move(reporter); }
+  void reportError(const QString& message) { reportError_(message); }
+
+  // The window as an image, 3D views included (rendered first).
+  QImage snapshot();
+  bool saveScreenshot(const QString& path);
+
+ protected:
+  void dragEnterEvent(QDragEnterEvent* event) override;
+  void dropEvent(QDropEvent* event) override;
+
+ private:
+  void createActions();
+  void createMenusAndToolbar();
+  void createDocks();
+  void createStatusBar();
+  void updateActions();
+  void updateSizes();
+  void updateStandardChoice();
+  void openPatientDialog();
+  void openPatient(const QString& path);
+  void onStandardChosen(int index);
+  void constraintsDialog(bool merge);
+  void saveConstraintsDialog();
+  void recoverAutosave();
+  void exportDialog();
+  void screenshotDialog();
+  void about();
+  void addRecent(const QString& path);
+  void rebuildRecentMenu();
+
+  SessionModel* session_;
+  TransferController* controller_;
+  ConstraintAutosave* autosave_;
+  std::array<ModelView*, 2> views_{};
+  ConstraintPanel* constraintPanel_ = nullptr;
+  ErrorReporter reportError_;
+
+  QAction *openPatient_, *openDemo_, *openStandardFile_, *loadConstraints_, *mergeConstraints_, *saveConstraints_,
+      *recover_, *export_, *screenshot_, *quit_, *undo_, *redo_, *computeFields_, *transfer_, *cancel_,
+      *allowInverted_, *features_, *about_;
+  QMenu* recentMenu_ = nullptr;
+  QComboBox* standardChoice_ = nullptr;
+  QLabel* sizes_ = nullptr;
+  QProgressBar* progress_ = nullptr;
+  QPushButton* cancelButton_ = nullptr;
+};
+
+}  // namespace facehex::gui

@@ -1,0 +1,69 @@
+#pragma once
+// One 3D view of a model (the standard or the patient), rendered from the session: the surface, plain or coloured by
+// a field with iso-lines and optionally cut open at the plane; the vertices of the visible constraints; on the active
+// model, the cutting-plane widget and the vertices it selects; gradient glyphs; and the hex mesh coloured by quality
+// with a threshold. Dragging the plane widget moves the session's plane: the view never edits anything else.
+#include "ui/session_model.h"
+
+#include <Eigen/Core>
+#include <QWidget>
+#include <array>
+#include <memory>
+
+class QLabel;
+class QStackedWidget;
+
+namespace facehex::gui {
+
+class ModelView : public QWidget {
+  Q_OBJECT
+
+ public:
+  ModelView(SessionModel* session, Role role, QWidget* parent = nullptr);
+  ~ModelView() override;
+
+  Role role() const { return role_; }
+  // Moves the plane widget as a drag by the user would; the session's plane follows (scripted states, tests).
+  void movePlaneWidget(const Eigen::Vector3d& origin, const Eigen::Vector3d& normal);
+  // Frames the model in a three-quarter view, and keeps it framed as the view resizes until the user turns it.
+  void resetCamera();
+  // Turns the camera to look along `direction` with `viewUp`, keeping its focal point and distance (linked views).
+  void setCameraOrientation(const Eigen::Vector3d& direction, const Eigen::Vector3d& viewUp);
+  void render();
+  // Cells the hex-quality display draws (after the threshold), or -1 when it is not shown.
+  int drawnHexCells() const;
+  bool planeWidgetEnabled() const;
+
+ signals:
+  void cameraOrientationChanged(const Eigen::Vector3d& direction, const Eigen::Vector3d& viewUp);
+
+ private:
+  struct Pipeline;
+  void onModelChanged();
+  void onResultsChanged();
+  void refresh();
+  void updateHeader();
+  void updateSurface();
+  void updateHex();
+  void updateConstraints();
+  bool cutHere() const;
+  void extractSurface();
+  void colourSurface();
+  void updateSelection();
+  void updateGlyphs();
+  void updatePlaneWidget();
+  void onPlaneInteraction();
+  void onCameraInteraction();
+  void onRenderStart();
+  void frameModel();
+
+  SessionModel* session_;
+  Role role_;
+  QLabel* header_;
+  QStackedWidget* stack_;  // a hint while no model is loaded, then the 3D view
+  bool autoFrame_ = true;
+  std::array<int, 2> framedSize_{};  // the window size the camera was last framed for
+  std::unique_ptr<Pipeline> p_;
+};
+
+}  // namespace facehex::gui

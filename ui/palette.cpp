@@ -1,0 +1,21 @@
+#include "ui/palette.h"
+
+#include <array>
+
+namespace facehex::gui {
+
+QColor constraintColour(int index) {
+  // Tableau 10 without its grey (reserved for context) and yellow (the selection preview).
+  // The first six go to the six shape ends of a default set and must read well on the tissue colour.
+  static const std::array<QColor, 8> kColours = {QColor(31, 119, 180),  QColor(255, 127, 14), QColor(44, 160, 44),
+                                                 QColor(214, 39, 40),   QColor(148, 103, 189), QColor(23, 190, 207),
+                                                 QColor(227, 119, 194), QColor(140, 86, 75)};
+  return kColours[static_cast<size_t>(index) % kColours.size()];
+}
+
+QColor fieldColour(int field) {
+  static const std::array<QColor, 3> kColours = {QColor(220, 50, 47), QColor(40, 160, 60), QColor(38, 110, 220)};
+  return kColours.at(field);
+}
+
+}  // namespace facehex::gui

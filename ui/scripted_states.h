@@ -1,0 +1,24 @@
+#pragma once
+// The main states of a session, reached by script the way a user reaches them (move the plane widget, compute,
+// transfer, pick a display), for `facehex-gui --screenshot` and the GUI tests.
+#include <QString>
+#include <QStringList>
+#include <optional>
+
+namespace facehex::gui {
+
+class MainWindow;
+
+enum class ScriptedState { Loaded, Plane, Fields, Glyphs, Transfer, Quality };
+QStringList scriptedStateNames();  // "loaded", "plane", ...
+std::optional<ScriptedState> scriptedStateFromName(const QString& name);
+
+// Opens the inputs and waits: the standard (a bundled name or a file; empty: the bundled default) and the patient
+// (empty: the bundled demo patient). False if one failed (the window's error reporter has been told why).
+bool openInputs(MainWindow& window, const QString& patient, const QString& standard);
+
+// Brings the window to `state`, computing the fields or the transfer (and waiting) unless the session has them, and
+// sets the display to show that state. False if a computation failed (reported as above).
+bool driveToState(MainWindow& window, ScriptedState state);
+
+}  // namespace facehex::gui

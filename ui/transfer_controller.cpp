@@ -1,0 +1,278 @@
+#include "ui/transfer_controller.h"
+
+#include "core/error.h"
+#include "core/face_landmarks.h"
+#include "core/io/mesh_io.h"
+#include "core/resources.h"
+#include "ui/model_loading.h"
+
+#include <QEventLoop>
+#include <QFileInfo>
+#include <QTimer>
+#include <QtConcurrent/QtConcurrentRun>
+#include <algorithm>
+#include <memory>
+
+namespace facehex::gui {
+namespace {
+
+// The progress of one of several consecutive stages, mapped into [lo, hi] of the job and named after its model.
+ProgressCallback part(const ProgressCallback& progress, const QString& prefix, double lo, double hi) {
+  const std::string p = prefix.toStdString();
+  return [=](const std::string& stage, double f) { return progress(p + ": " + stage, lo + (hi - lo) * f); };
+}
+
+QString count(long n) { return QString("%L1").arg(n); }
+
+QString sizeText(const LoadedModel& m) {
+  return QObject::tr("%1 vertices, %2 cells").arg(count(m.mesh.num_vertices()), count(m.mesh.num_cells()));
+}
+
+const char* kStale = QT_TRANSLATE_NOOP("TransferController", " (not applied: the models changed meanwhile)");
+
+}  // namespace
+
+TransferController::TransferController(SessionModel* session, QObject* parent) : QObject(parent), session_(session) {
+  connect(&watcher_, &QFutureWatcher<Outcome>::finished, this, &TransferController::deliver);
+}
+
+TransferController::~TransferController() {
+  cancel();
+  watcher_.waitForFinished();
+}
+
+bool TransferController::start(const QString& what, Work work) {
+  if (busy()) return false;
+  job_ = what;
+  cancelRequested_ = false;
+  lastReport_ = -1;
+  // Called on the worker thread: forward at most one signal per percent to the GUI thread.
+  ProgressCallback progressCallback = [this](const std::string& stage, double fraction) {
+    const int percent = static_cast<int>(100 * fraction);
+    if (lastReport_.exchange(percent) != percent) {
+      const QString s = QString::fromStdString(stage);
+      QMetaObject::invokeMethod(this, [this, s, fraction] { if (busy()) emit progress(s, fraction); },
+                                Qt::QueuedConnection);
+    }
+    return !cancelRequested_;
+  };
+  watcher_.setFuture(QtConcurrent::run([work, progressCallback]() {
+    Outcome o;
+    try {
+      o.apply = work(progressCallback);
+    } catch (const Cancelled&) {
+      o.cancelled = true;
+    } catch (const std::exception& e) {  // facehex::Error, and anything else (bad_alloc) rather than a crash
+      o.error = QString::fromStdString(e.what());
+    }
+    return o;
+  }));
+  emit busyChanged(true);
+  emit progress(what, 0.0);
+  return true;
+}
+
+void TransferController::deliver() {
+  const Outcome o = watcher_.result();
+  QString summary;
+  if (o.apply) summary = o.apply(*session_);
+  const QString job = std::exchange(job_, QString());
+  emit busyChanged(false);
+  if (o.cancelled)
+    emit finished(tr("%1: cancelled").arg(job));
+  else if (!o.error.isEmpty())
+    emit failed(o.error);
+  else
+    emit finished(summary);
+}
+
+void TransferController::cancel() { cancelRequested_ = true; }
+
+bool TransferController::waitUntilIdle(int timeoutMs) {
+  if (!busy()) return true;
+  QEventLoop loop;
+  connect(this, &TransferController::busyChanged, &loop, [&loop](bool b) { if (!b) loop.quit(); });
+  QTimer::singleShot(timeoutMs, &loop, &QEventLoop::quit);
+  loop.exec();
+  return !busy();
+}
+
+bool TransferController::openPatient(const QString& path) {
+  const std::string p = path.toStdString();
+  return start(tr("Opening %1").arg(QFileInfo(path).fileName()), [p](const ProgressCallback&) -> Apply {
+    auto m = std::make_shared<LoadedModel>(load_patient(p));
+    return [m](SessionModel& s) {
+      const QString text = tr("Opened the patient %1: %2").arg(m->name, sizeText(*m));
+      s.setModel(Role::Patient, std::move(*m));
+      return text;
+    };
+  });
+}
+
+bool TransferController::openStandard(const QString& nameOrPath) {
+  const std::string n = nameOrPath.toStdString();
+  return start(tr("Opening the standard %1").arg(nameOrPath), [n](const ProgressCallback&) -> Apply {
+    auto m = std::make_shared<LoadedModel>(load_standard(n.empty() ? default_standard().name : n));
+    return [m](SessionModel& s) {
+      const QString text = tr("Opened the standard %1: %2").arg(m->name, sizeText(*m));
+      s.setModel(Role::Standard, std::move(*m));
+      return text;
+    };
+  });
+}
+
+bool TransferController::openDemo(const QString& standardName) {
+  const std::string name = standardName.toStdString();
+  return start(tr("Opening the demo"), [name](const ProgressCallback&) -> Apply {
+    auto standard = std::make_shared<LoadedModel>(load_standard(name.empty() ? default_standard().name : name));
+    auto patient = std::make_shared<LoadedModel>(demo_patient());
+    return [standard, patient](SessionModel& s) {
+      const QString text = tr("Opened the demo: standard %1, patient %2").arg(standard->name, patient->name);
+      s.setModel(Role::Standard, std::move(*standard));
+      s.setModel(Role::Patient, std::move(*patient));
+      return text;
+    };
+  });
+}
+
+bool TransferController::computeFields() {
+  struct Input {
+    Role role;
+    StandardDomain domain;
+    ConstraintSet set;
+    std::string source;
+    quint64 revision;
+  };
+  std::vector<Input> inputs;
+  for (Role r : kRoles)
+    if (session_->hasModel(r)) {
+      const LoadedModel& m = session_->model(r);
+      inputs.push_back({r, m.domain, m.constraints.set, m.source(), session_->revision(r)});
+    }
+  if (inputs.empty()) {
+    emit failed(tr("fields: open a model first"));
+    return false;
+  }
+  const HarmonicFieldsOptions options = options_.fields;
+  return start(tr("Computing the fields"), [inputs, options](const ProgressCallback& progress) -> Apply {
+    auto results = std::make_shared<std::vector<ModelParameterization>>();
+    for (size_t i = 0; i < inputs.size(); ++i) {
+      const Input& in = inputs[i];
+      const double lo = double(i) / inputs.size(), hi = double(i + 1) / inputs.size();
+      results->push_back(parameterize_model(in.domain.V, in.domain.T, in.domain.side_mask, in.set, in.source,
+                                            options, part(progress, roleName(in.role), lo, hi)));
+    }
+    return [inputs, results](SessionModel& s) {
+      QStringList parts;
+      for (size_t i = 0; i < inputs.size(); ++i) {
+        const ModelParameterization& p = (*results)[i];
+        // The angles are in the histogram tab; the status line says what decides whether the transfer can go on.
+        QString text = tr("%1 %L2 tets folded (%3%)")
+                           .arg(roleName(inputs[i].role)).arg(p.health.inverted)
+                           .arg(100.0 * p.health.inverted / std::max(1, p.health.tets), 0, 'f', 2);
+        if (s.revision(inputs[i].role) == inputs[i].revision)
+          s.setParameterization(inputs[i].role, std::move((*results)[i]));
+        else
+          text += tr(kStale);
+        parts << text;
+      }
+      return tr("Fields computed: ") + parts.join(", ");
+    };
+  });
+}
+
+bool TransferController::runTransfer() {
+  if (!session_->hasModel(Role::Standard) || !session_->hasModel(Role::Patient)) {
+    emit failed(tr("transfer: open a standard and a patient first"));
+    return false;
+  }
+  auto standard = std::make_shared<const LoadedModel>(session_->model(Role::Standard));
+  auto patient = std::make_shared<const LoadedModel>(session_->model(Role::Patient));
+  const std::array<quint64, 2> revisions = {session_->revision(Role::Standard), session_->revision(Role::Patient)};
+  const TransferOptions options = options_;
+  return start(tr("Transfer"), [standard, patient, revisions, options](const ProgressCallback& progress) -> Apply {
+    auto run = std::make_shared<TransferRun>(
+        run_transfer(standard->mesh, standard->domain, standard->constraints.set, standard->source(), patient->mesh,
+                     patient->constraints.set, patient->source(), options, progress));
+    report_progress(progress, "quality", 1.0);
+    // Quality and the exported arrays as `facehex run` writes them.
+    auto result = std::make_shared<TransferResult>();
+    result->hex = run->patient_hex;
+    const ElementQuality q = element_quality(result->hex);
+    result->hex.cell_data["shape"] = q.shape;
+    result->hex.cell_data["scaled_jacobian"] = q.scaled_jacobian;
+    result->hex.point_data["uvw"] = run->standard.fields.uvw.topRows(standard->mesh.num_vertices());
+    if (standard->domain.side_mask.size() > 0)
+      result->hex.point_data[kSideMaskArray] =
+          standard->domain.side_mask.head(standard->mesh.num_vertices()).cast<double>();
+    result->patientQuality = summarize(result->hex, q);
+    result->standardQuality = summarize(standard->mesh, standard->quality);
+    result->distortion = dihedral_distortion(standard->mesh, result->hex);
+    result->statistics = run->transfer;
+    result->seconds = run->seconds;
+    return [run, result, revisions](SessionModel& s) {
+      const QualitySummary& q = result->patientQuality;
+      QString text = tr("Transfer done: %1 cells, %2 inverted, mean shape %3 (standard %4)")
+                         .arg(count(q.cells)).arg(q.inverted)
+                         .arg(q.shape_mean, 0, 'f', 3).arg(result->standardQuality.shape_mean, 0, 'f', 3);
+      if (s.revision(Role::Standard) != revisions[0] || s.revision(Role::Patient) != revisions[1])
+        return text + tr(kStale);
+      s.setParameterization(Role::Standard, std::move(run->standard));
+      s.setParameterization(Role::Patient, std::move(run->patient));
+      s.setTransfer(std::move(*result));
+      return text;
+    };
+  });
+}
+
+bool TransferController::reportErrors(const std::function<void()>& f) {
+  try {
+    f();
+    return true;
+  } catch (const std::exception& e) {
+    emit failed(QString::fromStdString(e.what()));
+    return false;
+  }
+}
+
+bool TransferController::addFeatureConstraints(Role role, double band) {
+  return reportErrors([&] {
+    if (!session_->hasModel(role)) throw Error("features", "open the " + roleName(role).toStdString() + " model first");
+    if (!session_->hasModel(Role::Standard))
+      throw Error("features", "open a standard first: the features take the values of its constraint set");
+    std::map<std::string, double> values;
+    for (const Constraint& c : session_->constraints(Role::Standard).set.constraints) values[c.name] = c.value;
+    const VolumeMesh& mesh = session_->model(role).mesh;
+    const FaceLandmarks landmarks = find_face_landmarks(mesh.V, side_mask_of(mesh));
+    session_->mergeConstraints(role, feature_constraints(landmarks, values, band), tr("add the facial features"));
+  });
+}
+
+bool TransferController::loadConstraints(Role role, const QString& path, bool merge) {
+  return reportErrors([&] {
+    const std::string p = path.toStdString();
+    if (!session_->hasModel(role)) throw Error(p, "open the " + roleName(role).toStdString() + " model first");
+    const ConstraintSet set = read_constraint_set(p);
+    const QString name = QFileInfo(path).fileName();
+    if (merge)
+      session_->mergeConstraints(role, set, tr("merge %1").arg(name));
+    else
+      session_->replaceConstraints(role, set, tr("load %1").arg(name));
+  });
+}
+
+bool TransferController::saveConstraints(Role role, const QString& path) {
+  return reportErrors([&] {
+    if (!session_->hasModel(role)) throw Error(path.toStdString(), "no " + roleName(role).toStdString() + " model");
+    write_constraint_set(path.toStdString(), session_->constraints(role).set);
+  });
+}
+
+bool TransferController::exportHex(const QString& path) {
+  return reportErrors([&] {
+    if (!session_->transfer()) throw Error(path.toStdString(), "no hex mesh to export yet: run the transfer first");
+    write_volume_mesh(path.toStdString(), session_->transfer()->hex);
+  });
+}
+
+}  // namespace facehex::gui

@@ -1,0 +1,75 @@
+#pragma once
+// Runs the core (loading, parameterization, transfer, quality) for the session, long work on a worker thread so the
+// window stays responsive. Progress comes through the core's ProgressCallback, which also carries the cancel
+// request; results are installed in the SessionModel on the GUI thread, unless the model changed meanwhile.
+// Failures are reported as the facehex::Error text, the same line the CLI prints.
+#include "core/progress.h"
+#include "ui/session_model.h"
+
+#include <QFutureWatcher>
+#include <QObject>
+#include <atomic>
+#include <functional>
+
+namespace facehex::gui {
+
+class TransferController : public QObject {
+  Q_OBJECT
+
+ public:
+  explicit TransferController(SessionModel* session, QObject* parent = nullptr);
+  ~TransferController() override;  // cancels and waits for a running job
+
+  // From start() until the result is delivered on the GUI thread (the worker itself may have finished earlier).
+  bool busy() const { return !job_.isEmpty(); }
+  // The options of the next runs (the CLI's --iterations, --order, --allow-inverted).
+  const TransferOptions& options() const { return options_; }
+  void setOptions(const TransferOptions& options) { options_ = options; }
+
+  // Jobs on the worker thread; each returns false (and does nothing) while another job runs.
+  bool openPatient(const QString& path);
+  bool openStandard(const QString& nameOrPath);  // empty: the bundled default
+  // A standard (default: the bundled default) and the bundled sample patient.
+  bool openDemo(const QString& standard = {});
+  bool computeFields();   // parameterizes every loaded model with its constraint set
+  bool runTransfer();     // maps the standard onto the patient, then measures the quality
+  void cancel();
+  // Spins an event loop until no job runs (the scripted states of --screenshot and the tests); false on timeout.
+  bool waitUntilIdle(int timeoutMs = 600000);
+
+  // Quick operations on the GUI thread; false (and failed()) on error.
+  // The feature constraints at the model's facial landmarks (core/face_landmarks.h), valued as the standard's
+  // features of the same names and selected by slabs `band` mm wide, added to its constraint set.
+  bool addFeatureConstraints(Role role, double band);
+  bool loadConstraints(Role role, const QString& path, bool merge);
+  bool saveConstraints(Role role, const QString& path);
+  bool exportHex(const QString& path);
+
+ signals:
+  void busyChanged(bool busy);
+  void progress(const QString& stage, double fraction);
+  void failed(const QString& message);
+  void finished(const QString& summary);  // one line for the status bar
+
+ private:
+  // Work returns what to do with its result on the GUI thread (that returns the summary line).
+  using Apply = std::function<QString(SessionModel&)>;
+  using Work = std::function<Apply(const ProgressCallback&)>;
+  struct Outcome {
+    Apply apply;
+    QString error;
+    bool cancelled = false;
+  };
+  bool start(const QString& what, Work work);
+  void deliver();
+  bool reportErrors(const std::function<void()>& f);
+
+  SessionModel* session_;
+  TransferOptions options_;
+  QFutureWatcher<Outcome> watcher_;
+  QString job_;  // what is running, or empty
+  std::atomic<bool> cancelRequested_{false};
+  std::atomic<int> lastReport_{-1};  // per-mille of the last progress signal, to send one per step
+};
+
+}  // namespace facehex::gui
