@@ -14,8 +14,9 @@ configure: deps
 build: configure
 	@cmake --build $(BUILD_DIR) -j $(JOBS)
 
+# Exit code 3 means the mesh was written but still has inverted or flat cells: reported, not a build failure.
 demo: build
-	$(BUILD_DIR)/bin/facehex run -o $(DEMO_OUT)
+	@$(BUILD_DIR)/bin/facehex run -o $(DEMO_OUT) || [ $$? -eq 3 ]
 
 test: build
 	cd $(BUILD_DIR) && xvfb-run -a -s "-screen 0 1600x1000x24" ctest --output-on-failure -j $(JOBS)
