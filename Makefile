@@ -21,5 +21,8 @@ demo: build
 test: build
 	cd $(BUILD_DIR) && xvfb-run -a -s "-screen 0 1600x1000x24" ctest --output-on-failure -j $(JOBS)
 
+bench: build
+	$(BUILD_DIR)/bin/facehex bench
+
 clean:
 	rm -rf $(BUILD_DIR) $(BUILD_DIR).configure.log
