@@ -3,21 +3,9 @@
 #include "core/error.h"
 #include "core/stopwatch.h"
 
-#include <functional>
-#include <future>
 #include <set>
 
 namespace facehex {
-namespace {
-
-// Runs work(f) for the given fields concurrently (they write disjoint columns) and rethrows the first error.
-void for_each_field(std::initializer_list<int> fields, const std::function<void(int)>& work) {
-  std::vector<std::future<void>> running;
-  for (int f : fields) running.push_back(std::async(std::launch::async, work, f));
-  for (auto& r : running) r.get();
-}
-
-}  // namespace
 
 HarmonicFields::HarmonicFields(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T,
                                const ResolvedConstraints& constraints, const HarmonicFieldsOptions& options,
@@ -32,14 +20,12 @@ HarmonicFields::HarmonicFields(const Eigen::MatrixXd& V, const Eigen::MatrixXi& 
   G_ = gradient_operator(V, T);
   volumes_ = tet_volumes(V, T);
   setup_seconds_["laplacian_assembly"] = clock.lap();
-  // The three factorizations are independent (each CHOLMOD object has its own workspace): run them side by side.
-  report_progress(progress, "factoring the u, v, w systems", 0.0);
-  std::array<std::future<std::unique_ptr<HarmonicSolver>>, 3> factoring;
-  for (int f = 0; f < 3; ++f)
-    factoring[f] = std::async(std::launch::async, [this, &constraints, f] {
-      return std::make_unique<HarmonicSolver>(K_, constraints.fields[f], HarmonicSolver::Options{kFieldNames[f]});
-    });
-  for (int f = 0; f < 3; ++f) solvers_[f] = factoring[f].get();  // rethrows a factorization's error
+  // One after the other: run concurrently, CHOLMOD (Debian's SuiteSparse 5.12) gave results differing by 1e-3
+  // from run to run, i.e. it is not safe to use from several threads here.
+  for (int f = 0; f < 3; ++f) {
+    report_progress(progress, std::string("factoring the ") + kFieldNames[f] + " system", f / 3.0);
+    solvers_[f] = std::make_unique<HarmonicSolver>(K_, constraints.fields[f], HarmonicSolver::Options{kFieldNames[f]});
+  }
   setup_seconds_["factorization"] = clock.lap();
 }
 
@@ -57,7 +43,7 @@ HarmonicFieldsResult HarmonicFields::compute(const ProgressCallback& progress) c
   Stopwatch clock;
   const Eigen::Index n = K_.rows();
   r.uvw_initial.resize(n, 3);
-  for_each_field({0, 1, 2}, [&](int f) { r.uvw_initial.col(f) = solvers_[f]->solve_laplace(); });
+  for (int f = 0; f < 3; ++f) r.uvw_initial.col(f) = solvers_[f]->solve_laplace();
   r.seconds["harmonic_solves"] = clock.lap();
   r.gradients_initial = gradients_of(r.uvw_initial);
   r.angles_initial = angle_statistics(gradient_angles(r.gradients_initial));
@@ -72,11 +58,11 @@ HarmonicFieldsResult HarmonicFields::compute(const ProgressCallback& progress) c
     report_progress(progress, "orthogonality improvement", static_cast<double>(it) / options_.orthogonality_iterations);
     const GradientFields targets = orthogonal_targets(r.gradients, options_.order);
     // The basic field's target is its own gradient: its Poisson solve would return it unchanged, so it is skipped.
-    for_each_field({options_.order[1], options_.order[2]}, [&](int f) {
+    for (int f : {options_.order[1], options_.order[2]}) {
       const Eigen::VectorXd g = Eigen::Map<const Eigen::VectorXd>(
           Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>(targets[f]).data(), 3 * targets[f].rows());
       r.uvw.col(f) = solvers_[f]->solve(G_.transpose() * mass.cwiseProduct(g));
-    });
+    }
     r.gradients = gradients_of(r.uvw);
     r.iteration_seconds.push_back(iteration_clock.lap());
   }

@@ -85,3 +85,21 @@ TEST(HexTransfer, BoxOntoStretchedBoxIsTheAffineMap) {
 
 }  // namespace
 }  // namespace facehex
+
+namespace facehex {
+namespace {
+
+// The same input gives bit-identical fields (the solvers run one after the other: concurrent CHOLMOD calls did not).
+TEST(HarmonicFieldsDeterminism, TwoRunsAreBitIdentical) {
+  VolumeMesh hex = test::hex_box(12, 6, 10, 60, 15, 50);
+  test::jitter_interior(hex, 0.8);
+  const StandardDomain domain = auxiliary_domain(hex);
+  const ModelParameterization a =
+      parameterize_model(domain.V, domain.T, domain.side_mask, side_constraints(), "box", HarmonicFieldsOptions{});
+  const ModelParameterization b =
+      parameterize_model(domain.V, domain.T, domain.side_mask, side_constraints(), "box", HarmonicFieldsOptions{});
+  EXPECT_EQ(a.fields.uvw, b.fields.uvw);
+}
+
+}  // namespace
+}  // namespace facehex
