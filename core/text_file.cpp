@@ -1,8 +1,8 @@
 #include "core/text_file.h"
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 
-#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -18,21 +18,13 @@ std::string read_text_file(const std::string& path) {
 }
 
 void write_text_file(const std::string& path, const std::string& content) {
-  const std::string tmp = path + ".tmp-facehex";
-  {
+  write_atomically(path, [&](const std::string& tmp) {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw Error(path, "cannot open file for writing (does the folder exist and is it writable?)");
+    if (!out) throw Error(tmp, "cannot open file for writing");
     out << content;
     out.flush();
-    if (!out) {
-      std::remove(tmp.c_str());
-      throw Error(path, "write failed (disk full?)");
-    }
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw Error(path, "cannot replace the file");
-  }
+    if (!out) throw Error(tmp, "write failed (disk full?)");
+  });
 }
 
 }  // namespace facehex

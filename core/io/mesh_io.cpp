@@ -4,7 +4,7 @@
 #include "core/error.h"
 #include "core/io/abaqus_io.h"
 #include "core/io/ansys_io.h"
-#include "core/io/atomic_file.h"
+#include "core/atomic_file.h"
 #include "core/io/fe_sets.h"
 #include "core/io/febio_io.h"
 #include "core/io/gmsh_io.h"

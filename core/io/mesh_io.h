@@ -12,7 +12,7 @@
 //
 // Every failure is a facehex::Error whose message names the file and the problem (unknown extension, missing file,
 // truncated or malformed content, out-of-range node ids, unsupported cell types). Writers never leave a partial
-// file (see atomic_file.h).
+// file (see core/atomic_file.h).
 #include "core/mesh.h"
 
 #include <string>

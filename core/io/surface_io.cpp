@@ -1,7 +1,7 @@
 // Triangle surfaces (.stl, .obj, .ply, .vtp) through VTK's readers and writers: read_surface_mesh and
 // write_surface_mesh of mesh_io.h.
 #include "core/error.h"
-#include "core/io/atomic_file.h"
+#include "core/atomic_file.h"
 #include "core/io/io_util.h"
 #include "core/io/mesh_io.h"
 #include "core/io/surface_file_checks.h"

@@ -1,4 +1,4 @@
-#include "core/io/atomic_file.h"
+#include "core/atomic_file.h"
 #include "io_test_util.h"
 
 #include <gtest/gtest.h>

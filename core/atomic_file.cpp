@@ -1,4 +1,4 @@
-#include "core/io/atomic_file.h"
+#include "core/atomic_file.h"
 
 #include "core/error.h"
 
