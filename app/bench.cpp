@@ -2,6 +2,7 @@
 // with TetGen), the bundled standard's parameterization computed once beforehand (it is cached in practice).
 #include "app/cli_args.h"
 #include "app/commands.h"
+#include "app/synthetic_patient.h"
 #include "core/constraint_set.h"
 #include "core/error.h"
 #include "core/harmonic_fields.h"
@@ -9,11 +10,8 @@
 #include "core/io/mesh_io.h"
 #include "core/mesh_check.h"
 #include "core/resources.h"
-#include "core/side_mask.h"
 #include "core/standard/closed_domain.h"
 #include "core/stopwatch.h"
-#include "core/synthetic_shell.h"
-#include "core/tetgen/tetrahedralize.h"
 #include "core/transfer_pipeline.h"
 
 #include <nlohmann/json.hpp>
@@ -26,18 +24,6 @@
 
 namespace facehex::cli {
 namespace {
-
-VolumeMesh synthetic_patient(double edge_length) {
-  SyntheticShellOptions shell;
-  shell.edge_length = edge_length;
-  const SurfaceMesh surface = synthetic_shell_surface(shell);
-  TetrahedralizeOptions options;
-  options.target_edge_length = edge_length;
-  TetrahedralizeResult r = tetrahedralize(surface, options);
-  r.mesh.point_data[kSideMaskArray] =
-      side_mask_from_faces(r.mesh.num_vertices(), r.boundary_faces, (r.boundary_labels.array() - 1).matrix()).cast<double>();
-  return r.mesh;
-}
 
 std::vector<long> parse_sizes(const std::string& text) {
   std::vector<long> sizes;
@@ -73,13 +59,13 @@ int cmd_bench(const Argv& argv) {
 
   // Calibrate the edge length for a tet count on a small shell: tets scale as edge^-3.
   const double calibration_edge = 6.0;
-  const double calibration_tets = synthetic_patient(calibration_edge).num_cells();
+  const double calibration_tets = synthetic_shell_patient(calibration_edge).num_cells();
   nlohmann::json results = nlohmann::json::array();
   const std::string tmp = (std::filesystem::temp_directory_path() / "facehex-bench.vtu").string();
   for (const long target : sizes) {
     const double edge = calibration_edge * std::cbrt(calibration_tets / static_cast<double>(target));
     std::cerr << "building a synthetic patient of about " << target << " tets (edge " << edge << " mm)\n";
-    VolumeMesh patient = synthetic_patient(edge);
+    VolumeMesh patient = synthetic_shell_patient(edge);
     std::map<std::string, double> stages;
     Stopwatch clock;
     write_volume_mesh(tmp, patient);

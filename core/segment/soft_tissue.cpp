@@ -1,7 +1,5 @@
 #include "core/segment/soft_tissue.h"
 
-#include "core/side_mask.h"
-
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -216,13 +214,11 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   surface = remesh_isotropic(surface, options.tets.target_edge_length);
   surface.labels.array() += 1;  // TetGen's marker 0 means "on no input facet"
 
-  TetrahedralizeResult tets = tetrahedralize(surface, options.tets);
+  // A vertex where skin touches bone at a zero-thickness rim is left free in w (tetrahedralize_with_sides).
+  TetrahedralizeResult tets = tetrahedralize_with_sides(surface, options.tets);
   model.mesh = std::move(tets.mesh);
   model.boundary_faces = std::move(tets.boundary_faces);
   model.boundary_sides = tets.boundary_labels.array() - 1;
-  Eigen::VectorXi mask = side_mask_from_faces(model.mesh.num_vertices(), model.boundary_faces, model.boundary_sides);
-  clear_opposite_sides(mask);  // skin touching bone at a zero-thickness rim: that vertex is left free in w
-  model.mesh.point_data[kSideMaskArray] = mask.cast<double>();
   check_topology(model);
   return model;
 }

@@ -29,6 +29,8 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/side_mask.h"
+#include "core/sides.h"
 
 namespace facehex {
 namespace {
@@ -327,6 +329,15 @@ TetrahedralizeResult tetrahedralize(const SurfaceMesh& surface, const Tetrahedra
     result.boundary_labels(i) = labels[i];
   }
   return result;
+}
+
+TetrahedralizeResult tetrahedralize_with_sides(const SurfaceMesh& surface, const TetrahedralizeOptions& options) {
+  TetrahedralizeResult r = tetrahedralize(surface, options);
+  Eigen::VectorXi mask =
+      side_mask_from_faces(r.mesh.num_vertices(), r.boundary_faces, (r.boundary_labels.array() - 1).matrix());
+  clear_opposite_sides(mask);
+  r.mesh.point_data[kSideMaskArray] = mask.cast<double>();
+  return r;
 }
 
 }  // namespace facehex

@@ -24,4 +24,9 @@ struct TetrahedralizeResult {
 // surface is not closed, self-intersects, or TetGen fails.
 TetrahedralizeResult tetrahedralize(const SurfaceMesh& surface, const TetrahedralizeOptions& options = {});
 
+// As tetrahedralize(), for a surface whose labels are Side + 1 per face (0: on no side, sides.h): also sets the
+// mesh's point data "side_mask" from the labelled boundary triangles; a vertex on opposite sides of one field is left
+// free for it (clear_opposite_sides, side_mask.h).
+TetrahedralizeResult tetrahedralize_with_sides(const SurfaceMesh& surface, const TetrahedralizeOptions& options = {});
+
 }  // namespace facehex

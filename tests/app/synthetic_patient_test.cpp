@@ -1,13 +1,11 @@
 // The bundled standard mapped onto a synthetic face-like shell patient (TetGen): the whole method end to end.
+#include "app/synthetic_patient.h"
 #include "core/constraint_set.h"
 #include "core/corner_jacobian.h"
 #include "core/io/mesh_io.h"
 #include "core/quality/hex_quality.h"
 #include "core/resources.h"
-#include "core/side_mask.h"
 #include "core/standard/closed_domain.h"
-#include "core/synthetic_shell.h"
-#include "core/tetgen/tetrahedralize.h"
 #include "core/transfer_pipeline.h"
 
 #include <gtest/gtest.h>
@@ -18,22 +16,10 @@
 namespace facehex {
 namespace {
 
-VolumeMesh shell_patient(double edge) {
-  SyntheticShellOptions shell;
-  shell.edge_length = edge;
-  TetrahedralizeOptions options;
-  options.target_edge_length = edge;
-  TetrahedralizeResult r = tetrahedralize(synthetic_shell_surface(shell), options);
-  r.mesh.point_data[kSideMaskArray] =
-      side_mask_from_faces(r.mesh.num_vertices(), r.boundary_faces, (r.boundary_labels.array() - 1).matrix())
-          .cast<double>();
-  return r.mesh;
-}
-
 TEST(SyntheticPatient, BundledStandardTransfersWithNoInvertedElement) {
   const BundledModel files = default_standard();
   const VolumeMesh standard = read_volume_mesh(files.mesh);
-  const VolumeMesh patient = shell_patient(6.0);
+  const VolumeMesh patient = cli::synthetic_shell_patient(6.0);
   // Both with the same semantics: the six sides only (the shell has no lips or brows to place features on).
   const TransferRun run = run_transfer(standard, closed_domain(standard), side_constraints(), files.constraints,
                                        patient, side_constraints(), "shell", TransferOptions{});
