@@ -1,16 +1,18 @@
 #include "app/commands.h"
 
 #include "app/cli_args.h"
+#include "app/compare.h"
 #include "app/report.h"
 #include "app/terminal_progress.h"
+#include "app/transfer_command.h"
+#include "core/automatic_constraints.h"
 #include "core/constraint_set.h"
-#include "core/face_landmarks.h"
 #include "core/error.h"
 #include "core/io/fe_sets.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh_check.h"
 #include "core/resources.h"
-#include "core/segment/soft_tissue.h"
+#include "core/segment/patient_input.h"
 #include "core/shell_sides.h"
 #include "core/standard/closed_domain.h"
 #include "core/sides.h"
@@ -19,9 +21,7 @@
 #include "core/transfer_pipeline.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <set>
@@ -70,17 +70,6 @@ HarmonicFieldsOptions field_options(const Args& args) {
   return o;
 }
 
-// A CT volume (rather than a mesh): a MetaImage, NIfTI or NRRD file, or a DICOM folder.
-bool is_ct_input(const std::string& path) {
-  if (fs::is_directory(path)) return true;
-  std::string name = fs::path(path).filename().string();
-  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
-  for (const char* ext : {".mhd", ".mha", ".nii", ".nii.gz", ".nrrd", ".nhdr"})
-    if (name.size() > std::strlen(ext) && name.compare(name.size() - std::strlen(ext), std::strlen(ext), ext) == 0)
-      return true;
-  return false;
-}
-
 void add_segment_options(Args& args) {
   args.option("skin", "skin threshold in the file's units (default: from the histogram)")
       .option("bone", "bone threshold in the file's units (default: from the histogram)")
@@ -98,20 +87,12 @@ SegmentOptions segment_options(const Args& args) {
   return o;
 }
 
-// A patient (tet) model from a tet mesh, a closed surface or a CT volume (segmented), checked and oriented.
-VolumeMesh load_tet_model(const std::string& path, double edge_length, const SegmentOptions* ct_options = nullptr) {
-  MeshReadOptions ro;
-  ro.target_edge_length = edge_length;
-  if (ct_options && is_ct_input(path)) {
-    std::cerr << "segmenting the facial soft tissue from the CT " << path << "\n";
-    VolumeMesh model = build_patient_model_from_file(path, *ct_options);
-    check_and_orient_tet_mesh(model, path);
-    return model;
-  }
-  VolumeMesh mesh = read_volume_mesh(path, ro);
-  const TetMeshCheck check = check_and_orient_tet_mesh(mesh, path);
-  if (check.reoriented) std::cerr << "note: " << path << ": all tets were negatively oriented; flipped\n";
-  return mesh;
+// The patient model of a CT, tet mesh or closed surface (core/segment/patient_input.h), with notes on stderr.
+VolumeMesh load_tet_model(const std::string& path, const SegmentOptions& options) {
+  if (is_ct_input(path)) std::cerr << "segmenting the facial soft tissue from the CT " << path << "\n";
+  PatientTetModel model = load_patient_model(path, options);
+  if (model.check.reoriented) std::cerr << "note: " << path << ": all tets were negatively oriented; flipped\n";
+  return std::move(model.mesh);
 }
 
 // The constraint set of a model: the given file, else the six sides from its "side_mask".
@@ -120,24 +101,6 @@ ConstraintSet load_constraints(const std::string& path, const VolumeMesh& mesh, 
   if (side_mask_of(mesh).size() == 0)
     throw Error(mesh_path, "no constraint set given and the model has no \"side_mask\" array (use --constraints)");
   return side_constraints();
-}
-
-// Feature values of a standard's constraint set, by constraint name.
-std::map<std::string, double> feature_values(const ConstraintSet& standard) {
-  std::map<std::string, double> values;
-  for (const auto& c : standard.constraints) values[c.name] = c.value;
-  return values;
-}
-
-// The six sides plus the feature constraints at the model's landmarks, with the given feature values.
-ConstraintSet automatic_constraints(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
-                                    const std::map<std::string, double>& values, double band,
-                                    FaceLandmarks* landmarks_out = nullptr) {
-  const FaceLandmarks landmarks = find_face_landmarks(V, side_mask);
-  ConstraintSet set = side_constraints();
-  for (auto& c : feature_constraints(landmarks, values, band).constraints) set.constraints.push_back(c);
-  if (landmarks_out) *landmarks_out = landmarks;
-  return set;
 }
 
 // The tet domain a hex standard is parameterized on: "closed" (openings filled) or "auxiliary" (the paper's).
@@ -179,23 +142,15 @@ VolumeMesh parameterized_tet_mesh(const ModelParameterization& p, const VolumeMe
   return m;
 }
 
-constexpr double kFeatureBand = 2.0;  // mm, width of the slabs selecting feature vertices
+}  // namespace
 
 struct TransferInputs {
   BundledModel standard;
   std::string standard_constraints;  // empty: the standard's bundled/sibling constraints
   std::string patient, patient_constraints;
-  double edge_length = 2.0;
   std::string standard_domain = "closed";
   SegmentOptions segment;
   TransferOptions options;
-};
-
-struct TransferOutputs {
-  VolumeMesh standard, patient;
-  TransferRun run;
-  MeshQualityReport standard_quality, patient_quality;
-  DistanceSummary distance;
 };
 
 TransferOutputs execute_transfer(const TransferInputs& in) {
@@ -206,7 +161,7 @@ TransferOutputs execute_transfer(const TransferInputs& in) {
   const std::string std_constraints = in.standard_constraints.empty() ? in.standard.constraints : in.standard_constraints;
   const ConstraintSet standard_set = read_constraint_set(std_constraints);
   std::cerr << "reading the patient " << in.patient << "\n";
-  out.patient = load_tet_model(in.patient, in.edge_length, &in.segment);
+  out.patient = load_tet_model(in.patient, in.segment);
   ConstraintSet patient_set = load_constraints(in.patient_constraints, out.patient, in.patient);
   if (in.patient_constraints.empty()) {
     // No set given: the sides plus feature constraints at the patient's landmarks, valued as the standard's.
@@ -214,8 +169,7 @@ TransferOutputs execute_transfer(const TransferInputs& in) {
     patient_set = automatic_constraints(out.patient.V, side_mask_of(out.patient), feature_values(standard_set),
                                         kFeatureBand, &landmarks);
     std::cerr << "automatic constraints: six sides and " << feature_specs().size() << " features at the landmarks\n";
-    for (const auto& [name, p] : landmarks.points)
-      std::cerr << "  " << name << " at (" << p.x() << ", " << p.y() << ", " << p.z() << ") mm\n";
+    std::cerr << landmarks_text(landmarks, "  ");
   }
   out.run = run_transfer(out.standard, standard_domain(out.standard, in.standard_domain), standard_set, std_constraints, out.patient, patient_set,
                          in.patient_constraints.empty() ? in.patient : in.patient_constraints, in.options,
@@ -244,7 +198,6 @@ TransferInputs transfer_inputs(const Args& args, const std::string& patient, con
   in.standard_constraints = args.get("standard-constraints");
   in.patient = patient;
   in.patient_constraints = patient_constraints;
-  in.edge_length = args.number("edge-length");
   in.standard_domain = args.get("standard-domain");
   in.segment = segment_options(args);
   in.options.fields = field_options(args);
@@ -252,7 +205,9 @@ TransferInputs transfer_inputs(const Args& args, const std::string& patient, con
   return in;
 }
 
-}  // namespace
+TransferOutputs execute_transfer(const Args& args, const std::string& patient, const std::string& patient_constraints) {
+  return execute_transfer(transfer_inputs(args, patient, patient_constraints));
+}
 
 int cmd_info(const Argv& argv) {
   Args args("info", "Prints sizes, cell types, bounding box, volume and side labels of a mesh.");
@@ -360,14 +315,30 @@ int cmd_fields(const Argv& argv) {
 }
 
 int cmd_map(const Argv& argv) {
-  Args args("map", "Maps a standard hex mesh onto a patient tet model through their harmonic parameterizations.");
+  Args args("map", "Maps a standard hex mesh onto a patient tet model through their harmonic parameterizations "
+                   "(or, with --method mesh-matching, by the elastic-registration baseline of docs/method.md).");
   args.option("patient", "patient tet model or closed surface")
       .option("patient-constraints", "constraint set of the patient (default: six sides from side_mask)")
       .option("output", "output hex mesh (.vtu, .vtk, .msh)")
-      .option("report", "write the JSON report here too");
+      .option("report", "write the JSON report here too")
+      .option("method", "harmonic (the paper's method) or mesh-matching (the baseline it is compared with)", "harmonic");
   add_transfer_options(args);
   if (!args.parse(argv)) return 0;
   if (!args.has("patient") || !args.has("output")) throw Error("facehex map", "needs --patient and -o OUTPUT");
+  if (args.get("method") == "mesh-matching") {
+    const BundledModel standard = find_standard(args.get("standard"));
+    MatchingOutputs out = execute_mesh_matching(read_volume_mesh(standard.mesh), standard.mesh,
+                                                load_tet_model(args.get("patient"), segment_options(args)),
+                                                args.get("patient"));
+    attach_quality(out.result.hex);
+    write_volume_mesh(args.get("output"), out.result.hex);
+    if (args.has("report")) write_json(args.get("report"), mesh_matching_report(out));
+    std::cout << mesh_matching_summary_text(out) << "wrote " << args.get("output") << "\n";
+    const QualitySummary& q = out.metrics.quality.summary;
+    return q.inverted + q.degenerate == 0 ? 0 : 3;
+  }
+  if (args.get("method") != "harmonic")
+    throw Error("--method", "expects harmonic or mesh-matching, got '" + args.get("method") + "'");
   TransferOutputs out = execute_transfer(transfer_inputs(args, args.get("patient"), args.get("patient-constraints")));
   attach_quality(out.run.patient_hex);
   write_volume_mesh(args.get("output"), out.run.patient_hex);
@@ -462,7 +433,7 @@ int cmd_segment(const Argv& argv) {
   const SegmentOptions options = segment_options(args);
   if (!is_ct_input(args.get("CT")))
     throw Error(args.get("CT"), "not a CT volume (.mhd, .mha, .nii, .nii.gz, .nrrd, or a DICOM folder)");
-  const VolumeMesh model = load_tet_model(args.get("CT"), args.number("edge-length"), &options);
+  const VolumeMesh model = load_tet_model(args.get("CT"), options);
   write_volume_mesh(args.get("output"), model);
   const Eigen::VectorXi mask = side_mask_of(model);
   std::cout << model.num_vertices() << " vertices, " << model.num_cells() << " tets; side vertices:";
@@ -519,8 +490,7 @@ int cmd_constraints(const Argv& argv) {
   const ConstraintSet set = automatic_constraints(mesh.V, mask, values, args.number("band"), &landmarks);
   write_constraint_set(args.get("output"), set);
   std::cout << "mid-sagittal plane x = " << landmarks.x_mid << " mm\n";
-  for (const auto& [name, p] : landmarks.points)
-    std::cout << name << " at (" << p.x() << ", " << p.y() << ", " << p.z() << ") mm\n";
+  std::cout << landmarks_text(landmarks, "");
   for (const auto& c : set.constraints)
     if (!c.select.side) std::cout << c.name << ": " << kFieldNames[c.field] << " = " << c.value << "\n";
   std::cout << "wrote " << args.get("output") << "\n";

@@ -19,5 +19,6 @@ int cmd_standards(const Argv& argv);
 int cmd_bench(const Argv& argv);
 int cmd_constraints(const Argv& argv);
 int cmd_segment(const Argv& argv);
+int cmd_compare(const Argv& argv);  // app/compare.cpp
 
 }  // namespace facehex::cli

@@ -1,7 +1,9 @@
 // facehex-gui: the desktop application.
 //   facehex-gui [PATIENT] [--standard NAME]                   opens the window (no patient: only the standard)
 //   facehex-gui --screenshot FILE [--state STATE] [PATIENT] [--standard NAME]
-//       opens the inputs (default: the bundled demo), brings the window to STATE, saves it as PNG and exits.
+//       opens the inputs (default: the bundled demo; for the state ct, the bundled CT), brings the window to STATE,
+//       saves it as PNG and exits.
+// PATIENT is a head CT (.mhd, .mha, .nii, .nii.gz, .nrrd, .nhdr or a DICOM folder), a tet model or a closed surface.
 #include "ui/autosave.h"
 #include "ui/main_window.h"
 #include "ui/scripted_states.h"
@@ -31,7 +33,9 @@ int screenshot(MainWindow& window, const QString& file, const QString& stateName
   window.autosave()->setEnabled(false);  // a scripted session must not replace the user's autosave
   window.resize(1600, 1000);
   window.show();
-  if (!openInputs(window, patient, standard) || !driveToState(window, *state)) return 1;
+  if (!openInputs(window, patient.isEmpty() ? defaultPatient(*state) : patient, standard) ||
+      !driveToState(window, *state))
+    return 1;
   QEventLoop settle;  // let the layout and the GL widgets settle before grabbing
   QTimer::singleShot(300, &settle, &QEventLoop::quit);
   settle.exec();
@@ -59,7 +63,9 @@ int main(int argc, char** argv) {
                                        "STATE", "loaded");
   const QCommandLineOption standardOption("standard", "Bundled standard name or hex mesh file.", "NAME");
   parser.addOptions({screenshotOption, stateOption, standardOption});
-  parser.addPositionalArgument("PATIENT", "Patient tet model or closed surface (default: the bundled demo).");
+  parser.addPositionalArgument("PATIENT",
+                               "Head CT (.mhd, .nii, .nrrd, DICOM folder), patient tet model or closed surface "
+                               "(default: the bundled demo).");
   parser.process(app);
   const QString patient = parser.positionalArguments().value(0);
   const QString standard = parser.value(standardOption);

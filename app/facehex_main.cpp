@@ -29,6 +29,7 @@ const std::map<std::string, Command>& commands() {
       {"segment", {cmd_segment, "head CT -> labelled patient tet model of the facial soft tissue"}},
       {"constraints", {cmd_constraints, "sides + feature constraints at the facial landmarks of a model"}},
       {"bench", {cmd_bench, "time each stage of a transfer for patients of several sizes"}},
+      {"compare", {cmd_compare, "harmonic transfer vs the mesh-matching baseline: report, tables, plots"}},
   };
   return table;
 }

@@ -110,15 +110,20 @@ std::string quality_text(const MeshQualityReport& q) {
   return os.str();
 }
 
-DistanceSummary side_vertex_distances(const TransferRun& run, const VolumeMesh& standard) {
+DistanceSummary side_vertex_distances(const Eigen::MatrixXd& mapped_V, const VolumeMesh& standard,
+                                      const Eigen::MatrixXd& patient_V, const Eigen::MatrixXi& patient_T) {
   const Eigen::VectorXi mask = side_mask_of(standard);
   std::vector<int> rows;
   for (int v = 0; v < mask.size(); ++v)
     if (mask(v) != 0) rows.push_back(v);
   Eigen::MatrixXd points(static_cast<Eigen::Index>(rows.size()), 3);
-  for (size_t i = 0; i < rows.size(); ++i) points.row(static_cast<Eigen::Index>(i)) = run.patient_hex.V.row(rows[i]);
-  const BoundaryFaces boundary = boundary_faces(run.patient.T);
-  return summarize_distances(distances_to_surface(points, run.patient.V, boundary.F));
+  for (size_t i = 0; i < rows.size(); ++i) points.row(static_cast<Eigen::Index>(i)) = mapped_V.row(rows[i]);
+  const BoundaryFaces boundary = boundary_faces(patient_T);
+  return summarize_distances(distances_to_surface(points, patient_V, boundary.F));
+}
+
+DistanceSummary side_vertex_distances(const TransferRun& run, const VolumeMesh& standard) {
+  return side_vertex_distances(run.patient_hex.V, standard, run.patient.V, run.patient.T);
 }
 
 json run_report(const TransferRun& run, const MeshQualityReport& standard_quality,
@@ -134,6 +139,7 @@ json run_report(const TransferRun& run, const MeshQualityReport& standard_qualit
            {{"parameterization", parameterization_json(run.standard)},
             {"domain", run.standard_domain},
             {"domain_tets_non_positive", run.standard_domain_non_positive},
+            {"relaxed_corner_vertices", run.standard_relaxed_corner_vertices},
             {"quality", to_json(standard_quality)}}},
           {"patient", {{"parameterization", parameterization_json(run.patient)}}},
           {"transfer",
@@ -149,6 +155,8 @@ json run_report(const TransferRun& run, const MeshQualityReport& standard_qualit
           {"untangle",
            {{"inverted_before", run.untangle.inverted_before},
             {"inverted_after", run.untangle.inverted_after},
+            {"degenerate_before", run.untangle.degenerate_before},
+            {"degenerate_after", run.untangle.degenerate_after},
             {"bad_before", run.untangle.bad_before},
             {"bad_after", run.untangle.bad_after},
             {"min_scaled_jacobian_before", run.untangle.min_scaled_jacobian_before},
@@ -173,8 +181,9 @@ std::string run_summary_text(const TransferRun& run, const MeshQualityReport& st
      << " deg before, " << fmt("%.1f", run.patient.fields.angles.mean_deviation_from_90)
      << " deg after the orthogonality improvement\n"
      << "mapped hex mesh before repair: " << run.untangle.inverted_before << " inverted, "
-     << run.untangle.bad_before << " with scaled Jacobian < 0.2; after: " << run.untangle.inverted_after << " inverted, "
-     << run.untangle.bad_after << "\n"
+     << run.untangle.degenerate_before << " flat, " << run.untangle.bad_before
+     << " with scaled Jacobian < 0.2; after: " << run.untangle.inverted_after << " inverted, "
+     << run.untangle.degenerate_after << " flat, " << run.untangle.bad_after << "\n"
      << "standard hex mesh:\n"
      << quality_text(standard_quality) << "patient hex mesh:\n"
      << quality_text(patient_quality) << "  side vertices off the patient surface: p95 "

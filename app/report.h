@@ -23,6 +23,9 @@ nlohmann::json to_json(const MeshQualityReport& q);
 std::string quality_text(const MeshQualityReport& q);
 
 // Distances (mm) from the mapped standard vertices that lie on a side (side_mask != 0) to the patient's boundary.
+// mapped_V: #Vs x 3, the standard's vertices on the patient; patient: V #V x 3, T #T x 4.
+DistanceSummary side_vertex_distances(const Eigen::MatrixXd& mapped_V, const VolumeMesh& standard,
+                                      const Eigen::MatrixXd& patient_V, const Eigen::MatrixXi& patient_T);
 DistanceSummary side_vertex_distances(const TransferRun& run, const VolumeMesh& standard);
 
 nlohmann::json run_report(const TransferRun& run, const MeshQualityReport& standard_quality,

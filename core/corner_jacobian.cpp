@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <iterator>
 
 namespace facehex {
 
@@ -60,19 +61,68 @@ Eigen::Matrix3d corner_jacobian(CellType type, const CellNodes& X, int k) {
   return A;
 }
 
-const Eigen::Matrix<double, 8, 3>& hex_center_weights() {
-  static const Eigen::Matrix<double, 8, 3> W = [] {
-    Eigen::Matrix<double, 8, 3> w;
-    // Node i of the unit cube at (x, y, z): its weight along each axis is +-1/4 by the side it lies on.
+namespace {
+
+// d N_i / d(natural coordinates) at point p, rows = nodes: hex on the unit cube [0,1]^3 (node i at the cube corner of
+// the same VTK index), wedge on (r, s) in the unit triangle times t in [0, 1].
+SampleWeights shape_derivatives(CellType type, const Eigen::Vector3d& p) {
+  SampleWeights d = SampleWeights::Zero();
+  if (type == CellType::Hex) {
     const int cube[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
     for (int i = 0; i < 8; ++i)
-      for (int a = 0; a < 3; ++a) w(i, a) = cube[i][a] ? 0.25 : -0.25;
-    return w;
-  }();
-  return W;
+      for (int a = 0; a < 3; ++a) {
+        double v = cube[i][a] ? 1.0 : -1.0;
+        for (int b = 0; b < 3; ++b)
+          if (b != a) v *= cube[i][b] ? p(b) : 1 - p(b);
+        d(i, a) = v;
+      }
+  } else if (type == CellType::Wedge) {
+    const double r = p(0), s = p(1), t = p(2);
+    const double tri[3] = {1 - r - s, r, s};
+    const double dtri[3][2] = {{-1, -1}, {1, 0}, {0, 1}};
+    for (int i = 0; i < 3; ++i) {
+      d.row(i) << dtri[i][0] * (1 - t), dtri[i][1] * (1 - t), -tri[i];
+      d.row(i + 3) << dtri[i][0] * t, dtri[i][1] * t, tri[i];
+    }
+  }
+  return d;
 }
 
-Eigen::Matrix3d hex_center_jacobian(const CellNodes& X) { return X.transpose() * hex_center_weights(); }
+std::vector<SampleWeights> sample_weights(CellType type) {
+  const double lo = 0.5 - 0.5 / std::sqrt(3.0), hi = 0.5 + 0.5 / std::sqrt(3.0);
+  std::vector<Eigen::Vector3d> points;
+  if (type == CellType::Hex) {
+    points.emplace_back(0.5, 0.5, 0.5);
+    for (double z : {lo, hi})
+      for (double y : {lo, hi})
+        for (double x : {lo, hi}) points.emplace_back(x, y, z);
+  } else if (type == CellType::Wedge) {
+    for (double t : {lo, hi})
+      for (const auto& [r, s] :
+           {std::pair{1 / 6.0, 1 / 6.0}, {2 / 3.0, 1 / 6.0}, {1 / 6.0, 2 / 3.0}, {1 / 3.0, 1 / 3.0}})
+        points.emplace_back(r, s, t);
+  }
+  const CellNodes ideal = ideal_cell(type);
+  std::vector<SampleWeights> weights;
+  for (const Eigen::Vector3d& p : points) {
+    const SampleWeights d = shape_derivatives(type, p);
+    const Eigen::Matrix3d ideal_jacobian = ideal.transpose() * d;  // constant over the ideal cell
+    weights.push_back(d * ideal_jacobian.inverse());
+  }
+  return weights;
+}
+
+}  // namespace
+
+const std::vector<SampleWeights>& interior_sample_weights(CellType type) {
+  static const std::vector<SampleWeights> hex = sample_weights(CellType::Hex), wedge = sample_weights(CellType::Wedge),
+                                          none;
+  return type == CellType::Hex ? hex : type == CellType::Wedge ? wedge : none;
+}
+
+Eigen::Matrix3d hex_center_jacobian(const CellNodes& X) {
+  return X.transpose() * interior_sample_weights(CellType::Hex).front();
+}
 
 CornerValues corner_determinants(CellType type, const CellNodes& X) {
   CornerValues d = CornerValues::Zero();
@@ -81,8 +131,10 @@ CornerValues corner_determinants(CellType type, const CellNodes& X) {
 }
 
 double min_corner_determinant(CellType type, const CellNodes& X) {
-  const double corners = corner_determinants(type, X).head(node_count(type)).minCoeff();
-  return type == CellType::Hex ? std::min(corners, hex_center_jacobian(X).determinant()) : corners;
+  double lowest = corner_determinants(type, X).head(node_count(type)).minCoeff();
+  for (const SampleWeights& W : interior_sample_weights(type))
+    lowest = std::min(lowest, (X.transpose() * W).determinant());
+  return lowest;
 }
 
 double scaled_jacobian(CellType type, const CellNodes& X) {
@@ -100,14 +152,28 @@ double scaled_jacobian(CellType type, const CellNodes& X) {
   return scaled_jacobian_factor(type) * lowest;
 }
 
+bool is_unusable(CellType type, const CellNodes& X) {
+  return min_corner_determinant(type, X) <= 0 || scaled_jacobian(type, X) < kDegenerateScaledJacobian;
+}
+
 CornerJacobianCheck check_corner_jacobians(const VolumeMesh& mesh) {
   CornerJacobianCheck check;
   check.min_determinant.resize(mesh.num_cells());
   for (int c = 0; c < mesh.num_cells(); ++c) {
-    check.min_determinant(c) = min_corner_determinant(mesh.types[c], cell_nodes(mesh, c));
-    if (check.min_determinant(c) <= 0) check.inverted.push_back(c);
+    const CellNodes X = cell_nodes(mesh, c);
+    check.min_determinant(c) = min_corner_determinant(mesh.types[c], X);
+    if (check.min_determinant(c) <= 0)
+      check.inverted.push_back(c);
+    else if (scaled_jacobian(mesh.types[c], X) < kDegenerateScaledJacobian)
+      check.degenerate.push_back(c);
   }
   return check;
+}
+
+std::vector<int> CornerJacobianCheck::unusable() const {
+  std::vector<int> cells;
+  std::merge(inverted.begin(), inverted.end(), degenerate.begin(), degenerate.end(), std::back_inserter(cells));
+  return cells;
 }
 
 }  // namespace facehex

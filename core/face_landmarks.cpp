@@ -1,11 +1,13 @@
 #include "core/face_landmarks.h"
 
-#include "core/error.h"
-#include "core/sides.h"
-
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/sides.h"
 
 namespace facehex {
 namespace {
@@ -24,6 +26,25 @@ struct Profile {
       if (!best || (max ? bins[b]->y() > best->y() : bins[b]->y() < best->y())) best = bins[b];
     }
     return best;
+  }
+
+  // The longest run of bins at most `depth` mm behind `front` (one missing bin allowed), as (lowest z, highest z), if
+  // it is at least `min_length` mm long: a flat plateau where the scan's field of view cut the face.
+  std::optional<std::pair<double, double>> clipped_run(double front, double depth, double min_length) const {
+    std::optional<std::pair<double, double>> best, run;
+    int gap = 0;
+    for (size_t b = 0; b < bins.size(); ++b) {
+      const double z = z0 + static_cast<double>(b) + 0.5;
+      if (bins[b] && bins[b]->y() >= front - depth) {
+        run = run ? std::pair{run->first, z} : std::pair{z, z};
+        gap = 0;
+      } else if (run && ++gap > 1) {
+        run.reset();
+      }
+      if (run && (!best || run->second - run->first > best->second - best->first)) best = run;
+    }
+    if (best && best->second - best->first >= min_length) return best;
+    return std::nullopt;
   }
 };
 
@@ -45,9 +66,39 @@ Profile skin_profile(const Eigen::MatrixXd& V, const std::vector<int>& skin, dou
 }
 
 Eigen::Vector3d require(const std::optional<Eigen::Vector3d>& p, const std::string& name) {
-  if (!p) throw Error("landmarks", "cannot find the " + name + " on the mid-sagittal skin profile (is the face "
-                                   "looking to +y with +z up? see --orientation)");
+  if (!p)
+    throw Error("landmarks", "cannot find the " + name +
+                                 " on the mid-sagittal skin profile (is the face "
+                                 "looking to +y with +z up? see --orientation)");
   return *p;
+}
+
+// Landmarks of a profile whose front was cut flat by the scan's field of view over z in [cut.first, cut.second]
+// (from the nose down to the upper lip or nose): below the cut, the upper lip is the most anterior point, the
+// subnasale the least anterior one between it and the cut, the stomion the least anterior one below the upper lip
+// and the lower lip the most anterior one below that; the nose tip, nasion and glabella lie inside the cut and are
+// placed above the subnasale by typical adult proportions (nose tip 15 mm, nasion 55 mm, glabella 67 mm), on the
+// cut, below the top of the skin.
+FaceLandmarks clipped_face_landmarks(const Profile& profile, const std::pair<double, double>& cut, double x_mid,
+                                     double zmax) {
+  FaceLandmarks l;
+  l.x_mid = x_mid;
+  l.clipped_from = cut.first;
+  l.clipped_to = cut.second;
+  const Eigen::Vector3d ls = require(profile.extreme(cut.first - 30, cut.first - 6, true), "upper lip");
+  const Eigen::Vector3d sn = require(profile.extreme(ls.z() + 1, cut.first, false), "subnasale");
+  const Eigen::Vector3d st = require(profile.extreme(ls.z() - 20, ls.z() - 3, false), "stomion");
+  const Eigen::Vector3d li = require(profile.extreme(st.z() - 20, st.z() - 1, true), "lower lip");
+  auto on_cut = [&](double z) {
+    const std::optional<Eigen::Vector3d> p = profile.extreme(z - 1, z + 1, true);
+    return Eigen::Vector3d(x_mid, p ? p->y() : profile.extreme(cut.first, cut.second, true)->y(), z);
+  };
+  const double prn = std::min(sn.z() + 15, zmax - 20), n = std::min(prn + 40, zmax - 13),
+               g = std::min(n + 12, zmax - 1);
+  l.points = {{"pronasale", on_cut(prn)}, {"subnasale", sn},        {"nasion", on_cut(n)}, {"glabella", on_cut(g)},
+              {"labrale superius", ls},   {"labrale inferius", li}, {"stomion", st}};
+  l.estimated = {"pronasale", "nasion", "glabella"};
+  return l;
 }
 
 }  // namespace
@@ -73,7 +124,11 @@ FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorX
   const auto first = skin_profile(V, skin, l.x_mid, 20.0).extreme(zmin + 0.1 * height, zmax - 0.1 * height, true);
   l.x_mid = require(first, "nose tip").x();
   const Profile profile = skin_profile(V, skin, l.x_mid, options.profile_band);
-  const Eigen::Vector3d prn = require(profile.extreme(zmin + 0.1 * height, zmax - 0.1 * height, true), "nose tip");
+  const Eigen::Vector3d front = require(profile.extreme(zmin + 0.1 * height, zmax - 0.1 * height, true), "nose tip");
+  const std::optional<std::pair<double, double>> cut =
+      profile.clipped_run(front.y(), options.clipped_depth, options.clipped_length);
+  if (cut) return clipped_face_landmarks(profile, *cut, l.x_mid, zmax);
+  const Eigen::Vector3d prn = front;
   const Eigen::Vector3d sn = require(profile.extreme(prn.z() - 25, prn.z() - 3, false), "subnasale");
   const Eigen::Vector3d n = require(profile.extreme(prn.z() + 10, prn.z() + 45, false), "nasion");
   const Eigen::Vector3d g = require(profile.extreme(n.z() + 3, n.z() + 25, true), "glabella");
@@ -81,9 +136,22 @@ FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorX
   const Eigen::Vector3d ls = require(profile.extreme(sn.z() - 20, sn.z() - 3, true), "upper lip");
   const Eigen::Vector3d li = require(profile.extreme(ls.z() - 30, ls.z() - 6, true), "lower lip");
   const Eigen::Vector3d st = require(profile.extreme(li.z() + 1, ls.z() - 1, false), "stomion");
-  l.points = {{"pronasale", prn}, {"subnasale", sn}, {"nasion", n},          {"glabella", g},
+  l.points = {{"pronasale", prn},       {"subnasale", sn},        {"nasion", n},  {"glabella", g},
               {"labrale superius", ls}, {"labrale inferius", li}, {"stomion", st}};
   return l;
+}
+
+std::string landmarks_text(const FaceLandmarks& l, const std::string& indent) {
+  std::ostringstream os;
+  if (!std::isnan(l.clipped_from))
+    os << indent << "the scan's field of view cuts the face flat from z = " << l.clipped_from << " to " << l.clipped_to
+       << " mm: landmarks inside the cut are estimated from typical proportions\n";
+  for (const auto& [name, p] : l.points) {
+    const bool estimated = std::find(l.estimated.begin(), l.estimated.end(), name) != l.estimated.end();
+    os << indent << name << " at (" << p.x() << ", " << p.y() << ", " << p.z() << ") mm"
+       << (estimated ? " (estimated)" : "") << "\n";
+  }
+  return os.str();
 }
 
 const std::vector<FeatureSpec>& feature_specs() {

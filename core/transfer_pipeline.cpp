@@ -1,11 +1,13 @@
 #include "core/transfer_pipeline.h"
 
+#include <Eigen/LU>
+#include <Eigen/QR>
+#include <algorithm>
+#include <memory>
+
 #include "core/corner_jacobian.h"
 #include "core/error.h"
 #include "core/stopwatch.h"
-
-#include <algorithm>
-#include <memory>
 
 namespace facehex {
 namespace {
@@ -45,6 +47,50 @@ VertexPlacement parametric_placement(const TransferRun& run, const PatientMap& p
   return placement;
 }
 
+// The last resort's placement: the vertices not fixed move in space, a vertex on a side only along that side's tangent
+// plane (normal: the gradient of the side's field in the patient tet the vertex was placed in), so it stays on the
+// patient's surface to first order; on two sides it slides along their common edge.
+VertexPlacement sliding_placement(const TransferRun& run, const PatientMap& patient, const std::vector<char>& fixed) {
+  VertexPlacement placement = spatial_placement(run.patient_hex.V, fixed);
+  const Eigen::MatrixXd uvw = hex_vertex_uvw(run, static_cast<int>(fixed.size()));
+  for (int v = 0; v < static_cast<int>(fixed.size()); ++v) {
+    if (fixed[v]) continue;
+    const Eigen::Matrix3d gradients = patient.jacobian(run.transfer.tet(v)).inverse();  // rows: grad u, v, w
+    Eigen::MatrixXd normals(3, 0);
+    for (int f = 0; f < 3; ++f)
+      if (run.standard.fixed(v, f) && (uvw(v, f) == 0.0 || uvw(v, f) == 1.0)) {
+        normals.conservativeResize(3, normals.cols() + 1);
+        normals.col(normals.cols() - 1) = gradients.row(f).transpose();
+      }
+    if (normals.cols() == 0) continue;
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(normals);
+    const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(3, normals.cols());
+    placement.movable[v] = Eigen::Matrix3d::Identity() - Q * Q.transpose();
+  }
+  return placement;
+}
+
+// Moves each free vertex to the mean of the other nodes of its cells, ten times: a collapsed cluster of vertices
+// (a fold the local untangling steps cannot open one vertex at a time) is spread out before the last passes.
+void spread_free_vertices(VolumeMesh& mesh, const std::vector<char>& fixed) {
+  for (int iteration = 0; iteration < 10; ++iteration) {
+    Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(mesh.num_vertices(), 3);
+    Eigen::VectorXd count = Eigen::VectorXd::Zero(mesh.num_vertices());
+    for (int c = 0; c < mesh.num_cells(); ++c)
+      for (int i = 0; i < node_count(mesh.types[c]); ++i) {
+        const int v = mesh.C(c, i);
+        if (fixed[v]) continue;
+        for (int j = 0; j < node_count(mesh.types[c]); ++j)
+          if (j != i) {
+            sum.row(v) += mesh.V.row(mesh.C(c, j));
+            ++count(v);
+          }
+      }
+    for (int v = 0; v < mesh.num_vertices(); ++v)
+      if (!fixed[v] && count(v) > 0) mesh.V.row(v) = sum.row(v) / count(v);
+  }
+}
+
 }  // namespace
 
 ModelParameterization parameterize_model(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T,
@@ -67,10 +113,10 @@ ModelParameterization parameterize_model(const Eigen::MatrixXd& V, const Eigen::
 }
 
 TransferRun run_transfer(const VolumeMesh& standard, const StandardDomain& domain,
-                         const ConstraintSet& standard_constraints,
-                         const std::string& standard_source, const VolumeMesh& patient,
-                         const ConstraintSet& patient_constraints, const std::string& patient_source,
-                         const TransferOptions& options, const ProgressCallback& progress) {
+                         const ConstraintSet& standard_constraints, const std::string& standard_source,
+                         const VolumeMesh& patient, const ConstraintSet& patient_constraints,
+                         const std::string& patient_source, const TransferOptions& options,
+                         const ProgressCallback& progress) {
   TransferRun run;
   Stopwatch clock;
   if (domain.hex_vertices != standard.num_vertices() ||
@@ -78,6 +124,7 @@ TransferRun run_transfer(const VolumeMesh& standard, const StandardDomain& domai
     throw Error(standard_source, "the parameterization domain was not built from this standard mesh");
   run.standard_domain = domain.description;
   run.standard_domain_non_positive = domain.non_positive_tets;
+  run.standard_relaxed_corner_vertices = domain.relaxed_corner_vertices;
   run.standard = parameterize_model(domain.V, domain.T, domain.side_mask, standard_constraints, standard_source,
                                     options.fields, sub_progress(progress, 0.0, 0.3));
   run.seconds["standard_parameterization"] = clock.lap();
@@ -100,17 +147,26 @@ TransferRun run_transfer(const VolumeMesh& standard, const StandardDomain& domai
   run.seconds["mapping"] = clock.lap();
   if (options.untangle) {
     VertexPlacement placement = parametric_placement(run, patient_map, standard.num_vertices());
-    // While inverted cells remain: widen the region that may move (a fold may need room beyond two rings), then
-    // release the feature pins (never the sides) of the vertices of the cells still inverted: where the patient's
-    // anatomy squeezes a feature (a flat nose), a valid element matters more than an exact feature line.
+    // While unusable (inverted or flat) cells remain: widen the region that may move (a fold may need room beyond two
+    // rings), then release the feature pins (never the sides) of the vertices of the cells still unusable: where the
+    // patient's anatomy squeezes a feature (a flat nose), a valid element matters more than an exact feature line.
     UntangleOptions pass = options.untangle_options;
     run.untangle = untangle(run.patient_hex, placement, pass);
-    for (int attempt = 0; attempt < 3 && run.untangle.inverted_after > 0; ++attempt) {
+    auto remaining = [&] { return run.untangle.inverted_after + run.untangle.degenerate_after; };
+    auto take = [&](const UntangleReport& again) {
+      run.untangle.inverted_after = again.inverted_after;
+      run.untangle.degenerate_after = again.degenerate_after;
+      run.untangle.bad_after = again.bad_after;
+      run.untangle.min_scaled_jacobian_after = again.min_scaled_jacobian_after;
+      run.untangle.free_vertices = std::max(run.untangle.free_vertices, again.free_vertices);
+      run.untangle.sweeps += again.sweeps;
+    };
+    for (int attempt = 0; attempt < 3 && remaining() > 0; ++attempt) {
       if (attempt < 2) {
         pass.rings += 2;
       } else {
         const Eigen::MatrixXd uvw = hex_vertex_uvw(run, standard.num_vertices());
-        for (int c : check_corner_jacobians(run.patient_hex).inverted)
+        for (int c : check_corner_jacobians(run.patient_hex).unusable())
           for (int i = 0; i < node_count(standard.types[c]); ++i) {
             const int v = standard.C(c, i);
             for (int f = 0; f < 3; ++f)
@@ -118,26 +174,56 @@ TransferRun run_transfer(const VolumeMesh& standard, const StandardDomain& domai
             ++run.untangle.released_feature_vertices;
           }
       }
-      const UntangleReport again = untangle(run.patient_hex, placement, pass);
-      run.untangle.inverted_after = again.inverted_after;
-      run.untangle.bad_after = again.bad_after;
-      run.untangle.min_scaled_jacobian_after = again.min_scaled_jacobian_after;
-      run.untangle.free_vertices = std::max(run.untangle.free_vertices, again.free_vertices);
-      run.untangle.sweeps += again.sweeps;
+      take(untangle(run.patient_hex, placement, pass));
     }
-    if (run.untangle.inverted_after > 0) {
-      // Last resort: the vertices of the cells still inverted move freely in space, even off their side by a
-      // little (reported as side_vertex_distance), since a valid element matters more than an exact boundary there.
-      std::vector<char> fixed(standard.num_vertices(), 1);
-      for (int c : check_corner_jacobians(run.patient_hex).inverted)
-        for (int i = 0; i < node_count(standard.types[c]); ++i) fixed[standard.C(c, i)] = 0;
-      for (int v = 0; v < standard.num_vertices(); ++v) run.untangle.released_side_vertices += !fixed[v];
-      VertexPlacement spatial = spatial_placement(run.patient_hex.V, fixed);
-      const UntangleReport last = untangle(run.patient_hex, spatial, pass);
-      run.untangle.inverted_after = last.inverted_after;
-      run.untangle.bad_after = last.bad_after;
-      run.untangle.min_scaled_jacobian_after = last.min_scaled_jacobian_after;
-      run.untangle.sweeps += last.sweeps;
+    // Last resort, in up to five passes: the vertices of the cells still unusable, and of the cells within 1 to 5
+    // rings around them, move in space; side vertices only if they belong to an unusable cell, and along their side
+    // (to first order: they may leave it by a little, reported as side_vertex_distance). From the third pass on, the
+    // free vertices off the sides are first spread out (a collapsed cluster, which one-vertex-at-a-time steps cannot
+    // open). In the fifth, all vertices within 5 rings, side vertices too, are spread and move freely (where the
+    // standard's side meets a patient side far away, as the inner wall of the standard's nostrils the patient's bone),
+    // since a valid element matters more than an exact boundary there.
+    const Eigen::MatrixXd uvw = hex_vertex_uvw(run, standard.num_vertices());
+    auto on_side = [&](int v) {
+      for (int f = 0; f < 3; ++f)
+        if (run.standard.fixed(v, f) && (uvw(v, f) == 0.0 || uvw(v, f) == 1.0)) return true;
+      return false;
+    };
+    constexpr int kLastResortPasses = 5;
+    for (int rings = 1; rings <= kLastResortPasses && remaining() > 0; ++rings) {
+      const bool final_pass = rings == kLastResortPasses;
+      std::vector<char> in_cell(standard.num_vertices(), 0);  // vertices of the unusable cells
+      for (int c : check_corner_jacobians(run.patient_hex).unusable())
+        for (int i = 0; i < node_count(standard.types[c]); ++i) in_cell[standard.C(c, i)] = 1;
+      std::vector<char> free = in_cell;
+      for (int ring = 0; ring < rings; ++ring) {
+        std::vector<char> grown = free;
+        for (int c = 0; c < standard.num_cells(); ++c) {
+          bool touches = false;
+          for (int i = 0; i < node_count(standard.types[c]); ++i) touches |= free[standard.C(c, i)] != 0;
+          if (touches)
+            for (int i = 0; i < node_count(standard.types[c]); ++i) grown[standard.C(c, i)] = 1;
+        }
+        free.swap(grown);
+      }
+      // Side vertices move only if they belong to an unusable cell, except in the final pass.
+      std::vector<char> fixed(standard.num_vertices());
+      int released = 0;
+      for (int v = 0; v < standard.num_vertices(); ++v) {
+        fixed[v] = !free[v] || (!final_pass && on_side(v) && !in_cell[v]);
+        released += !fixed[v] && on_side(v);
+      }
+      run.untangle.released_side_vertices = std::max(run.untangle.released_side_vertices, released);
+      if (rings >= 3) {
+        std::vector<char> kept = fixed;  // side vertices are not spread, except in the final pass
+        if (!final_pass)
+          for (int v = 0; v < standard.num_vertices(); ++v) kept[v] |= on_side(v);
+        spread_free_vertices(run.patient_hex, kept);
+      }
+      VertexPlacement last =
+          final_pass ? spatial_placement(run.patient_hex.V, fixed) : sliding_placement(run, patient_map, fixed);
+      pass.max_sweeps = 2 * options.untangle_options.max_sweeps;  // few vertices: cheap, and a long way may remain
+      take(untangle(run.patient_hex, last, pass));
     }
     run.seconds["untangle"] = clock.lap();
   }

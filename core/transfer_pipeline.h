@@ -49,6 +49,7 @@ struct TransferRun {
   ModelParameterization standard, patient;  // standard: on its domain; its first #Vs rows are the hex vertices
   std::string standard_domain;              // how the standard's tet domain was built
   int standard_domain_non_positive = 0;     // domain tets with non-positive volume (badly shaped standard cells)
+  int standard_relaxed_corner_vertices = 0;  // side labels dropped at the standard's shell corners
   VolumeMesh patient_hex;
   TransferStatistics transfer;
   UntangleReport untangle;

@@ -1,19 +1,19 @@
 #include "core/untangle.h"
 
-#include "core/corner_jacobian.h"
-
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <set>
 
+#include "core/corner_jacobian.h"
+
 namespace facehex {
 namespace {
 
 struct Corner {
-  int cell, k;  // k: corner index, or kCentre for a hex's centre
+  int cell, k;  // k: corner index, or kSample + s for the cell's interior sample s (corner_jacobian.h)
 };
-constexpr int kCentre = 8;
+constexpr int kSample = 8;
 
 // Inverse ideal corner matrices W_k^-1 per cell type and corner.
 const Eigen::Matrix3d& ideal_inverse(CellType type, int k) {
@@ -89,18 +89,22 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
   auto is_bad = [&](int c) {
     return min_corner_determinant(mesh.types[c], cell_nodes(mesh, c)) <= 0 || scaled(c) < options.min_scaled_jacobian;
   };
-  auto tally = [&](int& inverted, int& bad, double& min_sj) {
-    inverted = bad = 0;
+  auto unusable = [&](int c) { return is_unusable(mesh.types[c], cell_nodes(mesh, c)); };
+  auto tally = [&](int& inverted, int& degenerate, int& bad, double& min_sj) {
+    inverted = degenerate = bad = 0;
     min_sj = 1;
     for (int c = 0; c < nc; ++c) {
-      inverted += min_corner_determinant(mesh.types[c], cell_nodes(mesh, c)) <= 0;
+      const bool is_inverted = min_corner_determinant(mesh.types[c], cell_nodes(mesh, c)) <= 0;
+      inverted += is_inverted;
+      degenerate += !is_inverted && unusable(c);
       bad += is_bad(c);
       min_sj = std::min(min_sj, scaled(c));
     }
   };
-  tally(report.inverted_before, report.bad_before, report.min_scaled_jacobian_before);
+  tally(report.inverted_before, report.degenerate_before, report.bad_before, report.min_scaled_jacobian_before);
   if (report.bad_before == 0) {
     report.inverted_after = report.inverted_before;
+    report.degenerate_after = report.degenerate_before;
     report.min_scaled_jacobian_after = report.min_scaled_jacobian_before;
     return report;
   }
@@ -125,15 +129,20 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
     if (!movable[v].isZero()) free_vertices.push_back(v);
   report.free_vertices = static_cast<int>(free_vertices.size());
 
-  // Corners touching each free vertex (the vertex is the corner node or one of its three neighbours), and the
-  // centre of every hex around it (k = kCentre).
+  // Corners touching each free vertex (the vertex is the corner node or one of its three neighbours), the centre of
+  // every hex around it (its first interior sample), and all interior samples of the cells bad at the start (the
+  // Gauss points of every cell would triple the time for cells that are fine anyway).
   std::vector<std::vector<Corner>> corners_of(nv);
   for (int v : free_vertices)
     for (int c : cells_of[v]) {
-      if (mesh.types[c] == CellType::Hex) corners_of[v].push_back({c, kCentre});
+      const int samples = is_bad(c) ? static_cast<int>(interior_sample_weights(mesh.types[c]).size())
+                          : mesh.types[c] == CellType::Hex ? 1
+                                                           : 0;
+      for (int sample = 0; sample < samples; ++sample) corners_of[v].push_back({c, kSample + sample});
       for (int k = 0; k < node_count(mesh.types[c]); ++k) {
         const auto& n = corner_nodes(mesh.types[c], k);
-        if (std::any_of(n.begin(), n.end(), [&](int local) { return mesh.C(c, local) == v; })) corners_of[v].push_back({c, k});
+        if (std::any_of(n.begin(), n.end(), [&](int local) { return mesh.C(c, local) == v; }))
+          corners_of[v].push_back({c, k});
       }
     }
 
@@ -145,11 +154,12 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
       const CellType type = mesh.types[corner.cell];
       const CellNodes X = cell_nodes(mesh, corner.cell);
       Eigen::Matrix3d dA;
-      if (corner.k == kCentre) {  // A = X^T W: node i contributes dA * W.row(i)^T
-        e += energy.corner(hex_center_jacobian(X), Eigen::Matrix3d::Identity(), gradient ? &dA : nullptr);
+      if (corner.k >= kSample) {  // A = X^T W: node i contributes dA * W.row(i)^T
+        const SampleWeights& W = interior_sample_weights(type)[corner.k - kSample];
+        e += energy.corner(X.transpose() * W, Eigen::Matrix3d::Identity(), gradient ? &dA : nullptr);
         if (gradient)
-          for (int i = 0; i < 8; ++i)
-            if (mesh.C(corner.cell, i) == v) *gradient += dA * hex_center_weights().row(i).transpose();
+          for (int i = 0; i < node_count(type); ++i)
+            if (mesh.C(corner.cell, i) == v) *gradient += dA * W.row(i).transpose();
         continue;
       }
       const auto& n = corner_nodes(type, corner.k);
@@ -171,8 +181,9 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
       for (const Corner& corner : corners_of[v]) {
         const CellType type = mesh.types[corner.cell];
         const CellNodes X = cell_nodes(mesh, corner.cell);
-        const Eigen::Matrix3d S = corner.k == kCentre ? hex_center_jacobian(X)
-                                                      : corner_jacobian(type, X, corner.k) * ideal_inverse(type, corner.k);
+        const Eigen::Matrix3d S = corner.k >= kSample
+                                      ? (X.transpose() * interior_sample_weights(type)[corner.k - kSample]).eval()
+                                      : corner_jacobian(type, X, corner.k) * ideal_inverse(type, corner.k);
         sigma_min = std::min(sigma_min, normalized_determinant(S));
       }
     constexpr double eps = 1e-3;
@@ -197,7 +208,7 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
       double edge = 0;
       int edges = 0;
       for (const Corner& corner : corners_of[v])
-        if (corner.k != kCentre)
+        if (corner.k < kSample)
           for (int local : corner_nodes(mesh.types[corner.cell], corner.k))
             if (mesh.C(corner.cell, local) != v) {
               edge += (mesh.V.row(mesh.C(corner.cell, local)) - x0).norm();
@@ -219,17 +230,17 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
       const Eigen::Matrix3d Hp =
           M * J.transpose() * Hx * J * M + (Eigen::Matrix3d::Identity() - M) * (J.transpose() * Hx * J).norm();
       const Eigen::LLT<Eigen::Matrix3d> llt(Hp);
-      Eigen::Vector3d step = (llt.info() == Eigen::Success && Hp.allFinite()) ? Eigen::Vector3d(-(M * llt.solve(g)))
-                                                                              : Eigen::Vector3d(-g);
+      Eigen::Vector3d step =
+          (llt.info() == Eigen::Success && Hp.allFinite()) ? Eigen::Vector3d(-(M * llt.solve(g))) : Eigen::Vector3d(-g);
       const double reach = (J * step).norm();
       if (reach > 0.5 * edge) step *= 0.5 * edge / reach;  // no jumps across several cells
-      // A step never inverts a cell around v that was not inverted before: the count of inverted cells only falls.
-      auto inverted_around = [&] {
+      // A step never makes a cell around v unusable that was not before: the count of unusable cells only falls.
+      auto unusable_around = [&] {
         int n = 0;
-        for (int c : cells_of[v]) n += min_corner_determinant(mesh.types[c], cell_nodes(mesh, c)) <= 0;
+        for (int c : cells_of[v]) n += unusable(c);
         return n;
       };
-      const int inverted_before = inverted_around();
+      const int unusable_before = unusable_around();
       bool improved = false;
       double t = 1;
       for (int halving = 0; halving < 30 && !improved; ++halving, t *= 0.5) {
@@ -238,20 +249,20 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
         const Eigen::Vector3d p = p0 + t * step;
         if (!placement.place(v, p, x, unused)) continue;
         mesh.V.row(v) = x.transpose();
-        improved = vertex_energy(v, nullptr) < e0 + 1e-4 * t * g.dot(step) && inverted_around() <= inverted_before;
+        improved = vertex_energy(v, nullptr) < e0 + 1e-4 * t * g.dot(step) && unusable_around() <= unusable_before;
         if (improved) placement.p.row(v) = p.transpose();
       }
       if (!improved) mesh.V.row(v) = x0;
       moved = std::max(moved, (mesh.V.row(v) - x0).norm());
       size = std::max(size, edge);
     }
-    int inverted = 0;
+    int unusable_left = 0;
     for (int v : free_vertices)
-      for (int c : cells_of[v]) inverted += min_corner_determinant(mesh.types[c], cell_nodes(mesh, c)) <= 0;
-    // Done when nothing is inverted and the smoothing has settled (or had a fair number of sweeps).
-    if (inverted == 0 && (moved < 1e-3 * size || report.sweeps >= 30)) break;
+      for (int c : cells_of[v]) unusable_left += unusable(c);
+    // Done when nothing is unusable and the smoothing has settled (or had a fair number of sweeps).
+    if (unusable_left == 0 && (moved < 1e-3 * size || report.sweeps >= 30)) break;
   }
-  tally(report.inverted_after, report.bad_after, report.min_scaled_jacobian_after);
+  tally(report.inverted_after, report.degenerate_after, report.bad_after, report.min_scaled_jacobian_after);
   return report;
 }
 

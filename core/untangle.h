@@ -8,10 +8,13 @@
 // With delta = 0, eta = |S|_F^2 / (3 det(S)^(2/3)), the inverse mean-ratio shape of the corner (1 for the ideal
 // corner, larger when distorted); with delta > 0, h stays positive for inverted corners, so the sum is finite and
 // smooth and its minimum has sigma > 0 everywhere: minimizing it untangles. Normalizing sigma makes delta mean the
-// same for small and large cells. delta is taken from the worst corner and is 0 once nothing is inverted.
+// same for small and large cells. delta is taken from the worst corner and is 0 once nothing is inverted. A hex's
+// centre counts as a corner too, with S = its Jacobian. A step is taken only if it makes no cell around the vertex
+// unusable (inverted at a corner or an interior sample point, corner_jacobian.h, or flat), so the result is valid
+// where solvers evaluate it.
 //
 // Only vertices near bad cells move (within `rings` vertex rings of a cell that is inverted or whose scaled Jacobian
-// is below `min_scaled_jacobian`), so the rest of the mapped mesh keeps exactly the shape the mapping gave it.
+// is below `min_scaled_jacobian`); a step never makes a cell unusable (inverted or degenerate) that was not, so the rest of the mapped mesh keeps exactly the shape the mapping gave it.
 // Vertices move through parameters: the untangler changes a vertex's parameters p, and a placement function gives
 // its position x(p) and dx/dp. With p = x this is plain smoothing in space; with p = (u, v, w) and x = the patient's
 // inverse parameterization (hex_transfer.h), a vertex whose u is pinned (a shape end, or the mid-sagittal feature)
@@ -34,6 +37,7 @@ struct UntangleOptions {
 
 struct UntangleReport {
   int inverted_before = 0, inverted_after = 0;
+  int degenerate_before = 0, degenerate_after = 0;  // flat, not inverted (corner_jacobian.h)
   int bad_before = 0, bad_after = 0;  // inverted or below min_scaled_jacobian
   double min_scaled_jacobian_before = 0, min_scaled_jacobian_after = 0;
   int free_vertices = 0;  // vertices allowed to move

@@ -2,6 +2,7 @@
 
 #include "core/io/mesh_io.h"
 #include "core/resources.h"
+#include "core/segment/ct_volume.h"
 #include "ui/angle_histogram.h"
 #include "ui/autosave.h"
 #include "ui/constraint_panel.h"
@@ -104,8 +105,10 @@ void MainWindow::createActions() {
     return a;
   };
   openPatient_ = action(tr("Open &patient..."), QKeySequence::Open, &MainWindow::openPatientDialog);
-  openPatient_->setToolTip(tr("Open a patient tet model or closed surface (VTU, VTK, Gmsh, TetGen, ANSYS, STL, "
-                              "OBJ, PLY, VTP)"));
+  openPatient_->setToolTip(tr("Open a head CT (MetaImage, NIfTI, NRRD: segmented on opening), a patient tet model "
+                              "or a closed surface (VTU, VTK, Gmsh, TetGen, ANSYS, STL, OBJ, PLY, VTP)"));
+  openDicom_ = action(tr("Open &DICOM folder..."), QKeySequence(), &MainWindow::openDicomDialog);
+  openDicom_->setToolTip(tr("Open a head CT stored as a folder of DICOM slices (segmented on opening)"));
   openDemo_ = action(tr("Open &demo"), QKeySequence(), [this] { controller_->openDemo(); });
   openStandardFile_ = action(tr("Open standard &file..."), QKeySequence(), [this] { onStandardChosen(-1); });
   loadConstraints_ = action(tr("&Load constraints..."), QKeySequence(), [this] { constraintsDialog(false); });
@@ -113,10 +116,11 @@ void MainWindow::createActions() {
   saveConstraints_ = action(tr("&Save constraints..."), QKeySequence::Save, &MainWindow::saveConstraintsDialog);
   recover_ = action(tr("&Recover autosaved"), QKeySequence(), &MainWindow::recoverAutosave);
   features_ = action(tr("Facial &features"), QKeySequence(), [this] {
-    controller_->addFeatureConstraints(session_->activeRole(), session_->plane().band);
+    controller_->placeFeatureConstraints(session_->activeRole(), session_->plane().band);
   });
-  features_->setToolTip(tr("Add the feature lines (mid-sagittal, eyebrow, below the nose, lips) at the model's "
-                           "landmarks, valued as the standard's, selected with the band width above"));
+  features_->setToolTip(tr("Place the feature lines (mid-sagittal, eyebrow, below the nose, lips) at the model's "
+                           "landmarks again, valued as the standard's, selected with the band width above; they "
+                           "replace the ones of the same names"));
   recover_->setToolTip(tr("Load the constraints autosaved after the last edit of this model (after a crash)"));
   export_ = action(tr("&Export hex mesh..."), QKeySequence(tr("Ctrl+E")), &MainWindow::exportDialog);
   screenshot_ = action(tr("Save screens&hot..."), QKeySequence(), &MainWindow::screenshotDialog);
@@ -140,14 +144,15 @@ void MainWindow::createActions() {
   allowInverted_->setCheckable(true);
   allowInverted_->setToolTip(tr("Map even when the patient parameterization folds (the CLI's --allow-inverted)"));
   about_ = action(tr("&About FaceHex"), QKeySequence(), &MainWindow::about);
-  for (QAction* a : {openPatient_, openDemo_, loadConstraints_, mergeConstraints_, saveConstraints_, export_,
-                     computeFields_, transfer_, cancel_, recover_, features_})
+  for (QAction* a : {openPatient_, openDicom_, openDemo_, loadConstraints_, mergeConstraints_, saveConstraints_,
+                     export_, computeFields_, transfer_, cancel_, recover_, features_})
     a->setObjectName(a->text().remove('&').remove("...").replace(' ', '_'));
 }
 
 void MainWindow::createMenusAndToolbar() {
   QMenu* file = menuBar()->addMenu(tr("&File"));
   file->addAction(openPatient_);
+  file->addAction(openDicom_);
   recentMenu_ = file->addMenu(tr("Open &recent"));
   file->addAction(openDemo_);
   QMenu* standards = file->addMenu(tr("Open &standard"));
@@ -239,7 +244,7 @@ void MainWindow::updateActions() {
   const bool busy = controller_->busy();
   const bool active = session_->hasModel(session_->activeRole());
   const bool both = session_->hasModel(Role::Standard) && session_->hasModel(Role::Patient);
-  for (QAction* a : {openPatient_, openDemo_, openStandardFile_}) a->setEnabled(!busy);
+  for (QAction* a : {openPatient_, openDicom_, openDemo_, openStandardFile_}) a->setEnabled(!busy);
   standardChoice_->setEnabled(!busy);
   for (QAction* a : {loadConstraints_, mergeConstraints_, saveConstraints_}) a->setEnabled(active);
   features_->setEnabled(active && session_->model(session_->activeRole()).domain.side_mask.size() > 0);
@@ -288,10 +293,21 @@ void MainWindow::onStandardChosen(int index) {
 }
 
 void MainWindow::openPatientDialog() {
+  std::vector<std::string> all = ct_volume_extensions();
+  const std::vector<std::string> meshes = readable_volume_extensions();
+  all.insert(all.end(), meshes.begin(), meshes.end());
   const QString path = QFileDialog::getOpenFileName(
-      this, tr("Open a patient model"), QSettings().value(kRecentKey).toStringList().value(0),
-      filter(tr("Tet models and closed surfaces"), readable_volume_extensions()) + ";;" + tr("All files (*)"));
+      this, tr("Open a patient"), QSettings().value(kRecentKey).toStringList().value(0),
+      QStringList{filter(tr("CT volumes and patient models"), all), filter(tr("CT volumes"), ct_volume_extensions()),
+                  filter(tr("Tet models and closed surfaces"), meshes), tr("All files (*)")}
+          .join(";;"));
   if (!path.isEmpty()) openPatient(path);
+}
+
+void MainWindow::openDicomDialog() {
+  const QString folder = QFileDialog::getExistingDirectory(this, tr("Open a folder of DICOM slices"),
+                                                           QSettings().value(kRecentKey).toStringList().value(0));
+  if (!folder.isEmpty()) openPatient(folder);
 }
 
 void MainWindow::openPatient(const QString& path) {
@@ -378,7 +394,8 @@ void MainWindow::dragEnterEvent(QDragEnterEvent* event) {
 }
 
 void MainWindow::dropEvent(QDropEvent* event) {
-  // A constraint set goes to the active model; anything else is opened as the patient (errors say what is wrong).
+  // A constraint set goes to the active model; anything else (a CT volume or DICOM folder, a tet model, a surface) is
+  // opened as the patient (errors say what is wrong).
   for (const QUrl& url : event->mimeData()->urls()) {
     const QString path = url.toLocalFile();
     if (path.isEmpty()) continue;

@@ -54,6 +54,7 @@ class MainWindow : public QMainWindow {
   void updateSizes();
   void updateStandardChoice();
   void openPatientDialog();
+  void openDicomDialog();
   void openPatient(const QString& path);
   void onStandardChosen(int index);
   void constraintsDialog(bool merge);
@@ -72,9 +73,9 @@ class MainWindow : public QMainWindow {
   ConstraintPanel* constraintPanel_ = nullptr;
   ErrorReporter reportError_;
 
-  QAction *openPatient_, *openDemo_, *openStandardFile_, *loadConstraints_, *mergeConstraints_, *saveConstraints_,
-      *recover_, *export_, *screenshot_, *quit_, *undo_, *redo_, *computeFields_, *transfer_, *cancel_,
-      *allowInverted_, *features_, *about_;
+  QAction *openPatient_, *openDicom_, *openDemo_, *openStandardFile_, *loadConstraints_, *mergeConstraints_,
+      *saveConstraints_, *recover_, *export_, *screenshot_, *quit_, *undo_, *redo_, *computeFields_, *transfer_,
+      *cancel_, *allowInverted_, *features_, *about_;
   QMenu* recentMenu_ = nullptr;
   QComboBox* standardChoice_ = nullptr;
   QLabel* sizes_ = nullptr;

@@ -1,8 +1,11 @@
 #include "ui/model_loading.h"
 
+#include "core/automatic_constraints.h"
+#include "core/io/mesh_io.h"
 #include "core/mesh_check.h"
 #include "core/quality/hex_quality.h"
 #include "core/resources.h"
+#include "core/segment/patient_input.h"
 #include "core/side_mask.h"
 #include "core/standard/closed_domain.h"
 #include "core/synthetic_shell.h"
@@ -32,27 +35,41 @@ LoadedModel tet_model(VolumeMesh mesh) {
   return m;
 }
 
-void set_constraints(LoadedModel& m, const std::string& path) {
+// The constraints a model opens with: those of `path` if it exists; else, with side labels, the six sides and, when
+// `feature_values` is given, the facial features (automatic_constraints) unless they cannot be placed; else none.
+// Returns which, for the status bar.
+QString set_constraints(LoadedModel& m, const std::string& path, const std::map<std::string, double>* feature_values) {
+  QString what = QObject::tr("no constraints (the model has no side labels)");
   if (!path.empty() && fs::exists(path)) {
     m.constraints.set = read_constraint_set(path);
     m.constraintsPath = QString::fromStdString(path);
+    what = QObject::tr("constraints from %1").arg(QFileInfo(m.constraintsPath).fileName());
   } else if (m.domain.side_mask.size() > 0) {
     m.constraints.set = side_constraints();
+    what = QObject::tr("the six sides");
+    if (feature_values) {
+      try {
+        m.constraints.set = automatic_constraints(m.domain.V, m.domain.side_mask, *feature_values);
+        what = QObject::tr("the six sides and %1 facial features").arg(feature_specs().size());
+      } catch (const std::exception& e) {
+        what += QObject::tr(", no facial features (%1)").arg(QString::fromStdString(e.what()));
+      }
+    }
   }
   m.constraints.visible.assign(m.constraints.set.constraints.size(), true);
+  return what;
 }
 
 }  // namespace
 
-LoadedModel load_patient(const std::string& path, const MeshReadOptions& options) {
-  VolumeMesh mesh = read_volume_mesh(path, options);
-  check_and_orient_tet_mesh(mesh, path);
-  LoadedModel m = tet_model(std::move(mesh));
+LoadedModel load_patient(const std::string& path, const std::map<std::string, double>& feature_values,
+                         const ProgressCallback& progress, QString& constraints_note) {
+  LoadedModel m = tet_model(load_patient_model(path, SegmentOptions{}, progress).mesh);
   m.path = QString::fromStdString(path);
   m.name = QFileInfo(m.path).fileName();
   fs::path constraints = fs::path(path).replace_extension(".json");
   if (!fs::exists(constraints)) constraints = fs::path(path).parent_path() / "constraints.json";
-  set_constraints(m, constraints.string());
+  constraints_note = set_constraints(m, constraints.string(), &feature_values);
   return m;
 }
 
@@ -65,14 +82,14 @@ LoadedModel load_standard(const std::string& name_or_path) {
   m.quality = element_quality(m.mesh);
   m.path = QString::fromStdString(b.mesh);
   m.name = QString::fromStdString(b.name);
-  set_constraints(m, b.constraints);
+  set_constraints(m, b.constraints, nullptr);
   return m;
 }
 
-LoadedModel demo_patient() {
+LoadedModel demo_patient(const std::map<std::string, double>& feature_values, QString& constraints_note) {
   if (!bundled_patients().empty()) {
     const BundledModel b = default_patient();
-    LoadedModel m = load_patient(b.mesh);
+    LoadedModel m = load_patient(b.mesh, feature_values, {}, constraints_note);
     m.name = QString::fromStdString(b.name);
     return m;
   }
@@ -89,7 +106,7 @@ LoadedModel demo_patient() {
   check_and_orient_tet_mesh(r.mesh, name);
   LoadedModel m = tet_model(std::move(r.mesh));
   m.name = QString::fromStdString(name);
-  set_constraints(m, "");  // its six sides
+  constraints_note = set_constraints(m, "", &feature_values);
   return m;
 }
 

@@ -1,23 +1,28 @@
 #pragma once
-// Models from files, with the core calls the CLI makes (read, check and orient, parameterization domain, constraint
-// set). Run on the controller's worker thread; every failure is a facehex::Error naming the file.
-#include "core/io/mesh_io.h"
+// Models from files, with the core calls the CLI makes (read or segment, check and orient, parameterization domain,
+// constraint set). Run on the controller's worker thread; every failure is a facehex::Error naming the file.
+#include "core/progress.h"
 #include "ui/session_model.h"
 
+#include <map>
 #include <string>
 
 namespace facehex::gui {
 
-// A patient tet model or closed surface. Its constraints: NAME.json beside it, else constraints.json in its folder
-// (the bundled patients' layout), else the six sides when it has "side_mask", else none.
-LoadedModel load_patient(const std::string& path, const MeshReadOptions& options = {});
+// A patient: a head CT (segmented with the CLI's defaults; `progress` hears of it), a tet model or a closed surface
+// (core/segment/patient_input.h). Its constraints: NAME.json beside it, else constraints.json in its folder (the
+// bundled patients' layout); else, when it has side labels, those `facehex run` places (core/automatic_constraints.h):
+// the six sides and the facial features valued by `feature_values` (the standard's), or the six sides alone when the
+// features cannot be placed; else none. `constraints_note` says which, and why no features, for the status bar.
+LoadedModel load_patient(const std::string& path, const std::map<std::string, double>& feature_values,
+                         const ProgressCallback& progress, QString& constraints_note);
 
 // A bundled standard by name, or a hex-dominant mesh file (constraints found as in core/resources.h), on the CLI's
 // default parameterization domain (closed_domain: its openings filled).
 LoadedModel load_standard(const std::string& name_or_path);
 
-// The bundled sample patient; while none is bundled, the synthetic face-like shell of core/synthetic_shell.h
-// (tetrahedralized, sides labelled, constrained by its six sides).
-LoadedModel demo_patient();
+// The bundled sample patient (constrained as load_patient does); while none is bundled, the synthetic face-like shell
+// of core/synthetic_shell.h (tetrahedralized, sides labelled, constrained likewise).
+LoadedModel demo_patient(const std::map<std::string, double>& feature_values, QString& constraints_note);
 
 }  // namespace facehex::gui

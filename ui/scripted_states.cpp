@@ -1,5 +1,6 @@
 #include "ui/scripted_states.h"
 
+#include "core/resources.h"
 #include "ui/main_window.h"
 #include "ui/model_view.h"
 #include "ui/transfer_controller.h"
@@ -8,12 +9,12 @@
 #include <QDoubleSpinBox>
 #include <QLineEdit>
 #include <QTabWidget>
-#include <algorithm>
+#include <QTableWidget>
 
 namespace facehex::gui {
 namespace {
 
-const QStringList kNames = {"loaded", "plane", "fields", "glyphs", "transfer", "quality"};
+const QStringList kNames = {"loaded", "plane", "fields", "glyphs", "transfer", "quality", "ct"};
 
 // Runs a job and waits for it; a job that could not start or that failed reports through the window.
 bool runAndWait(MainWindow& window, bool started) {
@@ -25,18 +26,6 @@ bool runAndWait(MainWindow& window, bool started) {
   return ok;
 }
 
-// Before computing, the step the user guide recommends: a patient constrained by its six sides only gets the facial
-// features, when the standard has features to take the values from.
-bool addFacialFeatures(MainWindow& window) {
-  SessionModel* session = window.session();
-  const auto hasFeatures = [session](Role r) {
-    const auto& cs = session->constraints(r).set.constraints;
-    return std::any_of(cs.begin(), cs.end(), [](const Constraint& c) { return !c.select.side; });
-  };
-  if (hasFeatures(Role::Patient) || !hasFeatures(Role::Standard)) return true;
-  return window.controller()->addFeatureConstraints(Role::Patient, session->plane().band);
-}
-
 }  // namespace
 
 QStringList scriptedStateNames() { return kNames; }
@@ -45,6 +34,10 @@ std::optional<ScriptedState> scriptedStateFromName(const QString& name) {
   const int i = kNames.indexOf(name);
   if (i < 0) return std::nullopt;
   return static_cast<ScriptedState>(i);
+}
+
+QString defaultPatient(ScriptedState state) {
+  return state == ScriptedState::Ct ? QString::fromStdString(default_ct()) : QString();
 }
 
 bool openInputs(MainWindow& window, const QString& patient, const QString& standard) {
@@ -62,6 +55,10 @@ bool driveToState(MainWindow& window, ScriptedState state) {
   switch (state) {
     case ScriptedState::Loaded:
       break;
+    case ScriptedState::Ct:
+      d.showPlane = false;  // the sides and the feature lines, unobstructed
+      window.findChild<QTableWidget*>("constraintTable")->scrollToBottom();  // the features come after the sides
+      break;
     case ScriptedState::Plane: {
       // A feature line as a user places one: a horizontal plane at the eyebrows, on the skin.
       const LoadedModel& patient = session->model(Role::Patient);
@@ -72,16 +69,14 @@ bool driveToState(MainWindow& window, ScriptedState state) {
       session->setPlane(pose);
       const Eigen::Vector3d origin(0.5 * (lo.x() + hi.x()), 0.5 * (lo.y() + hi.y()), lo.z() + 0.8 * (hi.z() - lo.z()));
       window.view(Role::Patient)->movePlaneWidget(origin, Eigen::Vector3d::UnitZ());
-      window.findChild<QLineEdit*>("constraintName")->setText("eyebrow");
+      window.findChild<QLineEdit*>("constraintName")->setText("eyebrow line");
       window.findChild<QComboBox*>("constraintField")->setCurrentIndex(1);
-      window.findChild<QDoubleSpinBox*>("constraintValue")->setValue(0.7);
+      window.findChild<QDoubleSpinBox*>("constraintValue")->setValue(0.95);
       break;
     }
     case ScriptedState::Fields:
     case ScriptedState::Glyphs:
-      if (!session->parameterization(Role::Patient) &&
-          !(addFacialFeatures(window) && runAndWait(window, controller->computeFields())))
-        return false;
+      if (!session->parameterization(Role::Patient) && !runAndWait(window, controller->computeFields())) return false;
       analysis->setCurrentIndex(0);
       d.showPlane = false;
       d.showConstraints = false;
@@ -90,8 +85,7 @@ bool driveToState(MainWindow& window, ScriptedState state) {
       break;
     case ScriptedState::Transfer:
     case ScriptedState::Quality:
-      if (!session->transfer() && !(addFacialFeatures(window) && runAndWait(window, controller->runTransfer())))
-        return false;
+      if (!session->transfer() && !runAndWait(window, controller->runTransfer())) return false;
       analysis->setCurrentIndex(1);
       d.showHex = true;
       d.measure = state == ScriptedState::Quality ? QualityMeasure::ScaledJacobian : QualityMeasure::Shape;

@@ -9,12 +9,18 @@ namespace facehex::gui {
 
 class MainWindow;
 
-enum class ScriptedState { Loaded, Plane, Fields, Glyphs, Transfer, Quality };
+// Ct: a freshly opened CT, segmented, with its sides and automatic constraints (opened from the bundled CT when no
+// patient is given, see defaultPatient).
+enum class ScriptedState { Loaded, Plane, Fields, Glyphs, Transfer, Quality, Ct };
 QStringList scriptedStateNames();  // "loaded", "plane", ...
 std::optional<ScriptedState> scriptedStateFromName(const QString& name);
 
+// The patient a state opens when none is given: the bundled CT for Ct, else empty (the bundled demo).
+QString defaultPatient(ScriptedState state);
+
 // Opens the inputs and waits: the standard (a bundled name or a file; empty: the bundled default) and the patient
-// (empty: the bundled demo patient). False if one failed (the window's error reporter has been told why).
+// (a CT is segmented; empty: the bundled demo patient). False if one failed (the window's error reporter has been
+// told why).
 bool openInputs(MainWindow& window, const QString& patient, const QString& standard);
 
 // Brings the window to `state`, computing the fields or the transfer (and waiting) unless the session has them, and

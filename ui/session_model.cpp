@@ -2,6 +2,7 @@
 
 #include <QUndoCommand>
 #include <QUndoStack>
+#include <algorithm>
 #include <stdexcept>
 
 namespace facehex::gui {
@@ -138,8 +139,23 @@ void SessionModel::mergeConstraints(Role role, const ConstraintSet& set, const Q
   edit(role, std::move(list), what);
 }
 
+void SessionModel::setNamedConstraints(Role role, const ConstraintSet& set, const QString& what) {
+  ConstraintList list = constraints(role);
+  auto& cs = list.set.constraints;
+  for (const Constraint& c : set.constraints) {
+    const auto same = std::find_if(cs.begin(), cs.end(), [&c](const Constraint& o) { return o.name == c.name; });
+    if (same != cs.end()) {
+      *same = c;
+    } else {
+      cs.push_back(c);
+      list.visible.push_back(true);
+    }
+  }
+  edit(role, std::move(list), what);
+}
+
 void SessionModel::addSideConstraints(Role role) {
-  mergeConstraints(role, side_constraints(), tr("add the six sides"));
+  setNamedConstraints(role, side_constraints(), tr("add the six sides"));
 }
 
 void SessionModel::applyConstraints(Role role, const ConstraintList& list) {

@@ -3,6 +3,7 @@
 // models (standard and patient) with their constraint sets, the cutting plane and the vertices it selects, what to
 // display, and the results of the last parameterization and transfer. Widgets edit it, views render from its
 // signals, the TransferController fills in the results. Every constraint edit goes through the undo stack.
+#include "core/automatic_constraints.h"
 #include "core/constraint_set.h"
 #include "core/mesh.h"
 #include "core/quality/hex_quality.h"
@@ -50,7 +51,7 @@ struct LoadedModel {
 struct PlanePose {
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
   Eigen::Vector3d normal = Eigen::Vector3d::UnitX();
-  double band = 2.0;              // mm, full width of the slab (the CLI's feature slabs are 2 mm too)
+  double band = kFeatureBand;     // mm, full width of the slab (as wide as the automatic features' slabs)
   std::string region = "volume";  // "volume", "boundary" or a side name
 };
 
@@ -105,7 +106,9 @@ class SessionModel : public QObject {
   void setConstraintVisible(Role role, int i, bool visible);
   void replaceConstraints(Role role, const ConstraintSet& set, const QString& what);
   void mergeConstraints(Role role, const ConstraintSet& set, const QString& what);
-  void addSideConstraints(Role role);  // the six shape ends by "side_mask"
+  // Each constraint of `set` replaces the model's constraint of the same name, in its place, or is appended.
+  void setNamedConstraints(Role role, const ConstraintSet& set, const QString& what);
+  void addSideConstraints(Role role);  // the six shape ends by "side_mask" (setNamedConstraints)
   QUndoStack* undoStack() const { return undo_; }
   // Installs a constraint list without recording it (the undo command's own entry point).
   void applyConstraints(Role role, const ConstraintList& list);

@@ -1,9 +1,10 @@
 #include "ui/transfer_controller.h"
 
+#include "core/automatic_constraints.h"
 #include "core/error.h"
-#include "core/face_landmarks.h"
 #include "core/io/mesh_io.h"
 #include "core/resources.h"
+#include "core/segment/ct_volume.h"
 #include "ui/model_loading.h"
 
 #include <QEventLoop>
@@ -99,14 +100,23 @@ bool TransferController::waitUntilIdle(int timeoutMs) {
 
 bool TransferController::openPatient(const QString& path) {
   const std::string p = path.toStdString();
-  return start(tr("Opening %1").arg(QFileInfo(path).fileName()), [p](const ProgressCallback&) -> Apply {
-    auto m = std::make_shared<LoadedModel>(load_patient(p));
-    return [m](SessionModel& s) {
-      const QString text = tr("Opened the patient %1: %2").arg(m->name, sizeText(*m));
-      s.setModel(Role::Patient, std::move(*m));
-      return text;
-    };
-  });
+  const bool ct = is_ct_input(p);
+  // Without a standard there is nothing to value the features with: the patient opens with its six sides.
+  const std::map<std::string, double> values =
+      session_->hasModel(Role::Standard) ? feature_values(session_->constraints(Role::Standard).set)
+                                         : std::map<std::string, double>();
+  const QString file = QFileInfo(path).fileName();
+  return start(ct ? tr("Segmenting %1").arg(file) : tr("Opening %1").arg(file),
+               [p, ct, values](const ProgressCallback& progress) -> Apply {
+                 auto note = std::make_shared<QString>();
+                 auto m = std::make_shared<LoadedModel>(load_patient(p, values, progress, *note));
+                 return [m, note, ct](SessionModel& s) {
+                   const QString text = (ct ? tr("Segmented the CT %1: %2; %3") : tr("Opened the patient %1: %2; %3"))
+                                            .arg(m->name, sizeText(*m), *note);
+                   s.setModel(Role::Patient, std::move(*m));
+                   return text;
+                 };
+               });
 }
 
 bool TransferController::openStandard(const QString& nameOrPath) {
@@ -125,9 +135,11 @@ bool TransferController::openDemo(const QString& standardName) {
   const std::string name = standardName.toStdString();
   return start(tr("Opening the demo"), [name](const ProgressCallback&) -> Apply {
     auto standard = std::make_shared<LoadedModel>(load_standard(name.empty() ? default_standard().name : name));
-    auto patient = std::make_shared<LoadedModel>(demo_patient());
-    return [standard, patient](SessionModel& s) {
-      const QString text = tr("Opened the demo: standard %1, patient %2").arg(standard->name, patient->name);
+    auto note = std::make_shared<QString>();
+    auto patient = std::make_shared<LoadedModel>(demo_patient(feature_values(standard->constraints.set), *note));
+    return [standard, patient, note](SessionModel& s) {
+      const QString text =
+          tr("Opened the demo: standard %1, patient %2; %3").arg(standard->name, patient->name, *note);
       s.setModel(Role::Standard, std::move(*standard));
       s.setModel(Role::Patient, std::move(*patient));
       return text;
@@ -235,16 +247,16 @@ bool TransferController::reportErrors(const std::function<void()>& f) {
   }
 }
 
-bool TransferController::addFeatureConstraints(Role role, double band) {
+bool TransferController::placeFeatureConstraints(Role role, double band) {
   return reportErrors([&] {
     if (!session_->hasModel(role)) throw Error("features", "open the " + roleName(role).toStdString() + " model first");
     if (!session_->hasModel(Role::Standard))
       throw Error("features", "open a standard first: the features take the values of its constraint set");
-    std::map<std::string, double> values;
-    for (const Constraint& c : session_->constraints(Role::Standard).set.constraints) values[c.name] = c.value;
     const VolumeMesh& mesh = session_->model(role).mesh;
     const FaceLandmarks landmarks = find_face_landmarks(mesh.V, side_mask_of(mesh));
-    session_->mergeConstraints(role, feature_constraints(landmarks, values, band), tr("add the facial features"));
+    session_->setNamedConstraints(
+        role, feature_constraints(landmarks, feature_values(session_->constraints(Role::Standard).set), band),
+        tr("place the facial features"));
   });
 }
 

@@ -1,7 +1,7 @@
 #pragma once
-// Runs the core (loading, parameterization, transfer, quality) for the session, long work on a worker thread so the
-// window stays responsive. Progress comes through the core's ProgressCallback, which also carries the cancel
-// request; results are installed in the SessionModel on the GUI thread, unless the model changed meanwhile.
+// Runs the core (loading or segmenting, parameterization, transfer, quality) for the session, long work on a worker
+// thread so the window stays responsive. Progress comes through the core's ProgressCallback, which also carries the
+// cancel request; results are installed in the SessionModel on the GUI thread, unless the model changed meanwhile.
 // Failures are reported as the facehex::Error text, the same line the CLI prints.
 #include "core/progress.h"
 #include "ui/session_model.h"
@@ -27,6 +27,8 @@ class TransferController : public QObject {
   void setOptions(const TransferOptions& options) { options_ = options; }
 
   // Jobs on the worker thread; each returns false (and does nothing) while another job runs.
+  // A patient from a head CT (segmented), a tet model or a closed surface; without a constraint file of its own it
+  // gets the automatic constraints, its features valued as the loaded standard's (model_loading.h).
   bool openPatient(const QString& path);
   bool openStandard(const QString& nameOrPath);  // empty: the bundled default
   // A standard (default: the bundled default) and the bundled sample patient.
@@ -39,8 +41,9 @@ class TransferController : public QObject {
 
   // Quick operations on the GUI thread; false (and failed()) on error.
   // The feature constraints at the model's facial landmarks (core/face_landmarks.h), valued as the standard's
-  // features of the same names and selected by slabs `band` mm wide, added to its constraint set.
-  bool addFeatureConstraints(Role role, double band);
+  // features of the same names and selected by slabs `band` mm wide: they replace the model's features (re-computed
+  // after a change of standard, band or model) or are added, as one undoable edit.
+  bool placeFeatureConstraints(Role role, double band);
   bool loadConstraints(Role role, const QString& path, bool merge);
   bool saveConstraints(Role role, const QString& path);
   bool exportHex(const QString& path);

@@ -159,34 +159,39 @@ QualitySummary summarize(const VolumeMesh& mesh, const ElementQuality& quality) 
   s.cells = mesh.num_cells();
   s.hexes = mesh.count(CellType::Hex);
   s.wedges = mesh.count(CellType::Wedge);
-  s.inverted = static_cast<int>(check_corner_jacobians(mesh).inverted.size());
+  const CornerJacobianCheck check = check_corner_jacobians(mesh);
+  s.inverted = static_cast<int>(check.inverted.size());
+  s.degenerate = static_cast<int>(check.degenerate.size());
   if (s.cells == 0) return s;
   s.shape_min = quality.shape.minCoeff();
   s.shape_mean = quality.shape.mean();
   s.scaled_jacobian_min = quality.scaled_jacobian.minCoeff();
   s.scaled_jacobian_mean = quality.scaled_jacobian.mean();
   s.fraction_scaled_jacobian_below_0_3 = (quality.scaled_jacobian.array() < 0.3).count() / double(s.cells);
-  s.degenerate = static_cast<int>((quality.scaled_jacobian.array() < 1e-6).count()) - s.inverted;
   return s;
 }
 
-DihedralDistortion dihedral_distortion(const VolumeMesh& reference, const VolumeMesh& mapped) {
+Eigen::VectorXd dihedral_angle_changes(const VolumeMesh& reference, const VolumeMesh& mapped) {
   require_same_connectivity(reference, mapped);
+  std::vector<double> changes;
+  for (int c = 0; c < reference.num_cells(); ++c) {
+    const Eigen::VectorXd change = (cell_dihedral_angles(mapped, c) - cell_dihedral_angles(reference, c)).cwiseAbs();
+    changes.insert(changes.end(), change.data(), change.data() + change.size());
+  }
+  return Eigen::Map<const Eigen::VectorXd>(changes.data(), static_cast<Eigen::Index>(changes.size()));
+}
+
+DihedralDistortion dihedral_distortion(const VolumeMesh& reference, const VolumeMesh& mapped) {
+  const Eigen::VectorXd changes = dihedral_angle_changes(reference, mapped);
   const auto& lower = DihedralDistortion::kBinLower;
   std::array<long, 6> counts{};
   DihedralDistortion d;
-  double sum = 0;
-  for (int c = 0; c < reference.num_cells(); ++c) {
-    const Eigen::VectorXd changes = (cell_dihedral_angles(mapped, c) - cell_dihedral_angles(reference, c)).cwiseAbs();
-    for (const double change : changes) {
-      ++counts[std::upper_bound(lower.begin(), lower.end(), change) - lower.begin() - 1];
-      d.max_deg = std::max(d.max_deg, change);
-      sum += change;
-      ++d.angles;
-    }
-  }
+  for (const double change : changes)
+    ++counts[std::upper_bound(lower.begin(), lower.end(), change) - lower.begin() - 1];
+  d.angles = changes.size();
   if (d.angles == 0) return d;
-  d.mean_deg = sum / d.angles;
+  d.max_deg = changes.maxCoeff();
+  d.mean_deg = changes.mean();
   for (std::size_t b = 0; b < counts.size(); ++b) d.percent[b] = 100.0 * counts[b] / d.angles;
   return d;
 }

@@ -29,8 +29,8 @@ ElementQuality element_quality(const VolumeMesh& mesh);
 
 struct QualitySummary {
   int cells = 0, hexes = 0, wedges = 0;
-  int inverted = 0;    // cells with a corner Jacobian <= 0
-  int degenerate = 0;  // not inverted, but flat: scaled Jacobian below 1e-6 (unusable in a solver as well)
+  int inverted = 0;    // cells with a Jacobian <= 0 at a corner or an interior (Gauss) point (corner_jacobian.h)
+  int degenerate = 0;  // not inverted, but flat: our scaled Jacobian below 1e-6 (unusable in a solver as well)
   double shape_min = 0, shape_mean = 0;
   double scaled_jacobian_min = 0, scaled_jacobian_mean = 0;
   double fraction_scaled_jacobian_below_0_3 = 0;  // share of cells, in [0, 1]
@@ -57,5 +57,9 @@ Eigen::VectorXd cell_dihedral_angles(const VolumeMesh& mesh, int cell);
 // Throws facehex::Error("dihedral distortion", ...) if the meshes do not have the same vertex count, cell types and
 // cell nodes. Each cell edge counts once per cell (an edge shared by four hexes contributes four angles).
 DihedralDistortion dihedral_distortion(const VolumeMesh& reference, const VolumeMesh& mapped);
+
+// The absolute changes (degrees) behind dihedral_distortion, one per cell edge, cells in order and each cell's edges
+// in the order of cell_dihedral_angles (for histograms). Same checks and errors.
+Eigen::VectorXd dihedral_angle_changes(const VolumeMesh& reference, const VolumeMesh& mapped);
 
 }  // namespace facehex

@@ -9,12 +9,20 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace facehex {
 
-Eigen::VectorXd distances_to_surface(const Eigen::MatrixXd& points, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+struct SurfaceLocator::Impl {
+  vtkNew<vtkPolyData> surface;
+  vtkNew<vtkStaticCellLocator> locator;
+  bool empty = true;
+};
+
+SurfaceLocator::SurfaceLocator(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) : impl_(std::make_unique<Impl>()) {
   vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToDouble();
   pts->SetNumberOfPoints(V.rows());
   for (Eigen::Index i = 0; i < V.rows(); ++i) pts->SetPoint(i, V(i, 0), V(i, 1), V(i, 2));
   vtkNew<vtkCellArray> tris;
@@ -22,22 +30,37 @@ Eigen::VectorXd distances_to_surface(const Eigen::MatrixXd& points, const Eigen:
     const vtkIdType ids[3] = {F(f, 0), F(f, 1), F(f, 2)};
     tris->InsertNextCell(3, ids);
   }
-  vtkNew<vtkPolyData> surface;
-  surface->SetPoints(pts);
-  surface->SetPolys(tris);
-  vtkNew<vtkStaticCellLocator> locator;
-  locator->SetDataSet(surface);
-  locator->BuildLocator();
-  Eigen::VectorXd d(points.rows());
+  impl_->surface->SetPoints(pts);
+  impl_->surface->SetPolys(tris);
+  impl_->empty = F.rows() == 0;
+  if (impl_->empty) return;
+  impl_->locator->SetDataSet(impl_->surface);
+  impl_->locator->BuildLocator();
+}
+
+SurfaceLocator::~SurfaceLocator() = default;
+
+SurfaceLocator::Hits SurfaceLocator::closest(const Eigen::MatrixXd& points) const {
+  Hits hits;
+  hits.point = points;
+  hits.face = Eigen::VectorXi::Constant(points.rows(), -1);
+  hits.distance = Eigen::VectorXd::Constant(points.rows(), std::numeric_limits<double>::infinity());
+  if (impl_->empty) return hits;
   vtkNew<vtkGenericCell> cell;
   for (Eigen::Index i = 0; i < points.rows(); ++i) {
     double x[3] = {points(i, 0), points(i, 1), points(i, 2)}, closest[3], dist2 = 0;
     vtkIdType cell_id = -1;
     int sub_id = 0;
-    locator->FindClosestPoint(x, closest, cell, cell_id, sub_id, dist2);
-    d(i) = std::sqrt(dist2);
+    impl_->locator->FindClosestPoint(x, closest, cell, cell_id, sub_id, dist2);
+    hits.point.row(i) << closest[0], closest[1], closest[2];
+    hits.face(i) = static_cast<int>(cell_id);
+    hits.distance(i) = std::sqrt(dist2);
   }
-  return d;
+  return hits;
+}
+
+Eigen::VectorXd distances_to_surface(const Eigen::MatrixXd& points, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+  return SurfaceLocator(V, F).closest(points).distance;
 }
 
 DistanceSummary summarize_distances(const Eigen::VectorXd& d) {

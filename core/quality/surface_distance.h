@@ -1,13 +1,35 @@
 #pragma once
 // Distances from points to a closed triangle surface (vtkStaticCellLocator), e.g. from the mapped side vertices of
-// a patient hex mesh to the patient model's boundary.
+// a patient hex mesh to the patient model's boundary, and the closest points themselves (registration).
 #include <Eigen/Core>
+#include <memory>
 
 namespace facehex {
 
 struct DistanceSummary {
   int points = 0;
   double max = 0, p95 = 0, mean = 0;  // mm
+};
+
+// Closest points on a fixed triangle surface (V #V x 3, F #F x 3), for many queries (e.g. the iterations of a
+// registration). F may be empty: every query then reports face -1 and an infinite distance.
+class SurfaceLocator {
+ public:
+  SurfaceLocator(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
+  ~SurfaceLocator();
+  SurfaceLocator(const SurfaceLocator&) = delete;
+  SurfaceLocator& operator=(const SurfaceLocator&) = delete;
+
+  struct Hits {
+    Eigen::MatrixXd point;     // #P x 3, the closest surface point of each query
+    Eigen::VectorXi face;      // #P, the row of F it lies on
+    Eigen::VectorXd distance;  // #P
+  };
+  Hits closest(const Eigen::MatrixXd& points) const;  // points #P x 3
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
 };
 
 // points: #P x 3; surface: V #V x 3 and F #F x 3 triangles.

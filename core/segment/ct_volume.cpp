@@ -1,7 +1,6 @@
 #include "core/segment/ct_volume.h"
 
 #include <vtkAlgorithm.h>
-#include <vtkCallbackCommand.h>
 #include <vtkDICOMImageReader.h>
 #include <vtkDataArray.h>
 #include <vtkImageCast.h>
@@ -21,6 +20,7 @@
 #include <functional>
 
 #include "core/error.h"
+#include "core/io/vtk_util.h"
 
 namespace facehex {
 namespace {
@@ -32,12 +32,6 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 std::string lower(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
   return s;
-}
-
-// Collects VTK's error messages so they end up in our exception instead of on the console.
-void collect_error(vtkObject*, unsigned long, void* client_data, void* call_data) {
-  auto* message = static_cast<std::string*>(client_data);
-  if (message->empty() && call_data) *message = static_cast<const char*>(call_data);
 }
 
 // Signed axis "+x" ... "-z" -> (axis, sign).
@@ -79,16 +73,10 @@ CtVolume read_ct_volume(const std::string& path, const CtOrientation& orientatio
     throw Error(path, "unknown CT format (expected .mhd, .mha, .nii, .nii.gz, .nrrd, .nhdr, .vti or a DICOM folder)");
   }
 
-  std::string vtk_error;
-  vtkNew<vtkCallbackCommand> on_error;
-  on_error->SetCallback(collect_error);
-  on_error->SetClientData(&vtk_error);
-  reader->AddObserver(vtkCommand::ErrorEvent, on_error);
   vtkNew<vtkImageCast> cast;
   cast->SetInputConnection(reader->GetOutputPort());
   cast->SetOutputScalarTypeToFloat();
-  cast->AddObserver(vtkCommand::ErrorEvent, on_error);
-  cast->Update();
+  io::run_vtk(path, "reading the CT", cast);  // VTK's messages become one line of the exception
 
   if (auto* nifti = vtkNIFTIImageReader::SafeDownCast(reader)) {
     const double slope = nifti->GetRescaleSlope(), intercept = nifti->GetRescaleIntercept();
@@ -102,8 +90,7 @@ CtVolume read_ct_volume(const std::string& path, const CtOrientation& orientatio
   vtkDataArray* scalars = image ? image->GetPointData()->GetScalars() : nullptr;
   int dims[3] = {0, 0, 0};
   if (image) image->GetDimensions(dims);
-  if (!scalars || scalars->GetNumberOfTuples() == 0)
-    throw Error(path, "could not read a volume" + (vtk_error.empty() ? std::string() : " (" + vtk_error + ")"));
+  if (!scalars || scalars->GetNumberOfTuples() == 0) throw Error(path, "could not read a volume");
   if (dims[0] < 2 || dims[1] < 2 || dims[2] < 2)
     throw Error(path, "is not a 3D volume (" + std::to_string(dims[0]) + " x " + std::to_string(dims[1]) + " x " +
                           std::to_string(dims[2]) + " voxels)");
@@ -124,7 +111,23 @@ CtVolume read_ct_volume(const std::string& path, const CtOrientation& orientatio
   const int components = scalars->GetNumberOfComponents();
   const auto* values = static_cast<const float*>(scalars->GetVoidPointer(0));
   for (size_t i = 0; i < g.size(); ++i) ct.intensity.data[i] = static_cast<float>(rescale(values[i * components]));
+  // A blank volume has no tissue to find: say so here, naming the file, rather than at the thresholds.
+  const auto [lo, hi] = std::minmax_element(ct.intensity.data.begin(), ct.intensity.data.end());
+  if (*lo == *hi) throw Error(path, "every voxel has the same intensity: a blank volume, not a CT");
   return reorient(ct, orientation);
+}
+
+bool is_ct_input(const std::string& path) {
+  if (std::filesystem::is_directory(path)) return true;
+  const std::string name = lower(std::filesystem::path(path).filename().string());
+  const auto& exts = ct_volume_extensions();
+  return std::any_of(exts.begin(), exts.end(),
+                     [&name](const std::string& ext) { return name.size() > ext.size() && ends_with(name, ext); });
+}
+
+const std::vector<std::string>& ct_volume_extensions() {
+  static const std::vector<std::string> extensions = {".mhd", ".mha", ".nii", ".nii.gz", ".nrrd", ".nhdr"};
+  return extensions;
 }
 
 CtVolume reorient(const CtVolume& ct, const CtOrientation& orientation) {

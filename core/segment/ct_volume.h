@@ -2,6 +2,7 @@
 // A CT volume in millimetres, in the segmentation frame: +y ANTERIOR (the face looks towards +y), +z SUPERIOR,
 // +x = y x z (right-handed; which ear that is depends on the scan, see core/sides.h).
 #include <string>
+#include <vector>
 
 #include "core/segment/voxel_grid.h"
 
@@ -21,9 +22,14 @@ struct CtOrientation {
 
 // Reads a CT volume: .mhd/.mha (MetaImage), .nii/.nii.gz (NIfTI, scl_slope/inter applied), .nrrd/.nhdr, .vti, or a
 // folder of DICOM slices (rescale slope/intercept applied). Spacing and origin are the file's; the direction matrix
-// is ignored (state the orientation instead). Throws facehex::Error(path, ...) on a missing, unreadable or
-// non-3D file or an invalid orientation.
+// is ignored (state the orientation instead). Throws facehex::Error(path, ...) on a missing, unreadable, non-3D or
+// blank (constant) volume, or an invalid orientation.
 CtVolume read_ct_volume(const std::string& path, const CtOrientation& orientation = {});
+
+// Whether `path` is a CT volume to segment (rather than a mesh): a file with one of ct_volume_extensions(), or a
+// folder (of DICOM slices).
+bool is_ct_input(const std::string& path);
+const std::vector<std::string>& ct_volume_extensions();  // ".mhd", ".mha", ".nii", ".nii.gz", ".nrrd", ".nhdr"
 
 // Permutes/flips the voxel grid so that `orientation.anterior` becomes +y and `orientation.superior` becomes +z.
 CtVolume reorient(const CtVolume& ct, const CtOrientation& orientation);

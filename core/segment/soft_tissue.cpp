@@ -165,20 +165,27 @@ void check_topology(const PatientModel& model) {
 
 }  // namespace
 
-PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& options) {
+PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& options, const ProgressCallback& progress) {
   if (!(options.working_spacing > 0) || !(options.tets.target_edge_length > 0) || !(options.max_depth > 0))
     throw Error("segment", "working_spacing, target_edge_length and max_depth must be positive");
+  // Fractions of the whole from the stages' share of the time on the bundled CT.
+  const auto step = [&progress](const char* stage, double fraction) {
+    report_progress(progress, std::string("segmentation: ") + stage, fraction);
+  };
   PatientModel model;
+  step("thresholds", 0.0);
   model.thresholds = choose_thresholds(ct, options);
 
   // Trilinear interpolation of a coarse CT has creases along its voxel planes, which the thresholded surface would
   // show as terraces: blur by a fraction of the CT's coarsest spacing first.
+  step("resampling the CT", 0.02);
   const Field intensity = gaussian_smooth(resample(ct.intensity, options.working_spacing),
                                           kCtBlur * ct.intensity.geometry.spacing.maxCoeff());
   const Mask raw_body = largest_component(at_least(intensity, model.thresholds.skin));
   if (std::count(raw_body.data.begin(), raw_body.data.end(), 1) == 0)
     throw Error("segment",
                 "no voxel reaches the skin threshold " + number(model.thresholds.skin) + "; lower the skin threshold");
+  step("the head", 0.05);
   const Mask body = open(raw_body, options.opening_radius);
   // The trachea leaves through the bottom slice and the head through the top: only the x and y faces of the grid
   // are open air.
@@ -188,6 +195,7 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   // The ears, thin, do not survive the opening: the cuts look at the body before it.
   model.cuts = find_face_cuts(raw_body, bone, options.cuts);
 
+  step("the soft tissue", 0.2);
   Mask air = head;
   for (auto& v : air.data) v = !v;
   const Field air_distance = distance_to(air);
@@ -206,25 +214,31 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   for (size_t i = 0; i < inner.data.size(); ++i) inner.data[i] = head.data[i] && !tissue.data[i];
   const Field inner_distance = distance_to(inner);
 
+  step("the surface", 0.33);
   SurfaceMesh surface = zero_level_surface(model_function(tissue, model.cuts, options.smoothing_sigma));
   Eigen::VectorXi sides =
       classify_sides(surface, model.cuts, air_distance, inner_distance, 0.3 * options.working_spacing);
   merge_side_islands(surface.F, sides);
   surface.labels = sides;
+  step("remeshing the surface", 0.38);
   surface = remesh_isotropic(surface, options.tets.target_edge_length);
   surface.labels.array() += 1;  // TetGen's marker 0 means "on no input facet"
 
   // A vertex where skin touches bone at a zero-thickness rim is left free in w (tetrahedralize_with_sides).
+  step("tetrahedralizing (TetGen)", 0.55);
   TetrahedralizeResult tets = tetrahedralize_with_sides(surface, options.tets);
   model.mesh = std::move(tets.mesh);
   model.boundary_faces = std::move(tets.boundary_faces);
   model.boundary_sides = tets.boundary_labels.array() - 1;
+  step("checks", 0.95);
   check_topology(model);
   return model;
 }
 
-VolumeMesh build_patient_model_from_file(const std::string& path, const SegmentOptions& options) {
-  return build_patient_model(read_ct_volume(path, options.orientation), options).mesh;
+VolumeMesh build_patient_model_from_file(const std::string& path, const SegmentOptions& options,
+                                         const ProgressCallback& progress) {
+  report_progress(progress, "segmentation: reading the CT", 0.0);
+  return build_patient_model(read_ct_volume(path, options.orientation), options, progress).mesh;
 }
 
 }  // namespace facehex

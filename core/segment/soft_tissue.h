@@ -24,6 +24,7 @@
 #include <string>
 
 #include "core/mesh.h"
+#include "core/progress.h"
 #include "core/segment/ct_volume.h"
 #include "core/segment/face_cuts.h"
 #include "core/segment/thresholds.h"
@@ -61,10 +62,14 @@ struct PatientModel {
   FaceCuts cuts;                   // as used
 };
 
-// Throws facehex::Error naming the stage ("thresholds", "segment", "tetgen") with what to change.
-PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& options = {});
+// Throws facehex::Error naming the stage ("thresholds", "segment", "tetgen") with what to change. `progress` hears of
+// each step ("segmentation: ..."); cancelling throws facehex::Cancelled at the next step (TetGen, the longest one,
+// runs to its end first).
+PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& options = {},
+                                 const ProgressCallback& progress = {});
 
 // read_ct_volume(path, options.orientation) then build_patient_model(...).mesh.
-VolumeMesh build_patient_model_from_file(const std::string& path, const SegmentOptions& options = {});
+VolumeMesh build_patient_model_from_file(const std::string& path, const SegmentOptions& options = {},
+                                         const ProgressCallback& progress = {});
 
 }  // namespace facehex

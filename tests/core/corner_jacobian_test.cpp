@@ -1,11 +1,11 @@
 #include "core/corner_jacobian.h"
 
-#include "test_meshes.h"
-
-#include <Eigen/LU>
 #include <gtest/gtest.h>
 
+#include <Eigen/LU>
 #include <cmath>
+
+#include "test_meshes.h"
 
 namespace facehex {
 namespace {
@@ -106,6 +106,55 @@ TEST(CornerJacobian, MeshCheckListsExactlyTheInvertedCells) {
   // Corner 0 of cell 1 is the moved node; its edge to x = 2 became -0.5 x, the other two keep unit y and z parts.
   EXPECT_NEAR(check.min_determinant(1), -0.5, 1e-15);
   EXPECT_EQ(check.min_determinant(2), 1.0);
+  EXPECT_TRUE(check.degenerate.empty());
+}
+
+TEST(CornerJacobian, InteriorSamplesOfIdealAndAffineCellsHaveTheAffineJacobian) {
+  Eigen::Matrix3d M;
+  M << 2, 0.3, 0, -0.1, 1.5, 0.2, 0.4, 0, 0.8;
+  for (CellType type : {CellType::Hex, CellType::Wedge}) {
+    const CellNodes ideal = ideal_cell(type);
+    const CellNodes mapped = (ideal * M.transpose()).rowwise() + Eigen::RowVector3d(5, -2, 1);
+    ASSERT_EQ(interior_sample_weights(type).size(), type == CellType::Hex ? 9u : 8u);
+    for (const SampleWeights& W : interior_sample_weights(type)) {
+      EXPECT_LT((ideal.transpose() * W - Eigen::Matrix3d::Identity()).norm(), 1e-12);
+      EXPECT_LT((mapped.transpose() * W - M).norm(), 1e-12);
+    }
+  }
+  EXPECT_TRUE(interior_sample_weights(CellType::Tet).empty());
+}
+
+// A hex from a mapped face mesh (coordinates in mm): all eight corners and the centre are positive, yet the trilinear
+// map folds at a Gauss point, and CalculiX refused it ("nonpositive jacobian determinant"). It counts as inverted.
+TEST(CornerJacobian, AHexFoldedOnlyAtAGaussPointIsInverted) {
+  CellNodes X = CellNodes::Zero();
+  X << 1.291, 2.400, 3.922, 2.273, 0.816, 0.000, 5.391, 1.512, 1.820, 1.453, 1.523, 2.427, 0.000, 3.827, 4.702, 1.618,
+      0.000, 4.821, 5.173, 1.578, 3.924, 3.105, 4.356, 2.605;
+  EXPECT_GT(corner_determinants(CellType::Hex, X).minCoeff(), 0);
+  EXPECT_GT(hex_center_jacobian(X).determinant(), 0);
+  EXPECT_GT(scaled_jacobian(CellType::Hex, X), 0.1);
+  EXPECT_LE(min_corner_determinant(CellType::Hex, X), 0);
+  VolumeMesh mesh;
+  mesh.V = X;
+  mesh.C = Eigen::RowVectorXi::LinSpaced(8, 0, 7);
+  mesh.types = {CellType::Hex};
+  EXPECT_EQ(check_corner_jacobians(mesh).inverted, std::vector<int>({0}));
+}
+
+TEST(CornerJacobian, AFlatCellIsDegenerateNotInverted) {
+  VolumeMesh mesh = test::hex_box(2, 1, 1, 2, 1, 1);  // two unit cubes along x
+  // Node (2,0,0), a corner of cell 1 only, moved almost onto the midpoint of its neighbours (2,1,0) and (2,0,1):
+  // the face x = 2 is nearly folded flat, every corner determinant stays positive, but the scaled Jacobian is ~1e-8.
+  const int corner = 2, a = 5, b = 8;
+  const double t = 1 - 1e-8;
+  mesh.V.row(corner) = (1 - t) * mesh.V.row(corner) + t * 0.5 * (mesh.V.row(a) + mesh.V.row(b));
+  const CornerJacobianCheck check = check_corner_jacobians(mesh);
+  EXPECT_TRUE(check.inverted.empty());
+  EXPECT_EQ(check.degenerate, std::vector<int>({1}));
+  EXPECT_EQ(check.unusable(), std::vector<int>({1}));
+  EXPECT_LT(scaled_jacobian(CellType::Hex, cell_nodes(mesh, 1)), kDegenerateScaledJacobian);
+  EXPECT_TRUE(is_unusable(CellType::Hex, cell_nodes(mesh, 1)));
+  EXPECT_FALSE(is_unusable(CellType::Hex, cell_nodes(mesh, 0)));
 }
 
 }  // namespace

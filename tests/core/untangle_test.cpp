@@ -37,6 +37,24 @@ TEST(Untangle, RepairsADeliberatelyInvertedMeshWithoutMovingTheBoundary) {
     }
 }
 
+TEST(Untangle, RepairsAFlatCellThatIsNotInverted) {
+  VolumeMesh m = test::hex_box(3, 3, 3, 3, 3, 3);
+  // Interior vertex (1,1,1) moved almost onto the midpoint of two of its neighbours: positive but ~0 Jacobians.
+  auto id = [](int i, int j, int k) { return (k * 4 + j) * 4 + i; };
+  const double t = 1 - 1e-9;
+  m.V.row(id(1, 1, 1)) = (1 - t) * m.V.row(id(1, 1, 1)) + t * 0.5 * (m.V.row(id(2, 1, 1)) + m.V.row(id(1, 2, 1)));
+  const CornerJacobianCheck before = check_corner_jacobians(m);
+  ASSERT_TRUE(before.inverted.empty());
+  ASSERT_FALSE(before.degenerate.empty());
+  VertexPlacement placement = spatial_placement(m.V, boundary_fixed(m));
+  const UntangleReport r = untangle(m, placement);
+  EXPECT_EQ(r.degenerate_before, static_cast<int>(before.degenerate.size()));
+  EXPECT_EQ(r.degenerate_after, 0);
+  EXPECT_EQ(r.inverted_after, 0);
+  EXPECT_TRUE(check_corner_jacobians(m).unusable().empty());
+  EXPECT_GT(r.min_scaled_jacobian_after, 0.2);
+}
+
 TEST(Untangle, LeavesAGoodMeshUntouched) {
   VolumeMesh m = test::hex_box(3, 3, 3);
   test::jitter_interior(m, 0.05);

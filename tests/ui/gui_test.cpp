@@ -1,14 +1,17 @@
-// The desktop application end to end, as a user drives it: the bundled demo (standard and sample patient) is
-// opened, a constraint is placed with the plane widget, edits undo and redo; then a small box standard and a bent
-// box patient are opened from files, their fields computed and the transfer run on the worker thread, the hex mesh
-// exported and read back; bad files give the core's error message and the application keeps running; every
-// scripted state renders visible 3D content. (The box pair keeps the computations within seconds and their results
-// exactly checkable, whatever the size and state of the bundled models.)
+// The desktop application end to end, as a user drives it: the bundled demo (standard and sample patient, with its
+// automatic constraints) is opened, a constraint is placed with the plane widget, edits undo and redo, the standard
+// is transferred onto the bundled patient (once: about a minute); the bundled CT is opened and segmented on the
+// worker thread; then a small box standard and a bent box patient are opened from files, their fields computed and
+// the transfer run, the hex mesh exported and read back; bad files give the core's error message and the application
+// keeps running; every scripted state renders visible 3D content. (The box pair keeps those computations within
+// seconds and their results exactly checkable.)
+#include "core/automatic_constraints.h"
 #include "core/error.h"
-#include "core/face_landmarks.h"
 #include "core/hex_to_tets.h"
 #include "core/io/mesh_io.h"
 #include "core/quality/hex_quality.h"
+#include "core/resources.h"
+#include "core/segment/patient_input.h"
 #include "core/tet_topology.h"
 #include "tests/core/test_meshes.h"
 #include "ui/autosave.h"
@@ -43,18 +46,25 @@ class GuiTest : public QObject {
   void opensTheBundledDemo();
   void planeWidgetPlacesAConstraint();
   void undoAndRedoAConstraintEdit();
-  void facialFeaturesAreAButtonAway();
+  void facialFeaturesAreRecomputedByTheButton();
   void cancelStopsTheWorker();
+  void transfersTheBundledModels();
+  void scriptedTransferStatesShowTheModels();
+  void cancelStopsTheSegmentation();
+  void opensAndSegmentsTheBundledCt();
   void opensModelsFromFiles();
   void computesTheFields();
   void scriptedFieldStatesShowTheModels();
   void transfersExportsAndReloads();
   void thresholdIsolatesBadCells();
-  void scriptedTransferStatesShowTheModels();
   void badFilesGiveTheCoreMessageAndTheAppKeepsRunning();
 
  private:
   int constraintCount() const { return int(session()->constraints(Role::Patient).set.constraints.size()); }
+  // The patient's constraint of that name, or null.
+  const Constraint* patientConstraint(const std::string& name) const;
+  // Opens a patient on the worker thread and waits; the error it reported, or empty.
+  QString openPatient(const QString& path);
   SessionModel* session() const { return window_->session(); }
   QString takeError() { return std::exchange(error_, QString()); }
   void checkStates(const QStringList& states);
@@ -74,12 +84,30 @@ void GuiTest::initTestCase() {
   QVERIFY2(openInputs(*window_, {}, {}), qPrintable(error_));
 }
 
+const Constraint* GuiTest::patientConstraint(const std::string& name) const {
+  for (const Constraint& c : session()->constraints(Role::Patient).set.constraints)
+    if (c.name == name) return &c;
+  return nullptr;
+}
+
+QString GuiTest::openPatient(const QString& path) {
+  if (!window_->controller()->openPatient(path)) return "busy";
+  window_->controller()->waitUntilIdle();
+  return takeError();
+}
+
 void GuiTest::opensTheBundledDemo() {
   QVERIFY(session()->hasModel(Role::Standard));
   QVERIFY(session()->hasModel(Role::Patient));
   QVERIFY(session()->model(Role::Patient).mesh.is_tet_mesh());
   QVERIFY(session()->model(Role::Standard).mesh.count(CellType::Hex) > 0);
-  QVERIFY(constraintCount() >= 6);  // at least the six shape ends
+  // The constraints `facehex run` places: the six sides and the facial features, valued as the standard's.
+  const LoadedModel& patient = session()->model(Role::Patient);
+  const ConstraintSet expected = automatic_constraints(patient.mesh.V, side_mask_of(patient.mesh),
+                                                       feature_values(session()->constraints(Role::Standard).set));
+  QCOMPARE(constraintCount(), 6 + int(feature_specs().size()));
+  QCOMPARE(to_json(session()->constraints(Role::Patient).set), to_json(expected));
+  for (int i = 0; i < constraintCount(); ++i) QVERIFY(!session()->constraintVertices(Role::Patient, i).empty());
 }
 
 void GuiTest::planeWidgetPlacesAConstraint() {
@@ -145,14 +173,30 @@ void GuiTest::undoAndRedoAConstraintEdit() {
   QCOMPARE(int(read_constraint_set(ConstraintAutosave::path(Role::Patient).toStdString()).constraints.size()), n - 1);
 }
 
-void GuiTest::facialFeaturesAreAButtonAway() {
+void GuiTest::facialFeaturesAreRecomputedByTheButton() {
+  // The automatic features are ordinary constraints: delete one, widen the band, and the button places them all
+  // again in one undoable edit, replacing those of the same names.
   const int n = constraintCount();
+  const std::string eyebrow = feature_specs().at(1).name;
+  const double value = patientConstraint(eyebrow)->value;
+  session()->removeConstraint(Role::Patient, n - 1);
+  QCOMPARE(constraintCount(), n - 1);
+  window_->findChild<QDoubleSpinBox*>("bandWidth")->setValue(4.0);
   window_->findChild<QAction*>("Facial_features")->trigger();
   QVERIFY2(error_.isEmpty(), qPrintable(error_));
-  QCOMPARE(constraintCount(), n + int(feature_specs().size()));
-  for (int i = n; i < constraintCount(); ++i) QVERIFY(!session()->constraintVertices(Role::Patient, i).empty());
+  QCOMPARE(constraintCount(), n);
+  for (const FeatureSpec& spec : feature_specs()) {
+    const Constraint* c = patientConstraint(spec.name);
+    QVERIFY(c && c->select.plane);
+    QCOMPARE(c->select.plane->band, 4.0);
+  }
+  QCOMPARE(patientConstraint(eyebrow)->value, value);
+  for (int i = 0; i < n; ++i) QVERIFY(!session()->constraintVertices(Role::Patient, i).empty());
+  session()->undoStack()->undo();
+  QCOMPARE(patientConstraint(eyebrow)->select.plane->band, kFeatureBand);
   session()->undoStack()->undo();
   QCOMPARE(constraintCount(), n);
+  window_->findChild<QDoubleSpinBox*>("bandWidth")->setValue(kFeatureBand);
 }
 
 void GuiTest::cancelStopsTheWorker() {
@@ -165,6 +209,69 @@ void GuiTest::cancelStopsTheWorker() {
   QVERIFY2(status.endsWith("cancelled"), qPrintable(status));
   QVERIFY(!session()->parameterization(Role::Patient));
   QVERIFY(error_.isEmpty());
+}
+
+void GuiTest::transfersTheBundledModels() {
+  // The bundled standard onto the bundled patient with its automatic constraints, as `facehex run` maps them.
+  QSignalSpy progress(window_->controller(), &TransferController::progress);
+  QVERIFY(window_->controller()->runTransfer());
+  QVERIFY(window_->controller()->waitUntilIdle());
+  QVERIFY2(error_.isEmpty(), qPrintable(error_));
+  QVERIFY(progress.count() > 10);
+  const TransferResult* r = session()->transfer();
+  QVERIFY(r);
+  const VolumeMesh& standard = session()->model(Role::Standard).mesh;
+  QCOMPARE(r->hex.num_cells(), standard.num_cells());
+  QCOMPARE(r->hex.count(CellType::Hex), standard.count(CellType::Hex));
+  QCOMPARE(r->patientQuality.cells, standard.num_cells());
+  QCOMPARE(r->patientQuality.inverted, 0);
+  QCOMPARE(summarize(r->hex, element_quality(r->hex)).inverted, 0);
+  QVERIFY(r->hex.cell_data.count("scaled_jacobian") && r->hex.point_data.count("uvw"));
+  for (Role role : kRoles) QVERIFY(session()->parameterization(role));
+  QCOMPARE(session()->parameterization(Role::Patient)->V.rows(), session()->model(Role::Patient).mesh.V.rows());
+}
+
+void GuiTest::cancelStopsTheSegmentation() {
+  QSignalSpy finished(window_->controller(), &TransferController::finished);
+  const quint64 revision = session()->revision(Role::Patient);
+  QVERIFY(window_->controller()->openPatient(QString::fromStdString(default_ct())));
+  window_->findChild<QPushButton*>("cancelButton")->click();
+  QVERIFY(window_->controller()->waitUntilIdle());
+  QCOMPARE(finished.count(), 1);
+  const QString status = finished.first().first().toString();
+  QVERIFY2(status.startsWith("Segmenting headsq.mhd") && status.endsWith("cancelled"), qPrintable(status));
+  QCOMPARE(session()->revision(Role::Patient), revision);  // the patient stays
+  QVERIFY(error_.isEmpty());
+}
+
+void GuiTest::opensAndSegmentsTheBundledCt() {
+  const QString ct = QString::fromStdString(default_ct());
+  QSignalSpy progress(window_->controller(), &TransferController::progress);
+  const QString error = openPatient(ct);
+  QVERIFY2(error.isEmpty(), qPrintable(error));
+  QVERIFY(std::any_of(progress.begin(), progress.end(), [](const QList<QVariant>& args) {
+    return args.first().toString().startsWith("segmentation: tetrahedralizing");
+  }));
+  const LoadedModel& patient = session()->model(Role::Patient);
+  QCOMPARE(patient.path, ct);
+  QVERIFY(patient.mesh.is_tet_mesh());
+  QVERIFY(patient.mesh.num_cells() > 10000);
+  // Six labelled sides, each selecting vertices, and the features at the landmarks.
+  const Eigen::VectorXi mask = side_mask_of(patient.mesh);
+  QCOMPARE(mask.size(), Eigen::Index(patient.mesh.num_vertices()));
+  QCOMPARE(constraintCount(), 6 + int(feature_specs().size()));
+  for (int s = 0; s < kNumSides; ++s) {
+    const Constraint& c = session()->constraints(Role::Patient).set.constraints.at(s);
+    QVERIFY(c.select.side && *c.select.side == static_cast<Side>(s));
+    QVERIFY(!session()->constraintVertices(Role::Patient, s).empty());
+  }
+  for (const FeatureSpec& spec : feature_specs()) QVERIFY(patientConstraint(spec.name));
+  for (int i = 6; i < constraintCount(); ++i) QVERIFY(!session()->constraintVertices(Role::Patient, i).empty());
+  // Still ordinary, undoable constraints.
+  session()->removeConstraint(Role::Patient, constraintCount() - 1);
+  session()->undoStack()->undo();
+  QCOMPARE(constraintCount(), 6 + int(feature_specs().size()));
+  checkStates({"ct"});
 }
 
 void GuiTest::opensModelsFromFiles() {
@@ -267,6 +374,22 @@ void GuiTest::badFilesGiveTheCoreMessageAndTheAppKeepsRunning() {
   QVERIFY(window_->controller()->openPatient(dir_.filePath("missing.vtu")));
   QVERIFY(window_->controller()->waitUntilIdle());
   QVERIFY(takeError().contains("missing.vtu"));
+
+  // A bad CT: the message `facehex segment` prints.
+  const QString badCt = dir_.filePath("bad.mhd");
+  QFile header(badCt);
+  QVERIFY(header.open(QIODevice::WriteOnly));
+  header.write("NDims = 3\nDimSize = 4 4 4\nElementType = MET_SHORT\nElementDataFile = missing.raw\n");
+  header.close();
+  try {
+    load_patient_model(badCt.toStdString());
+    cliMessage.clear();
+  } catch (const Error& e) {
+    cliMessage = e.what();
+  }
+  QVERIFY(!cliMessage.empty());
+  QCOMPARE(openPatient(badCt), QString::fromStdString(cliMessage));
+  QCOMPARE(session()->model(Role::Patient).mesh.num_vertices(), vertices);
   QVERIFY(window_->isVisible());
   QVERIFY(!window_->controller()->busy());
 }

@@ -8,6 +8,8 @@
 #include <functional>
 #include <map>
 #include <set>
+#include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "core/sides.h"
@@ -126,6 +128,20 @@ void expect_error(const std::function<void()>& run, const std::string& subject, 
     EXPECT_EQ(e.subject(), subject) << e.what();
     EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
   }
+}
+
+TEST(SoftTissue, ReportsItsStepsAndCanBeCancelled) {
+  const CtVolume ct = testing::ellipsoid_phantom();
+  std::vector<std::string> stages;
+  // Cancelled when the surface is due: nothing after it runs.
+  const ProgressCallback cancel_at_surface = [&stages](const std::string& stage, double) {
+    stages.push_back(stage);
+    return stage != "segmentation: the surface";
+  };
+  EXPECT_THROW(build_patient_model(ct, phantom_options(ct), cancel_at_surface), Cancelled);
+  ASSERT_GE(stages.size(), 3u);
+  EXPECT_EQ(stages.front(), "segmentation: thresholds");
+  EXPECT_EQ(stages.back(), "segmentation: the surface");
 }
 
 TEST(SoftTissue, RejectsThresholdsInTheWrongOrder) {

@@ -1,0 +1,171 @@
+#include "app/histogram_png.h"
+
+#include <vtkErrorCode.h>
+#include <vtkFreeTypeTools.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPNGWriter.h>
+#include <vtkStdString.h>
+#include <vtkTextProperty.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+
+namespace facehex::cli {
+namespace {
+
+using Rgb = std::array<unsigned char, 3>;
+
+// An RGB raster, row 0 at the top.
+class Canvas {
+ public:
+  Canvas(int width, int height) : w_(width), h_(height), pixels_(3 * width * height, 255) {}
+
+  void fill(int x0, int y0, int x1, int y1, const Rgb& c, double alpha = 1.0) {  // the rectangle [x0, x1) x [y0, y1)
+    for (int y = std::max(0, y0); y < std::min(h_, y1); ++y)
+      for (int x = std::max(0, x0); x < std::min(w_, x1); ++x) blend(x, y, c, alpha);
+  }
+
+  // Text with its anchor point at (x, y): ax, ay in [0, 1] pick the anchor within the text box (0 = left / top).
+  // rotation: degrees counter-clockwise.
+  void text(const std::string& s, int x, int y, int size, double ax, double ay, double rotation = 0) {
+    vtkNew<vtkTextProperty> property;
+    property->SetFontFamilyToArial();
+    property->SetFontSize(size);
+    property->SetColor(0, 0, 0);
+    property->SetOrientation(rotation);
+    vtkNew<vtkImageData> image;
+    int dims[2] = {0, 0};
+    vtkFreeTypeTools* freetype = vtkFreeTypeTools::GetInstance();
+    const bool power_of_two = freetype->GetScaleToPowerTwo();
+    freetype->ScaleToPowerTwoOff();
+    const bool ok = freetype->RenderString(property, vtkStdString(s), 72, image, dims);
+    freetype->SetScaleToPowerTwo(power_of_two);
+    if (!ok) return;
+    int extent[6];
+    image->GetExtent(extent);
+    const int tw = extent[1] - extent[0] + 1, th = extent[3] - extent[2] + 1;
+    const int left = x - static_cast<int>(std::lround(ax * tw)), top = y - static_cast<int>(std::lround(ay * th));
+    for (int j = 0; j < th; ++j)
+      for (int i = 0; i < tw; ++i) {
+        const auto* p = static_cast<unsigned char*>(image->GetScalarPointer(extent[0] + i, extent[2] + j, 0));
+        if (p[3] > 0) blend(left + i, top + (th - 1 - j), {p[0], p[1], p[2]}, p[3] / 255.0);  // image rows go up
+      }
+  }
+
+  void write_png(const std::string& path) const {
+    vtkNew<vtkImageData> image;
+    image->SetDimensions(w_, h_, 1);
+    image->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+    for (int y = 0; y < h_; ++y)
+      std::copy_n(&pixels_[3 * w_ * y], 3 * w_, static_cast<unsigned char*>(image->GetScalarPointer(0, h_ - 1 - y, 0)));
+    write_atomically(path, [&](const std::string& tmp) {
+      vtkNew<vtkPNGWriter> writer;
+      writer->SetFileName(tmp.c_str());
+      writer->SetInputData(image);
+      writer->Write();
+      if (writer->GetErrorCode() != vtkErrorCode::NoError)
+        throw Error(path, std::string("cannot write the PNG: ") +
+                              vtkErrorCode::GetStringFromErrorCode(static_cast<unsigned long>(writer->GetErrorCode())));
+    });
+  }
+
+ private:
+  void blend(int x, int y, const Rgb& c, double alpha) {
+    if (x < 0 || y < 0 || x >= w_ || y >= h_) return;
+    unsigned char* p = &pixels_[3 * (w_ * y + x)];
+    for (int k = 0; k < 3; ++k) p[k] = static_cast<unsigned char>(std::lround((1 - alpha) * p[k] + alpha * c[k]));
+  }
+
+  int w_, h_;
+  std::vector<unsigned char> pixels_;
+};
+
+std::string number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", x);
+  return buf;
+}
+
+// A step of 1, 2 or 5 times a power of ten giving 4 to 10 ticks up to `top`.
+double tick_step(double top) {
+  const double magnitude = std::pow(10.0, std::floor(std::log10(top)));
+  for (const double m : {0.1, 0.2, 0.5, 1.0, 2.0, 5.0})
+    if (top / (m * magnitude) <= 10) return m * magnitude;
+  return 10 * magnitude;
+}
+
+}  // namespace
+
+std::vector<double> percent_histogram(const Eigen::VectorXd& values, const std::vector<double>& edges) {
+  if (edges.size() < 2) throw Error("histogram", "needs at least two bin edges");
+  std::vector<double> percent(edges.size() - 1, 0.0);
+  if (values.size() == 0) return percent;
+  for (const double v : values) {
+    const long bin = std::upper_bound(edges.begin(), edges.end(), v) - edges.begin() - 1;
+    ++percent[std::clamp<long>(bin, 0, static_cast<long>(percent.size()) - 1)];
+  }
+  for (double& p : percent) p *= 100.0 / static_cast<double>(values.size());
+  return percent;
+}
+
+void write_histogram_png(const std::string& path, const HistogramPlot& plot) {
+  const int bins = static_cast<int>(plot.edges.size()) - 1;
+  if (bins < 1) throw Error(path, "a histogram needs at least one bin");
+  double top = 0;
+  for (const auto& s : plot.series) {
+    if (static_cast<int>(s.percent.size()) != bins)
+      throw Error(path, "histogram series '" + s.name + "' has " + std::to_string(s.percent.size()) + " values for " +
+                            std::to_string(bins) + " bins");
+    for (const double p : s.percent) top = std::max(top, p);
+  }
+  const double step = tick_step(std::max(top, 1e-9) * 1.08);
+  top = std::min(step * std::ceil(std::max(top, 1e-9) * 1.08 / step), std::max(top, 100.0));  // percentages: <= 100
+
+  const int width = 960, height = 540, x0 = 90, x1 = width - 20, y0 = 60, y1 = height - 75;
+  Canvas canvas(width, height);
+  const Rgb black = {0, 0, 0}, grid = {225, 225, 225};
+  auto y_of = [&](double percent) { return y1 - static_cast<int>(std::lround((y1 - y0) * percent / top)); };
+  auto x_of = [&](double bin) { return x0 + static_cast<int>(std::lround((x1 - x0) * bin / bins)); };
+
+  for (double t = 0; t <= top + 1e-9 * top; t += step) {
+    canvas.fill(x0, y_of(t), x1, y_of(t) + 1, grid);
+    canvas.text(number(t), x0 - 8, y_of(t), 14, 1.0, 0.5);
+  }
+  const int ns = static_cast<int>(plot.series.size());
+  for (int b = 0; b < bins; ++b)
+    for (int s = 0; s < ns; ++s) {
+      const double left = b + 0.08 + 0.84 * s / ns, right = b + 0.08 + 0.84 * (s + 1) / ns;
+      canvas.fill(x_of(left), y_of(plot.series[s].percent[b]), std::max(x_of(left) + 1, x_of(right)), y1,
+                  plot.series[s].color);
+    }
+  canvas.fill(x0, y1, x1, y1 + 1, black);
+  canvas.fill(x0, y0, x0 + 1, y1, black);
+  int label_every = (bins + 11) / 12;  // at most 13 labels, on edges that divide the axis evenly
+  while (bins % label_every != 0) ++label_every;
+  for (int e = 0; e <= bins; e += label_every) {
+    canvas.fill(x_of(e), y1, x_of(e) + 1, y1 + 5, black);
+    canvas.text(number(plot.edges[e]), x_of(e), y1 + 8, 14, 0.5, 0.0);
+  }
+  canvas.text(plot.title, width / 2, 16, 18, 0.5, 0.0);
+  canvas.text(plot.x_label, (x0 + x1) / 2, height - 30, 15, 0.5, 0.0);
+  canvas.text(plot.y_label, 22, (y0 + y1) / 2, 15, 0.5, 0.5, 90);
+  // The legend goes in the top corner over the lower bars (on a translucent backdrop).
+  double half_max[2] = {0, 0};  // the highest bar in the left and in the right half
+  for (const auto& series : plot.series)
+    for (int b = 0; b < bins; ++b) half_max[2 * b >= bins] = std::max(half_max[2 * b >= bins], series.percent[b]);
+  const int lx = half_max[1] <= half_max[0] ? x1 - 258 : x0 + 10;
+  canvas.fill(lx, y0 + 2, lx + 256, y0 + 18 + 24 * ns, {255, 255, 255}, 0.8);
+  for (int s = 0; s < ns; ++s) {
+    const int y = y0 + 10 + 24 * s;
+    canvas.fill(lx + 8, y, lx + 24, y + 16, plot.series[s].color);
+    canvas.text(plot.series[s].name, lx + 32, y + 8, 14, 0.0, 0.5);
+  }
+  canvas.write_png(path);
+}
+
+}  // namespace facehex::cli

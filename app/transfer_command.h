@@ -1,0 +1,29 @@
+#pragma once
+// The harmonic transfer as the `run` and `map` commands do it (app/commands.cpp), shared with `compare`: the standard
+// and its constraint set, the patient (a CT is segmented first) with its constraint set or automatic constraints
+// (six sides + features at its landmarks), the transfer, and the quality of the result.
+#include <string>
+
+#include "app/cli_args.h"
+#include "app/report.h"
+#include "core/mesh.h"
+#include "core/quality/surface_distance.h"
+#include "core/transfer_pipeline.h"
+
+namespace facehex::cli {
+
+struct TransferOutputs {
+  VolumeMesh standard, patient;
+  TransferRun run;
+  MeshQualityReport standard_quality, patient_quality;
+  DistanceSummary distance;
+};
+
+// The options execute_transfer reads: --standard, --standard-constraints, --standard-domain, the field and the
+// segmentation options.
+void add_transfer_options(Args& args);
+
+// patient_constraints: a constraint-set file, or empty for the automatic constraints.
+TransferOutputs execute_transfer(const Args& args, const std::string& patient, const std::string& patient_constraints);
+
+}  // namespace facehex::cli
