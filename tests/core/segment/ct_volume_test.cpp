@@ -1,6 +1,9 @@
 #include "core/segment/ct_volume.h"
 
 #include <gtest/gtest.h>
+#include <vtkMetaImageReader.h>
+#include <vtkNIFTIImageWriter.h>
+#include <vtkNew.h>
 
 #include <cstdint>
 #include <filesystem>
@@ -49,6 +52,27 @@ TEST(CtVolume, ReorientsSoThatAnteriorIsPlusYAndSuperiorPlusZ) {
   EXPECT_EQ(ct.intensity(1, 0, 2), 1 + 10 * 2 + 100 * 4);
   EXPECT_EQ(ct.intensity(1, 4, 2), 1 + 10 * 2);
   EXPECT_NEAR(g.origin.y(), -(30 + 4 * 2), 1e-12);  // physical y = -old z
+}
+
+// The small volume written as compressed NIfTI by VTK's writer, with a rescale slope and intercept in its header (as
+// scanners store Hounsfield units): read back with the same grid, spacing and rescaled values.
+TEST(CtVolume, ReadsNiftiWithItsRescaleSlopeAndIntercept) {
+  vtkNew<vtkMetaImageReader> mhd;
+  mhd->SetFileName(write_small_mhd(scratch()).c_str());
+  vtkNew<vtkNIFTIImageWriter> nifti;
+  nifti->SetInputConnection(mhd->GetOutputPort());
+  nifti->SetRescaleSlope(2.0);
+  nifti->SetRescaleIntercept(-1000.0);
+  const std::string path = (scratch() / "small.nii.gz").string();
+  nifti->SetFileName(path.c_str());
+  nifti->Write();
+  ASSERT_TRUE(std::filesystem::exists(path));
+  const CtVolume ct = read_ct_volume(path);
+  const GridGeometry& g = ct.intensity.geometry;
+  EXPECT_EQ(g.dims, (std::array<int, 3>{3, 4, 5}));
+  EXPECT_TRUE(g.spacing.isApprox(Eigen::Vector3d(0.5, 1, 2)));
+  EXPECT_EQ(ct.intensity(0, 0, 0), -1000.0f);
+  EXPECT_EQ(ct.intensity(2, 3, 4), 2.0f * 432 - 1000);
 }
 
 TEST(CtVolume, ErrorsNameTheFile) {
