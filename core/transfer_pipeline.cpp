@@ -47,18 +47,24 @@ VertexPlacement parametric_placement(const TransferRun& run, const PatientMap& p
   return placement;
 }
 
+// True if coordinate f of standard vertex v is pinned to a shape end (0 or 1): the vertex lies on that side.
+bool pinned_to_side(const TransferRun& run, const Eigen::MatrixXd& uvw, int v, int f) {
+  return run.standard.fixed(v, f) && (uvw(v, f) == 0.0 || uvw(v, f) == 1.0);
+}
+
 // The last resort's placement: the vertices not fixed move in space, a vertex on a side only along that side's tangent
 // plane (normal: the gradient of the side's field in the patient tet the vertex was placed in), so it stays on the
-// patient's surface to first order; on two sides it slides along their common edge.
-VertexPlacement sliding_placement(const TransferRun& run, const PatientMap& patient, const std::vector<char>& fixed) {
+// patient's surface to first order; on two sides it slides along their common edge. uvw: the standard's hex vertex
+// parameters.
+VertexPlacement sliding_placement(const TransferRun& run, const PatientMap& patient, const Eigen::MatrixXd& uvw,
+                                  const std::vector<char>& fixed) {
   VertexPlacement placement = spatial_placement(run.patient_hex.V, fixed);
-  const Eigen::MatrixXd uvw = hex_vertex_uvw(run, static_cast<int>(fixed.size()));
   for (int v = 0; v < static_cast<int>(fixed.size()); ++v) {
     if (fixed[v]) continue;
     const Eigen::Matrix3d gradients = patient.jacobian(run.transfer.tet(v)).inverse();  // rows: grad u, v, w
     Eigen::MatrixXd normals(3, 0);
     for (int f = 0; f < 3; ++f)
-      if (run.standard.fixed(v, f) && (uvw(v, f) == 0.0 || uvw(v, f) == 1.0)) {
+      if (pinned_to_side(run, uvw, v, f)) {
         normals.conservativeResize(3, normals.cols() + 1);
         normals.col(normals.cols() - 1) = gradients.row(f).transpose();
       }
@@ -150,6 +156,7 @@ TransferRun run_transfer(const VolumeMesh& standard, const StandardDomain& domai
     // While unusable (inverted or flat) cells remain: widen the region that may move (a fold may need room beyond two
     // rings), then release the feature pins (never the sides) of the vertices of the cells still unusable: where the
     // patient's anatomy squeezes a feature (a flat nose), a valid element matters more than an exact feature line.
+    const Eigen::MatrixXd uvw = hex_vertex_uvw(run, standard.num_vertices());
     UntangleOptions pass = options.untangle_options;
     run.untangle = untangle(run.patient_hex, placement, pass);
     auto remaining = [&] { return run.untangle.inverted_after + run.untangle.degenerate_after; };
@@ -165,12 +172,11 @@ TransferRun run_transfer(const VolumeMesh& standard, const StandardDomain& domai
       if (attempt < 2) {
         pass.rings += 2;
       } else {
-        const Eigen::MatrixXd uvw = hex_vertex_uvw(run, standard.num_vertices());
         for (int c : check_corner_jacobians(run.patient_hex).unusable())
           for (int i = 0; i < node_count(standard.types[c]); ++i) {
             const int v = standard.C(c, i);
             for (int f = 0; f < 3; ++f)
-              if (uvw(v, f) != 0.0 && uvw(v, f) != 1.0) placement.movable[v](f, f) = 1;
+              if (!pinned_to_side(run, uvw, v, f)) placement.movable[v](f, f) = 1;
             ++run.untangle.released_feature_vertices;
           }
       }
@@ -183,11 +189,8 @@ TransferRun run_transfer(const VolumeMesh& standard, const StandardDomain& domai
     // open). In the fifth, all vertices within 5 rings, side vertices too, are spread and move freely (where the
     // standard's side meets a patient side far away, as the inner wall of the standard's nostrils the patient's bone),
     // since a valid element matters more than an exact boundary there.
-    const Eigen::MatrixXd uvw = hex_vertex_uvw(run, standard.num_vertices());
     auto on_side = [&](int v) {
-      for (int f = 0; f < 3; ++f)
-        if (run.standard.fixed(v, f) && (uvw(v, f) == 0.0 || uvw(v, f) == 1.0)) return true;
-      return false;
+      return pinned_to_side(run, uvw, v, 0) || pinned_to_side(run, uvw, v, 1) || pinned_to_side(run, uvw, v, 2);
     };
     constexpr int kLastResortPasses = 5;
     for (int rings = 1; rings <= kLastResortPasses && remaining() > 0; ++rings) {
@@ -195,17 +198,7 @@ TransferRun run_transfer(const VolumeMesh& standard, const StandardDomain& domai
       std::vector<char> in_cell(standard.num_vertices(), 0);  // vertices of the unusable cells
       for (int c : check_corner_jacobians(run.patient_hex).unusable())
         for (int i = 0; i < node_count(standard.types[c]); ++i) in_cell[standard.C(c, i)] = 1;
-      std::vector<char> free = in_cell;
-      for (int ring = 0; ring < rings; ++ring) {
-        std::vector<char> grown = free;
-        for (int c = 0; c < standard.num_cells(); ++c) {
-          bool touches = false;
-          for (int i = 0; i < node_count(standard.types[c]); ++i) touches |= free[standard.C(c, i)] != 0;
-          if (touches)
-            for (int i = 0; i < node_count(standard.types[c]); ++i) grown[standard.C(c, i)] = 1;
-        }
-        free.swap(grown);
-      }
+      const std::vector<char> free = within_cell_rings(run.patient_hex, in_cell, rings);
       // Side vertices move only if they belong to an unusable cell, except in the final pass.
       std::vector<char> fixed(standard.num_vertices());
       int released = 0;
@@ -221,7 +214,7 @@ TransferRun run_transfer(const VolumeMesh& standard, const StandardDomain& domai
         spread_free_vertices(run.patient_hex, kept);
       }
       VertexPlacement last =
-          final_pass ? spatial_placement(run.patient_hex.V, fixed) : sliding_placement(run, patient_map, fixed);
+          final_pass ? spatial_placement(run.patient_hex.V, fixed) : sliding_placement(run, patient_map, uvw, fixed);
       pass.max_sweeps = 2 * options.untangle_options.max_sweeps;  // few vertices: cheap, and a long way may remain
       take(untangle(run.patient_hex, last, pass));
     }

@@ -3,7 +3,6 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <set>
 
 #include "core/corner_jacobian.h"
 
@@ -67,6 +66,20 @@ struct Energy {
 
 }  // namespace
 
+std::vector<char> within_cell_rings(const VolumeMesh& mesh, std::vector<char> marked, int rings) {
+  for (int ring = 0; ring < rings; ++ring) {
+    std::vector<char> grown = marked;
+    for (int c = 0; c < mesh.num_cells(); ++c) {
+      bool touches = false;
+      for (int i = 0; i < node_count(mesh.types[c]); ++i) touches |= marked[mesh.C(c, i)] != 0;
+      if (touches)
+        for (int i = 0; i < node_count(mesh.types[c]); ++i) grown[mesh.C(c, i)] = 1;
+    }
+    marked.swap(grown);
+  }
+  return marked;
+}
+
 VertexPlacement spatial_placement(const Eigen::MatrixXd& V, const std::vector<char>& fixed) {
   VertexPlacement placement;
   placement.p = V;
@@ -113,20 +126,14 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
   std::vector<std::vector<int>> cells_of(nv);
   for (int c = 0; c < nc; ++c)
     for (int i = 0; i < node_count(mesh.types[c]); ++i) cells_of[mesh.C(c, i)].push_back(c);
-  std::set<int> region;
+  std::vector<char> in_bad_cell(nv, 0);
   for (int c = 0; c < nc; ++c)
     if (is_bad(c))
-      for (int i = 0; i < node_count(mesh.types[c]); ++i) region.insert(mesh.C(c, i));
-  for (int r = 0; r < options.rings; ++r) {
-    std::set<int> grown = region;
-    for (int v : region)
-      for (int c : cells_of[v])
-        for (int i = 0; i < node_count(mesh.types[c]); ++i) grown.insert(mesh.C(c, i));
-    region.swap(grown);
-  }
+      for (int i = 0; i < node_count(mesh.types[c]); ++i) in_bad_cell[mesh.C(c, i)] = 1;
+  const std::vector<char> region = within_cell_rings(mesh, std::move(in_bad_cell), options.rings);
   std::vector<int> free_vertices;
-  for (int v : region)
-    if (!movable[v].isZero()) free_vertices.push_back(v);
+  for (int v = 0; v < nv; ++v)
+    if (region[v] && !movable[v].isZero()) free_vertices.push_back(v);
   report.free_vertices = static_cast<int>(free_vertices.size());
 
   // Corners touching each free vertex (the vertex is the corner node or one of its three neighbours), the centre of

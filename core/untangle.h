@@ -14,18 +14,19 @@
 // where solvers evaluate it.
 //
 // Only vertices near bad cells move (within `rings` vertex rings of a cell that is inverted or whose scaled Jacobian
-// is below `min_scaled_jacobian`); a step never makes a cell unusable (inverted or degenerate) that was not, so the rest of the mapped mesh keeps exactly the shape the mapping gave it.
-// Vertices move through parameters: the untangler changes a vertex's parameters p, and a placement function gives
-// its position x(p) and dx/dp. With p = x this is plain smoothing in space; with p = (u, v, w) and x = the patient's
-// inverse parameterization (hex_transfer.h), a vertex whose u is pinned (a shape end, or the mid-sagittal feature)
-// keeps exactly that u: it stays exactly on the patient's side or feature surface, and every vertex stays inside the
-// patient. Each sweep visits the movable vertices and takes a Newton step (finite-difference Hessian) in the movable
-// parameter directions with a backtracking line search (local Gauss-Seidel descent).
-#include "core/mesh.h"
-
+// is below `min_scaled_jacobian`); a step never makes a cell unusable (inverted or degenerate) that was not, so the
+// rest of the mapped mesh keeps exactly the shape the mapping gave it. Vertices move through parameters: the untangler
+// changes a vertex's parameters p, and a placement function gives its position x(p) and dx/dp. With p = x this is plain
+// smoothing in space; with p = (u, v, w) and x = the patient's inverse parameterization (hex_transfer.h), a vertex
+// whose u is pinned (a shape end, or the mid-sagittal feature) keeps exactly that u: it stays exactly on the patient's
+// side or feature surface, and every vertex stays inside the patient. Each sweep visits the movable vertices and takes
+// a Newton step (finite-difference Hessian) in the movable parameter directions with a backtracking line search (local
+// Gauss-Seidel descent).
 #include <Eigen/Core>
 #include <functional>
 #include <vector>
+
+#include "core/mesh.h"
 
 namespace facehex {
 
@@ -38,7 +39,7 @@ struct UntangleOptions {
 struct UntangleReport {
   int inverted_before = 0, inverted_after = 0;
   int degenerate_before = 0, degenerate_after = 0;  // flat, not inverted (corner_jacobian.h)
-  int bad_before = 0, bad_after = 0;  // inverted or below min_scaled_jacobian
+  int bad_before = 0, bad_after = 0;                // inverted or below min_scaled_jacobian
   double min_scaled_jacobian_before = 0, min_scaled_jacobian_after = 0;
   int free_vertices = 0;  // vertices allowed to move
   int sweeps = 0;
@@ -52,6 +53,10 @@ struct VertexPlacement {
   // Position x and dx/dp of vertex v at parameters q; false when q is not admissible.
   std::function<bool(int v, const Eigen::Vector3d& q, Eigen::Vector3d& x, Eigen::Matrix3d& dxdq)> place;
 };
+
+// The vertices `marked` (#V flags) and those sharing a cell with them, grown `rings` times: the neighbourhood of a
+// set of vertices in cell rings.
+std::vector<char> within_cell_rings(const VolumeMesh& mesh, std::vector<char> marked, int rings);
 
 // p = x: vertices move freely in space, except the fixed ones (#V flags, nonzero = fixed).
 VertexPlacement spatial_placement(const Eigen::MatrixXd& V, const std::vector<char>& fixed);
