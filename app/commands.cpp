@@ -9,6 +9,7 @@
 #include "core/constraint_set.h"
 #include "core/error.h"
 #include "core/io/fe_sets.h"
+#include "core/io/parameterization_cache.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh_check.h"
 #include "core/resources.h"
@@ -16,6 +17,7 @@
 #include "core/shell_sides.h"
 #include "core/standard/closed_domain.h"
 #include "core/sides.h"
+#include "core/template_mesh.h"
 #include "core/tet_topology.h"
 #include "core/text_file.h"
 #include "core/transfer_pipeline.h"
@@ -24,6 +26,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <numeric>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -171,14 +175,31 @@ TransferOutputs execute_transfer(const TransferInputs& in) {
     std::cerr << "automatic constraints: six sides and " << feature_specs().size() << " features at the landmarks\n";
     std::cerr << landmarks_text(landmarks, "  ");
   }
-  out.run = run_transfer(out.standard, standard_domain(out.standard, in.standard_domain), standard_set, std_constraints, out.patient, patient_set,
+  const StandardDomain domain = standard_domain(out.standard, in.standard_domain);
+  const std::string cache = parameterization_cache_path(in.standard.mesh);
+  const std::optional<ModelParameterization> cached =
+      cached_standard_parameterization(cache, domain, standard_set, in.options.fields);
+  out.run = run_transfer(out.standard, domain, standard_set, std_constraints, out.patient, patient_set,
                          in.patient_constraints.empty() ? in.patient : in.patient_constraints, in.options,
-                         progress.callback());
+                         progress.callback(), cached ? &*cached : nullptr);
+  if (cached) out.run.standard_parameterization_source = cache;
   progress.finish();
   out.standard_quality = quality_report(out.standard, nullptr);
   out.patient_quality = quality_report(out.run.patient_hex, &out.standard);
   out.distance = side_vertex_distances(out.run, out.standard);
   return out;
+}
+
+std::optional<ModelParameterization> cached_standard_parameterization(const std::string& cache,
+                                                                      const StandardDomain& domain,
+                                                                      const ConstraintSet& set,
+                                                                      const HarmonicFieldsOptions& options) {
+  std::string why_not;
+  std::optional<ModelParameterization> cached = read_parameterization_cache(cache, domain, set, options, &why_not);
+  if (!cached && !why_not.empty())
+    std::cerr << "note: " << why_not << "; the standard's parameterization is recomputed (refresh the cache with "
+              << "facehex standards --write-cache)\n";
+  return cached;
 }
 
 void add_transfer_options(Args& args) {
@@ -497,10 +518,104 @@ int cmd_constraints(const Argv& argv) {
   return 0;
 }
 
-int cmd_standards(const Argv& argv) {
-  Args args("standards", "Lists the bundled standard hex meshes (use a name with --standard).");
+int cmd_template(const Argv& argv) {
+  Args args("template",
+            "Builds a new standard hex mesh from a reference model (paper 3.1): a grid in the reference's harmonic "
+            "parameterization with rows on its feature lines, cells about --cell-size long along the face and "
+            "--layers layers from bone to skin, mapped onto the reference and improved until no cell has a scaled "
+            "Jacobian below --min-scaled-jacobian where that can be reached. OUT/ gets standard.vtu, constraints.json "
+            "and README.md: a folder --standard accepts (or copy it to resources/standards/NAME/).");
+  args.positional("REFERENCE", "reference CT volume, tet model or closed surface (default: the bundled sample CT)",
+                  false)
+      .option("output", "output folder")
+      .option("constraints", "constraint set of the reference (default: sides + features at its landmarks)")
+      .option("standard", "standard whose feature values the automatic constraints use", "artisynth-refface")
+      .option("layers", "hex layers from bone to skin", "3")
+      .option("cell-size", "cell length along the face (mm); 0: mean tissue thickness / layers", "0")
+      .option("min-scaled-jacobian", "cells below this are improved by the untangler", "0.35")
+      .option("edge-length", "target edge length (mm) when the reference is a closed surface or a CT", "2");
+  add_field_options(args);
+  add_segment_options(args);
   if (!args.parse(argv)) return 0;
-  for (const auto& s : bundled_standards()) std::cout << s.name << "\t" << s.description << "\n\t" << s.mesh << "\n";
+  if (!args.has("output")) throw Error("facehex template", "missing -o OUTPUT_FOLDER");
+  std::string input = args.get("REFERENCE");
+  if (input.empty()) input = default_ct();
+  const fs::path out_dir = args.get("output");
+  std::error_code ec;
+  fs::create_directories(out_dir, ec);
+  if (ec) throw Error(out_dir.string(), "cannot create the output folder: " + ec.message());
+
+  const VolumeMesh reference = load_tet_model(input, segment_options(args));
+  ConstraintSet reference_set;
+  if (args.has("constraints")) {
+    reference_set = read_constraint_set(args.get("constraints"));
+  } else {
+    FaceLandmarks landmarks;
+    reference_set =
+        automatic_constraints(reference.V, side_mask_of(reference),
+                              feature_values(read_constraint_set(find_standard(args.get("standard")).constraints)),
+                              kFeatureBand, &landmarks);
+    std::cerr << "automatic constraints: six sides and " << feature_specs().size() << " features at the landmarks\n"
+              << landmarks_text(landmarks, "  ");
+  }
+  TemplateOptions options;
+  options.layers = args.integer("layers");
+  options.cell_size = args.number("cell-size");
+  TransferOptions transfer;
+  transfer.fields = field_options(args);
+  transfer.untangle_options.min_scaled_jacobian = args.number("min-scaled-jacobian");
+  TerminalProgress progress;
+  TemplateResult t = build_template(reference, reference_set, input, options, transfer, progress.callback());
+  progress.finish();
+
+  const MeshQualityReport quality = quality_report(t.mesh, nullptr);
+  VolumeMesh standard = t.mesh;
+  attach_quality(standard);
+  write_volume_mesh((out_dir / "standard.vtu").string(), standard);
+  write_constraint_set((out_dir / "constraints.json").string(), t.constraints);
+  std::ostringstream readme;
+  readme << "# Template standard from " << fs::path(input).filename().string() << " (" << t.grid.cells(0) << " x "
+         << t.grid.cells(1) << " x " << t.grid.cells(2) << " hexes, mean shape " << quality.summary.shape_mean
+         << ")\n\nBuilt by `facehex template` (docs/method.md, template standards) from the reference " << input
+         << " (" << reference.num_cells() << " tets; mean bone-to-skin thickness " << t.grid.mean_thickness
+         << " mm), cells " << t.grid.cell_size << " mm along the face:\n\n    facehex template"
+         << std::accumulate(argv.begin(), argv.end(), std::string(),
+                            [](std::string a, const std::string& b) { return a + " " + b; })
+         << "\n\n`constraints.json`: the six sides and the reference's feature lines as rows of the grid.\n\n"
+         << "```\n" << quality_text(quality) << "```\n";
+  write_text_file((out_dir / "README.md").string(), readme.str());
+  std::cout << "grid " << t.grid.cells(0) << " x " << t.grid.cells(1) << " x " << t.grid.cells(2) << " = "
+            << t.mesh.num_cells() << " hexes (cell size " << t.grid.cell_size << " mm, mean thickness "
+            << t.grid.mean_thickness << " mm)\n"
+            << "repair: " << t.run.untangle.bad_before << " cells below the bound before, " << t.run.untangle.bad_after
+            << " after\n"
+            << quality_text(quality) << "wrote " << out_dir.string()
+            << "/: standard.vtu, constraints.json, README.md\n";
+  const QualitySummary& q = quality.summary;
+  return q.inverted + q.degenerate == 0 ? 0 : 3;
+}
+
+int cmd_standards(const Argv& argv) {
+  Args args("standards",
+            "Lists the bundled standard hex meshes (use a name with --standard). With --write-cache, computes each "
+            "one's parameterization (closed domain, default field options) and keeps it beside it as "
+            "standard.param.vtu + .json, which transfers then read instead of computing it.");
+  args.flag("write-cache", "write the parameterization cache of every bundled standard");
+  if (!args.parse(argv)) return 0;
+  for (const auto& s : bundled_standards()) {
+    std::cout << s.name << "\t" << s.description << "\n\t" << s.mesh << "\n";
+    if (!args.has("write-cache")) continue;
+    const VolumeMesh mesh = read_volume_mesh(s.mesh);
+    const ConstraintSet set = read_constraint_set(s.constraints);
+    const StandardDomain domain = closed_domain(mesh);
+    const HarmonicFieldsOptions options;
+    const ModelParameterization p =
+        parameterize_model(domain.V, domain.T, domain.side_mask, set, s.constraints, options);
+    const std::string cache = parameterization_cache_path(s.mesh);
+    write_parameterization_cache(cache, domain, p, set, options);
+    std::cout << "\twrote " << cache << " (" << p.T.rows() << " tets, " << p.health.inverted
+              << " folded in parameter space)\n";
+  }
   return 0;
 }
 

@@ -16,6 +16,7 @@ int cmd_map(const Argv& argv);
 int cmd_quality(const Argv& argv);
 int cmd_run(const Argv& argv);
 int cmd_standards(const Argv& argv);
+int cmd_template(const Argv& argv);
 int cmd_bench(const Argv& argv);
 int cmd_constraints(const Argv& argv);
 int cmd_segment(const Argv& argv);

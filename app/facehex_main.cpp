@@ -26,6 +26,7 @@ const std::map<std::string, Command>& commands() {
       {"quality", {cmd_quality, "element quality of a hex mesh (and distortion against its standard)"}},
       {"run", {cmd_run, "end to end: patient model -> parameterization -> patient hex mesh + report"}},
       {"standards", {cmd_standards, "list the bundled standard meshes"}},
+      {"template", {cmd_template, "build a new standard hex mesh from a reference model (CT, tet model)"}},
       {"segment", {cmd_segment, "head CT -> labelled patient tet model of the facial soft tissue"}},
       {"constraints", {cmd_constraints, "sides + feature constraints at the facial landmarks of a model"}},
       {"bench", {cmd_bench, "time each stage of a transfer for patients of several sizes"}},

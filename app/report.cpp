@@ -137,6 +137,7 @@ json run_report(const TransferRun& run, const MeshQualityReport& standard_qualit
           {"total_seconds", total},
           {"standard",
            {{"parameterization", parameterization_json(run.standard)},
+            {"parameterization_source", run.standard_parameterization_source},
             {"domain", run.standard_domain},
             {"domain_tets_non_positive", run.standard_domain_non_positive},
             {"relaxed_corner_vertices", run.standard_relaxed_corner_vertices},

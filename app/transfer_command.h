@@ -2,6 +2,7 @@
 // The harmonic transfer as the `run` and `map` commands do it (app/commands.cpp), shared with `compare`: the standard
 // and its constraint set, the patient (a CT is segmented first) with its constraint set or automatic constraints
 // (six sides + features at its landmarks), the transfer, and the quality of the result.
+#include <optional>
 #include <string>
 
 #include "app/cli_args.h"
@@ -18,6 +19,13 @@ struct TransferOutputs {
   MeshQualityReport standard_quality, patient_quality;
   DistanceSummary distance;
 };
+
+// The standard's parameterization from its cache file (core/io/parameterization_cache.h), or nullopt; a cache that
+// exists but does not fit is reported on stderr (it is then recomputed).
+std::optional<ModelParameterization> cached_standard_parameterization(const std::string& cache,
+                                                                      const StandardDomain& domain,
+                                                                      const ConstraintSet& set,
+                                                                      const HarmonicFieldsOptions& options);
 
 // The options execute_transfer reads: --standard, --standard-constraints, --standard-domain, the field and the
 // segmentation options.

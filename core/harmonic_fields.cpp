@@ -11,8 +11,8 @@ HarmonicFields::HarmonicFields(const Eigen::MatrixXd& V, const Eigen::MatrixXi& 
                                const ResolvedConstraints& constraints, const HarmonicFieldsOptions& options,
                                const ProgressCallback& progress)
     : options_(options) {
-  const std::set<int> order(options.order.begin(), options.order.end());
-  if (order != std::set<int>{0, 1, 2}) throw Error("harmonic fields", "the field order must be a permutation of u, v, w");
+  const std::set<int> field_order(options.order.begin(), options.order.end());
+  if (field_order != std::set<int>{0, 1, 2}) throw Error("harmonic fields", "the field order must be a permutation of u, v, w");
   if (options.orthogonality_iterations < 0) throw Error("harmonic fields", "negative number of iterations");
   Stopwatch clock;
   report_progress(progress, "assembling the Laplacian", 0.0);
@@ -22,9 +22,11 @@ HarmonicFields::HarmonicFields(const Eigen::MatrixXd& V, const Eigen::MatrixXi& 
   setup_seconds_["laplacian_assembly"] = clock.lap();
   // One after the other: run concurrently, CHOLMOD (Debian's SuiteSparse 5.12) gave results differing by 1e-3
   // from run to run, i.e. it is not safe to use from several threads here.
+  report_progress(progress, "ordering the Laplacian for factorization", 0.0);
+  const auto elimination_order = std::make_shared<const std::vector<int>>(fill_reducing_order(K_));
   for (int f = 0; f < 3; ++f) {
-    report_progress(progress, std::string("factoring the ") + kFieldNames[f] + " system", f / 3.0);
-    solvers_[f] = std::make_unique<HarmonicSolver>(K_, constraints.fields[f], HarmonicSolver::Options{kFieldNames[f]});
+    report_progress(progress, std::string("factoring the ") + kFieldNames[f] + " system", (f + 1) / 4.0);
+    solvers_[f] = std::make_unique<HarmonicSolver>(K_, constraints.fields[f], HarmonicSolver::Options{kFieldNames[f], elimination_order});
   }
   setup_seconds_["factorization"] = clock.lap();
 }

@@ -41,7 +41,35 @@ bool every_vertex_reaches_a_fixed_one(const SparseMatrix& K, const std::vector<i
   return std::all_of(reached.begin(), reached.end(), [](char r) { return r != 0; });
 }
 
+bool is_permutation_of_rows(const std::vector<int>& order, int n) {
+  if (static_cast<int>(order.size()) != n) return false;
+  std::vector<char> seen(n, 0);
+  for (int v : order) {
+    if (v < 0 || v >= n || seen[v]) return false;
+    seen[v] = 1;
+  }
+  return true;
+}
+
 }  // namespace
+
+std::vector<int> fill_reducing_order(const SparseMatrix& K) {
+  cholmod_common common;
+  cholmod_start(&common);
+  SparseMatrix lower = K.triangularView<Eigen::Lower>();
+  cholmod_sparse A = Eigen::viewAsCholmod(lower);
+  A.stype = -1;  // symmetric, lower triangle stored
+  cholmod_factor* L = cholmod_analyze(&A, &common);
+  std::vector<int> order;
+  if (L != nullptr) {
+    const int* perm = static_cast<const int*>(L->Perm);
+    order.assign(perm, perm + L->n);
+    cholmod_free_factor(&L, &common);
+  }
+  cholmod_finish(&common);
+  if (order.empty()) throw Error("sparse Cholesky", "CHOLMOD could not order the stiffness matrix");
+  return order;
+}
 
 HarmonicSolver::HarmonicSolver(const SparseMatrix& K, const DirichletConditions& conditions, const Options& options)
     : factorization_(std::make_unique<Factorization>()), n_(static_cast<int>(K.rows())), name_(options.name) {
@@ -58,8 +86,18 @@ HarmonicSolver::HarmonicSolver(const SparseMatrix& K, const DirichletConditions&
     fixed_.push_back(v);
     fixed_values_(static_cast<Eigen::Index>(i)) = conditions.values[i];
   }
-  for (int v = 0; v < n_; ++v)
-    if (slot[v] == -1) free_.push_back(v);
+  if (options.order) {
+    if (!is_permutation_of_rows(*options.order, n_))
+      throw Error(name_, "the shared elimination order is not a permutation of the mesh's vertices");
+    // Free vertices in the shared order, and CHOLMOD told to keep it (its postorder does not change the fill).
+    for (int v : *options.order)
+      if (slot[v] == -1) free_.push_back(v);
+    factorization_->cholmod.cholmod().nmethods = 1;
+    factorization_->cholmod.cholmod().method[0].ordering = CHOLMOD_NATURAL;
+  } else {
+    for (int v = 0; v < n_; ++v)
+      if (slot[v] == -1) free_.push_back(v);
+  }
   if (free_.empty()) return;
   if (!every_vertex_reaches_a_fixed_one(K, fixed_))
     throw Error(name_, "part of the mesh is not connected to any Dirichlet vertex of this field");

@@ -17,10 +17,18 @@ struct DirichletConditions {
   std::vector<double> values;
 };
 
+// A fill-reducing elimination order of all #V rows of K (CHOLMOD's pick among AMD and METIS), for sharing between
+// solvers on the same K: their free-free blocks are K minus different fixed rows, and the order restricted to a
+// block's rows serves it nearly as well as its own, while the symbolic analysis that finds it is about 40 % of a
+// factorization's time.
+std::vector<int> fill_reducing_order(const SparseMatrix& K);
+
 class HarmonicSolver {
  public:
   struct Options {
     std::string name = "field";  // used in error messages, e.g. "u"
+    // fill_reducing_order(K), shared between solvers on the same K; empty: CHOLMOD finds one for this block.
+    std::shared_ptr<const std::vector<int>> order;
   };
 
   // Factors the free-free block of K. Throws facehex::Error(name, ...) when the conditions are empty, name a vertex

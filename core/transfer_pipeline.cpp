@@ -103,15 +103,21 @@ ModelParameterization parameterize_model(const Eigen::MatrixXd& V, const Eigen::
                                          const Eigen::VectorXi& side_mask, const ConstraintSet& constraints,
                                          const std::string& source, const HarmonicFieldsOptions& options,
                                          const ProgressCallback& progress) {
+  ResolvedConstraints resolved = resolve_constraints(constraints, V, T, side_mask, source);
+  const HarmonicFields fields(V, T, resolved, options, sub_progress(progress, 0.0, 0.3));
+  return parameterization_of(V, T, std::move(resolved), fields.compute(sub_progress(progress, 0.3, 1.0)));
+}
+
+ModelParameterization parameterization_of(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T,
+                                          ResolvedConstraints constraints, HarmonicFieldsResult fields) {
   ModelParameterization m;
   m.V = V;
   m.T = T;
-  m.constraints = resolve_constraints(constraints, V, T, side_mask, source);
+  m.constraints = std::move(constraints);
   m.fixed = Eigen::MatrixXi::Zero(V.rows(), 3);
   for (int f = 0; f < 3; ++f)
     for (int v : m.constraints.fields[f].vertices) m.fixed(v, f) = 1;
-  const HarmonicFields fields(V, T, m.constraints, options, sub_progress(progress, 0.0, 0.3));
-  m.fields = fields.compute(sub_progress(progress, 0.3, 1.0));
+  m.fields = std::move(fields);
   // The unit cube is the common domain: round-off can leave values a hair outside it.
   m.fields.uvw = m.fields.uvw.cwiseMax(0.0).cwiseMin(1.0);
   m.health = parameterization_health(T, m.fields.uvw, m.fixed);
@@ -122,7 +128,7 @@ TransferRun run_transfer(const VolumeMesh& standard, const StandardDomain& domai
                          const ConstraintSet& standard_constraints, const std::string& standard_source,
                          const VolumeMesh& patient, const ConstraintSet& patient_constraints,
                          const std::string& patient_source, const TransferOptions& options,
-                         const ProgressCallback& progress) {
+                         const ProgressCallback& progress, const ModelParameterization* standard_parameterization) {
   TransferRun run;
   Stopwatch clock;
   if (domain.hex_vertices != standard.num_vertices() ||
@@ -131,13 +137,26 @@ TransferRun run_transfer(const VolumeMesh& standard, const StandardDomain& domai
   run.standard_domain = domain.description;
   run.standard_domain_non_positive = domain.non_positive_tets;
   run.standard_relaxed_corner_vertices = domain.relaxed_corner_vertices;
-  run.standard = parameterize_model(domain.V, domain.T, domain.side_mask, standard_constraints, standard_source,
-                                    options.fields, sub_progress(progress, 0.0, 0.3));
+  if (standard_parameterization) {
+    if (standard_parameterization->V.rows() != domain.V.rows() || standard_parameterization->T.rows() != domain.T.rows())
+      throw Error(standard_source, "the given parameterization was not made on this standard's domain");
+    run.standard = *standard_parameterization;
+    run.standard_parameterization_source = "given";
+  } else {
+    run.standard = parameterize_model(domain.V, domain.T, domain.side_mask, standard_constraints, standard_source,
+                                      options.fields, sub_progress(progress, 0.0, 0.3));
+  }
   run.seconds["standard_parameterization"] = clock.lap();
   run.patient = parameterize_model(patient.V, patient.tets(), side_mask_of(patient), patient_constraints,
                                    patient_source, options.fields, sub_progress(progress, 0.3, 0.85));
   run.seconds["patient_parameterization"] = clock.lap();
+  map_parameterized(run, standard, patient_source, options, sub_progress(progress, 0.85, 1.0));
+  return run;
+}
 
+void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::string& patient_source,
+                       const TransferOptions& options, const ProgressCallback& progress) {
+  Stopwatch clock;
   const ParamHealth& health = run.patient.health;
   const int folded = health.inverted + health.degenerate - health.flat_by_constraint;
   if (!options.allow_inverted_parameterization && folded > options.max_inverted_fraction * health.tets)
@@ -149,7 +168,7 @@ TransferRun run_transfer(const VolumeMesh& standard, const StandardDomain& domai
   const PatientMap patient_map(run.patient.V, run.patient.T, run.patient.fields.uvw);
   run.seconds["locator_build"] = clock.lap();
   run.patient_hex = transfer_hex_mesh(standard, hex_vertex_uvw(run, standard.num_vertices()), patient_map,
-                                      &run.transfer, sub_progress(progress, 0.85, 1.0));
+                                      &run.transfer, progress);
   run.seconds["mapping"] = clock.lap();
   if (options.untangle) {
     VertexPlacement placement = parametric_placement(run, patient_map, standard.num_vertices());
@@ -220,7 +239,6 @@ TransferRun run_transfer(const VolumeMesh& standard, const StandardDomain& domai
     }
     run.seconds["untangle"] = clock.lap();
   }
-  return run;
 }
 
 Eigen::MatrixXd hex_vertex_uvw(const TransferRun& run, int hex_vertices) {

@@ -31,6 +31,11 @@ ModelParameterization parameterize_model(const Eigen::MatrixXd& V, const Eigen::
                                          const std::string& source, const HarmonicFieldsOptions& options,
                                          const ProgressCallback& progress = {});
 
+// The record of fields computed (or read back from a cache) for a model with its resolved constraints: the fixed
+// flags, the fields clamped to the unit cube, the health. parameterize_model is this after HarmonicFields.
+ModelParameterization parameterization_of(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T,
+                                          ResolvedConstraints constraints, HarmonicFieldsResult fields);
+
 
 struct TransferOptions {
   HarmonicFieldsOptions fields;
@@ -50,6 +55,7 @@ struct TransferRun {
   std::string standard_domain;              // how the standard's tet domain was built
   int standard_domain_non_positive = 0;     // domain tets with non-positive volume (badly shaped standard cells)
   int standard_relaxed_corner_vertices = 0;  // side labels dropped at the standard's shell corners
+  std::string standard_parameterization_source = "computed";  // or where it was read from (a cache)
   VolumeMesh patient_hex;
   TransferStatistics transfer;
   UntangleReport untangle;
@@ -58,11 +64,20 @@ struct TransferRun {
 
 // standard: hex-dominant mesh with its constraint set, parameterized on `domain` (see standard_domain.h); patient:
 // checked tet model (see mesh_check.h) with its set. Sources name the files in error messages.
+// standard_parameterization: the standard's parameterization on `domain` made beforehand (a cache,
+// core/io/parameterization_cache.h), or null to compute it here.
 TransferRun run_transfer(const VolumeMesh& standard, const StandardDomain& domain,
                          const ConstraintSet& standard_constraints,
                          const std::string& standard_source, const VolumeMesh& patient,
                          const ConstraintSet& patient_constraints, const std::string& patient_source,
-                         const TransferOptions& options, const ProgressCallback& progress = {});
+                         const TransferOptions& options, const ProgressCallback& progress = {},
+                         const ModelParameterization* standard_parameterization = nullptr);
+
+// The mapping and the repair alone, on parameterizations made beforehand (run.standard on the standard's domain,
+// whose first rows are the hex vertices; run.patient on the patient's tets): checks the patient's health and
+// handedness against the standard's, maps the standard and repairs the result (run_transfer's second half).
+void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::string& patient_source,
+                       const TransferOptions& options, const ProgressCallback& progress = {});
 
 // The standard's (u,v,w) at its hex vertices: the first rows of its domain's parameterization (#Vs x 3).
 Eigen::MatrixXd hex_vertex_uvw(const TransferRun& run, int hex_vertices);

@@ -3,6 +3,7 @@
 #include "core/automatic_constraints.h"
 #include "core/error.h"
 #include "core/io/mesh_io.h"
+#include "core/io/parameterization_cache.h"
 #include "core/resources.h"
 #include "core/segment/ct_volume.h"
 #include "ui/model_loading.h"
@@ -13,6 +14,7 @@
 #include <QtConcurrent/QtConcurrentRun>
 #include <algorithm>
 #include <memory>
+#include <optional>
 
 namespace facehex::gui {
 namespace {
@@ -203,9 +205,16 @@ bool TransferController::runTransfer() {
   const std::array<quint64, 2> revisions = {session_->revision(Role::Standard), session_->revision(Role::Patient)};
   const TransferOptions options = options_;
   return start(tr("Transfer"), [standard, patient, revisions, options](const ProgressCallback& progress) -> Apply {
-    auto run = std::make_shared<TransferRun>(
-        run_transfer(standard->mesh, standard->domain, standard->constraints.set, standard->source(), patient->mesh,
-                     patient->constraints.set, patient->source(), options, progress));
+    // The standard's cached parameterization when it fits the standard as edited (its constraints may have changed).
+    const std::string cache =
+        standard->path.isEmpty() ? std::string() : parameterization_cache_path(standard->path.toStdString());
+    const std::optional<ModelParameterization> cached =
+        cache.empty() ? std::nullopt
+                      : read_parameterization_cache(cache, standard->domain, standard->constraints.set, options.fields);
+    auto run = std::make_shared<TransferRun>(run_transfer(standard->mesh, standard->domain, standard->constraints.set,
+                                                          standard->source(), patient->mesh, patient->constraints.set,
+                                                          patient->source(), options, progress,
+                                                          cached ? &*cached : nullptr));
     report_progress(progress, "quality", 1.0);
     // Quality and the exported arrays as `facehex run` writes them.
     auto result = std::make_shared<TransferResult>();

@@ -21,8 +21,9 @@ struct Result {
   std::string output;  // stdout and stderr
 };
 
-Result run(const std::string& args) {
-  const std::string command = std::string(FACEHEX_CLI) + " " + args + " 2>&1";
+// env: assignments put before the command, e.g. "FACEHEX_RESOURCES=/tmp/r".
+Result run(const std::string& args, const std::string& env = "") {
+  const std::string command = env + (env.empty() ? "" : " ") + std::string(FACEHEX_CLI) + " " + args + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   std::string out;
   char buffer[4096];
@@ -71,6 +72,9 @@ TEST_F(Cli, DemoRunsTheWholeChainFromTheBundledCt) {
   EXPECT_EQ(report["untangle"]["degenerate_after"].get<int>(), 0);
   EXPECT_EQ(q["inverted"].get<int>(), 0);
   EXPECT_EQ(q["degenerate"].get<int>(), 0);
+  // The standard's parameterization came from its cache.
+  const std::string source = report["standard"]["parameterization_source"].get<std::string>();
+  EXPECT_NE(source.find("standard.param.vtu"), std::string::npos) << source;
   // The patient's parameterization is reported, with its angles before and after the improvement.
   const auto& p = report["patient"]["parameterization"];
   EXPECT_GT(p["tets"].get<int>(), 10000);
@@ -159,6 +163,73 @@ int nonempty_lines(const std::string& text) {
   std::istringstream in(text);
   for (std::string line; std::getline(in, line);) n += !line.empty();
   return n;
+}
+
+// facehex template on a tiny model: a standard folder that --standard takes, and one-line errors for bad inputs.
+TEST_F(Cli, TemplateBuildsAStandardThatRunAccepts) {
+  write_tiny_models(dir_);
+  Result r = run("template " + path("box.vtu") + " --constraints " + path("box.json") + " --cell-size 10 --layers 2 -o " +
+                 path("tpl"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* f : {"standard.vtu", "constraints.json", "README.md"})
+    EXPECT_TRUE(fs::exists(path("tpl/") + f)) << f;
+  const facehex::VolumeMesh tpl = facehex::read_volume_mesh(path("tpl/standard.vtu"));
+  EXPECT_EQ(tpl.count(facehex::CellType::Hex), tpl.num_cells());
+  EXPECT_GT(tpl.num_cells(), 10);
+  r = run("run " + path("box.vtu") + " --constraints " + path("box.json") + " --standard " + path("tpl/standard.vtu") +
+          " -o " + path("out"));
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(fs::exists(path("out/patient_hex.vtu")));
+
+  r = run("template " + path("box.vtu") + " --constraints " + path("box.json"));
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("missing -o"), std::string::npos) << r.output;
+  r = run("template " + path("nothing.vtu") + " -o " + path("bad"));
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("nothing.vtu"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(path("bad/standard.vtu")));
+  r = run("template " + path("box.vtu") + " --constraints " + path("box.json") + " --layers 0 -o " + path("bad"));
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("layers"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(path("bad/standard.vtu")));
+
+  r = run("standards");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.output.find("artisynth-refface"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("headsq-template"), std::string::npos) << r.output;
+}
+
+// A bundled standard's parameterization cache: written by `facehex standards --write-cache`, read by `run`, and when
+// the standard's constraint set changes, not used: the run says so, recomputes, and succeeds.
+TEST_F(Cli, StaleParameterizationCacheIsReportedAndRecomputed) {
+  write_tiny_models(dir_);
+  fs::create_directories(path("res/standards/tiny"));
+  fs::copy_file(path("std.vtu"), path("res/standards/tiny/standard.vtu"));
+  fs::copy_file(path("std.json"), path("res/standards/tiny/constraints.json"));
+  const std::string env = "FACEHEX_RESOURCES=" + path("res");
+  Result r = run("standards --write-cache", env);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(fs::exists(path("res/standards/tiny/standard.param.vtu")));
+  EXPECT_TRUE(fs::exists(path("res/standards/tiny/standard.param.json")));
+  const std::string patient = path("box.vtu") + " --constraints " + path("box.json") + " --standard tiny";
+  auto source = [&](const std::string& out) {
+    nlohmann::json report;
+    std::ifstream(path(out + "/report.json")) >> report;
+    return report["standard"]["parameterization_source"].get<std::string>();
+  };
+  r = run("run " + patient + " -o " + path("fresh"), env);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(source("fresh"), path("res/standards/tiny/standard.param.vtu"));
+  EXPECT_EQ(r.output.find("note:"), std::string::npos) << r.output;
+
+  facehex::ConstraintSet renamed = facehex::side_constraints();
+  renamed.constraints[0].name = "left end";
+  facehex::write_constraint_set(path("res/standards/tiny/constraints.json"), renamed);
+  r = run("run " + patient + " -o " + path("stale"), env);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("made from another standard mesh, constraint set or field options"), std::string::npos)
+      << r.output;
+  EXPECT_EQ(source("stale"), "computed");
 }
 
 TEST_F(Cli, CompareOnTinyMeshesWritesTheReportAndMapRunsTheBaseline) {

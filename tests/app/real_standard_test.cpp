@@ -3,11 +3,14 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <map>
 
+#include "core/automatic_constraints.h"
 #include "core/constraint_set.h"
 #include "core/corner_jacobian.h"
 #include "core/hex_to_tets.h"
 #include "core/io/mesh_io.h"
+#include "core/io/parameterization_cache.h"
 #include "core/quality/hex_quality.h"
 #include "core/resources.h"
 #include "core/shell_sides.h"
@@ -78,6 +81,66 @@ TEST(BundledStandard, OnlyRelaxedCornerCellsAreFlatInItsOwnParameterization) {
     EXPECT_TRUE(has_relaxed_vertex) << "cell " << c << " is flat in parameter space";
   }
   EXPECT_LE(flat, 4);
+}
+
+// The shipped parameterization caches fit their standards as bundled (closed domain, default field options): a
+// standard or constraint set edited without `facehex standards --write-cache` fails here, not silently at run time.
+TEST(BundledStandard, ParameterizationCachesAreFreshAndGiveTheComputedFields) {
+  for (const BundledModel& standard : bundled_standards()) {
+    const VolumeMesh hex = read_volume_mesh(standard.mesh);
+    const ConstraintSet set = read_constraint_set(standard.constraints);
+    const StandardDomain domain = closed_domain(hex);
+    std::string why;
+    const auto cached =
+        read_parameterization_cache(parameterization_cache_path(standard.mesh), domain, set, {}, &why);
+    ASSERT_TRUE(cached) << standard.name << ": " << why;
+    const ModelParameterization computed =
+        parameterize_model(domain.V, domain.T, domain.side_mask, set, standard.constraints, {});
+    EXPECT_LT((cached->fields.uvw - computed.fields.uvw).cwiseAbs().maxCoeff(), 1e-12) << standard.name;
+    EXPECT_EQ(cached->health.inverted, computed.health.inverted) << standard.name;
+  }
+}
+
+// The second bundled standard, made by `facehex template` from the bundled CT (resources/standards/headsq-template):
+// the issue's quality bounds where they are met, its constraint set, and feature values shared with the first
+// standard, so that patients' features correspond whichever standard is picked.
+TEST(BundledTemplate, IsValidWithTheFeaturesOfTheFirstStandard) {
+  const BundledModel standard = find_standard("headsq-template");
+  const VolumeMesh hex = read_volume_mesh(standard.mesh);
+  EXPECT_EQ(hex.count(CellType::Hex), hex.num_cells());
+  const QualitySummary q = summarize(hex, element_quality(hex));
+  EXPECT_EQ(q.inverted, 0);
+  EXPECT_EQ(q.degenerate, 0);
+  EXPECT_GE(q.shape_mean, 0.75);
+  EXPECT_GT(q.scaled_jacobian_min, 0.05);  // the issue asks 0.3: not met at a few corner cells (docs/results.md)
+  EXPECT_LT(q.fraction_scaled_jacobian_below_0_3, 0.005);
+  const ConstraintSet set = read_constraint_set(standard.constraints);
+  const auto values = [](const ConstraintSet& s) {
+    std::map<std::string, double> v;
+    for (const Constraint& c : s.constraints)
+      if (!c.select.side) v[c.name] = c.value;
+    return v;
+  };
+  EXPECT_EQ(set.constraints.size(), 10u);
+  EXPECT_EQ(values(set), values(read_constraint_set(default_standard().constraints)));
+  for (const Constraint& c : set.constraints)
+    for (int v : c.select.ids) ASSERT_LT(v, hex.num_vertices()) << c.name;
+
+  // Mapped onto the bundled patient (the model it was built from, with the automatic constraints): no inverted or flat
+  // cell after the repair, and the angles nearly kept (the map is close to the identity).
+  const BundledModel patient_files = default_patient();
+  const VolumeMesh patient = read_volume_mesh(patient_files.mesh);
+  const ConstraintSet patient_set = automatic_constraints(patient.V, side_mask_of(patient), feature_values(set));
+  const TransferRun run = run_transfer(hex, closed_domain(hex), set, standard.constraints, patient, patient_set,
+                                       patient_files.mesh, TransferOptions{});
+  // Its own parameterization folds at a handful of tets (the bone under the nose, the chin's lower edge), as the
+  // hand-built standard's does around its openings.
+  EXPECT_LT(run.standard.health.inverted, 0.001 * run.standard.health.tets);
+  const QualitySummary mapped = summarize(run.patient_hex, element_quality(run.patient_hex));
+  EXPECT_EQ(mapped.inverted, 0);
+  EXPECT_EQ(mapped.degenerate, 0);
+  EXPECT_GE(mapped.shape_mean, 0.75);
+  EXPECT_LT(dihedral_distortion(hex, run.patient_hex).mean_deg, 5.0);
 }
 
 }  // namespace
