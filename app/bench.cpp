@@ -12,12 +12,15 @@
 #include "core/io/parameterization_cache.h"
 #include "core/mesh_check.h"
 #include "core/resources.h"
+#include "core/segment/ct_volume.h"
+#include "core/segment/voxel_grid.h"
 #include "core/standard/closed_domain.h"
 #include "core/stopwatch.h"
 #include "core/transfer_pipeline.h"
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -29,18 +32,72 @@
 namespace facehex::cli {
 namespace {
 
-std::vector<long> parse_sizes(const std::string& text) {
-  std::vector<long> sizes;
+// Comma-separated positive integers of an option, e.g. "10000,50000".
+std::vector<long> parse_counts(const std::string& option, const std::string& text) {
+  std::vector<long> counts;
   std::stringstream ss(text);
   std::string item;
   while (std::getline(ss, item, ',')) {
     try {
-      sizes.push_back(std::stol(item));
+      counts.push_back(std::stol(item));
     } catch (const std::exception&) {
-      throw Error("--sizes", "expects comma-separated tet counts, got '" + text + "'");
+      counts.push_back(0);
     }
+    if (counts.back() <= 0) throw Error(option, "expects comma-separated positive integers, got '" + text + "'");
   }
-  return sizes;
+  return counts;
+}
+
+// The process's peak resident memory so far, in MB (Linux reports kB).
+double peak_memory_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;
+}
+
+// --ct NX,NY,NZ: the whole `facehex run` (read, segment, parameterize, map, repair) on the bundled CT resampled
+// trilinearly to that grid over the same physical box, read back from a temporary .mha as a user's file would be.
+int ct_bench(const Args& args) {
+  const std::vector<long> dims = parse_counts("--ct", args.get("ct"));
+  if (dims.size() != 3 || *std::min_element(dims.begin(), dims.end()) < 2)
+    throw Error("--ct", "expects three voxel counts of at least 2, e.g. 512,512,300");
+  const std::string tmp = (std::filesystem::temp_directory_path() / "facehex-bench-ct.mha").string();
+  {
+    const CtVolume ct = read_ct_volume(default_ct());
+    const GridGeometry& g = ct.intensity.geometry;
+    GridGeometry target;
+    target.origin = g.origin;
+    for (int a = 0; a < 3; ++a) {
+      target.dims[a] = static_cast<int>(dims[a]);
+      target.spacing(a) = (g.upper(a) - g.lower(a)) / static_cast<double>(dims[a] - 1);
+    }
+    std::cerr << "resampling the bundled CT to " << dims[0] << " x " << dims[1] << " x " << dims[2] << " voxels ("
+              << target.spacing.transpose() << " mm)\n";
+    write_ct_volume(tmp, CtVolume{resample(ct.intensity, target), "resampled"});
+  }
+  Stopwatch clock;
+  TransferOutputs out = execute_transfer(args, tmp, "");
+  const double total = clock.lap();
+  std::filesystem::remove(tmp);
+  std::map<std::string, double> stages = out.run.seconds;
+  double transfer = 0;
+  for (const auto& [name, seconds] : stages) transfer += seconds;
+  stages["read_and_segment"] = total - transfer;
+  const QualitySummary& q = out.patient_quality.summary;
+  const nlohmann::json result = {{"ct", dims},
+                                 {"tets", out.patient.num_cells()},
+                                 {"stages", stages},
+                                 {"total_seconds", total},
+                                 {"peak_memory_mb", peak_memory_mb()},
+                                 {"inverted", q.inverted + q.degenerate}};
+  if (args.has("json")) {
+    std::cout << result.dump(2) << "\n";
+  } else {
+    std::printf("CT %ld x %ld x %ld: patient %d tets, whole run %.2f s, peak memory %.0f MB, %d unusable cells\n",
+                dims[0], dims[1], dims[2], out.patient.num_cells(), total, peak_memory_mb(), q.inverted + q.degenerate);
+    for (const auto& [name, seconds] : stages) std::printf("    %-36s %9.3f s\n", name.c_str(), seconds);
+  }
+  return 0;
 }
 
 }  // namespace
@@ -49,9 +106,13 @@ int cmd_bench(const Argv& argv) {
   Args args("bench",
             "Times each stage of one patient transfer for synthetic patients of about the given tet counts (the "
             "bundled standard's parameterization is read from its cache first).");
-  args.option("sizes", "approximate tet counts", "10000,50000,200000,1000000").flag("json", "print JSON");
+  args.option("sizes", "approximate tet counts", "10000,50000,200000,1000000")
+      .option("ct", "instead: time the whole run on the bundled CT resampled to NX,NY,NZ voxels (e.g. 512,512,300)")
+      .flag("json", "print JSON");
+  add_transfer_options(args);
   if (!args.parse(argv)) return 0;
-  const std::vector<long> sizes = parse_sizes(args.get("sizes"));
+  if (args.has("ct")) return ct_bench(args);
+  const std::vector<long> sizes = parse_counts("--sizes", args.get("sizes"));
 
   const BundledModel standard_files = default_standard();
   const VolumeMesh standard = read_volume_mesh(standard_files.mesh);
@@ -118,10 +179,7 @@ int cmd_bench(const Argv& argv) {
     double total = 0;
     for (const auto& [name, s] : stages)
       if (name != "io_write_read_vtu") total += s;
-    // The process's peak resident memory so far (Linux reports kB): with sizes ascending, that of the largest run.
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    const double peak_mb = static_cast<double>(usage.ru_maxrss) / 1024.0;
+    const double peak_mb = peak_memory_mb();  // with sizes ascending, that of the largest run
     results.push_back({{"tets", patient.num_cells()}, {"vertices", patient.num_vertices()}, {"stages", stages},
                        {"total_seconds", total}, {"peak_memory_mb", peak_mb}});
     if (!args.has("json")) {

@@ -177,6 +177,11 @@ void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::
     // patient's anatomy squeezes a feature (a flat nose), a valid element matters more than an exact feature line.
     const Eigen::MatrixXd uvw = hex_vertex_uvw(run, standard.num_vertices());
     UntangleOptions pass = options.untangle_options;
+    if (pass.reference_scaled_jacobian.size() == 0) {
+      pass.reference_scaled_jacobian.resize(standard.num_cells());
+      for (int c = 0; c < standard.num_cells(); ++c)
+        pass.reference_scaled_jacobian(c) = scaled_jacobian(standard.types[c], cell_nodes(standard, c));
+    }
     run.untangle = untangle(run.patient_hex, placement, pass);
     auto remaining = [&] { return run.untangle.inverted_after + run.untangle.degenerate_after; };
     auto take = [&](const UntangleReport& again) {
@@ -188,6 +193,8 @@ void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::
       run.untangle.sweeps += again.sweeps;
     };
     for (int attempt = 0; attempt < 3 && remaining() > 0; ++attempt) {
+      // The first two passes improved the bad cells around the folds; the later ones finish the untangling.
+      pass.seed_unusable_only = attempt > 0;
       if (attempt < 2) {
         pass.rings += 2;
       } else {

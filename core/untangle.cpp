@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/corner_jacobian.h"
+#include "core/error.h"
 
 namespace facehex {
 namespace {
@@ -13,6 +14,8 @@ struct Corner {
   int cell, k;  // k: corner index, or kSample + s for the cell's interior sample s (corner_jacobian.h)
 };
 constexpr int kSample = 8;
+constexpr double kReferenceShare = 0.5;  // see UntangleOptions::reference_scaled_jacobian
+constexpr double kNearlyInverted = 0.1;  // normalized corner determinant below which a vertex is always revisited
 
 // Inverse ideal corner matrices W_k^-1 per cell type and corner.
 const Eigen::Matrix3d& ideal_inverse(CellType type, int k) {
@@ -99,8 +102,15 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
   UntangleReport report;
   const int nc = mesh.num_cells(), nv = mesh.num_vertices();
   auto scaled = [&](int c) { return scaled_jacobian(mesh.types[c], cell_nodes(mesh, c)); };
+  if (options.reference_scaled_jacobian.size() != 0 && options.reference_scaled_jacobian.size() != nc)
+    throw Error("untangle", "the reference scaled Jacobians do not match the mesh's cells");
+  auto bound = [&](int c) {
+    return options.reference_scaled_jacobian.size() == 0
+               ? options.min_scaled_jacobian
+               : std::min(options.min_scaled_jacobian, kReferenceShare * options.reference_scaled_jacobian(c));
+  };
   auto is_bad = [&](int c) {
-    return min_corner_determinant(mesh.types[c], cell_nodes(mesh, c)) <= 0 || scaled(c) < options.min_scaled_jacobian;
+    return min_corner_determinant(mesh.types[c], cell_nodes(mesh, c)) <= 0 || scaled(c) < bound(c);
   };
   auto unusable = [&](int c) { return is_unusable(mesh.types[c], cell_nodes(mesh, c)); };
   auto tally = [&](int& inverted, int& degenerate, int& bad, double& min_sj) {
@@ -128,7 +138,7 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
     for (int i = 0; i < node_count(mesh.types[c]); ++i) cells_of[mesh.C(c, i)].push_back(c);
   std::vector<char> in_bad_cell(nv, 0);
   for (int c = 0; c < nc; ++c)
-    if (is_bad(c))
+    if (options.seed_unusable_only ? unusable(c) : is_bad(c))
       for (int i = 0; i < node_count(mesh.types[c]); ++i) in_bad_cell[mesh.C(c, i)] = 1;
   const std::vector<char> region = within_cell_rings(mesh, std::move(in_bad_cell), options.rings);
   std::vector<int> free_vertices;
@@ -180,7 +190,11 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
     }
     return e;
   };
-  // delta from the worst corner determinant, relative to the typical corner size so it is scale free.
+  // Active set: a sweep visits the vertices that moved in the previous sweep, their neighbours, and the vertices of
+  // nearly inverted corners (where delta, which changes from sweep to sweep, matters); elsewhere delta is negligible
+  // against the corners' own sigma, so a vertex that did not move is still at its local optimum.
+  std::vector<char> active(nv, 0), next_active(nv, 0);
+  for (int v : free_vertices) active[v] = 1;
   // delta from the worst normalized corner determinant (Escobar et al.: delta^2 = eps (eps - sigma_min)).
   auto update_delta = [&] {
     double sigma_min = std::numeric_limits<double>::infinity();
@@ -191,7 +205,9 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
         const Eigen::Matrix3d S = corner.k >= kSample
                                       ? (X.transpose() * interior_sample_weights(type)[corner.k - kSample]).eval()
                                       : corner_jacobian(type, X, corner.k) * ideal_inverse(type, corner.k);
-        sigma_min = std::min(sigma_min, normalized_determinant(S));
+        const double sigma = normalized_determinant(S);
+        sigma_min = std::min(sigma_min, sigma);
+        if (sigma < kNearlyInverted) active[v] = 1;
       }
     constexpr double eps = 1e-3;
     energy.delta2 = sigma_min < eps ? eps * (eps - sigma_min) : 0.0;
@@ -199,8 +215,12 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
 
   for (report.sweeps = 0; report.sweeps < options.max_sweeps; ++report.sweeps) {
     update_delta();
+    std::fill(next_active.begin(), next_active.end(), 0);
     double moved = 0, size = 0;
+    int visited = 0;
     for (int v : free_vertices) {
+      if (!active[v]) continue;
+      ++visited;
       Eigen::Vector3d gx;
       const double e0 = vertex_energy(v, &gx);
       const Eigen::Vector3d p0 = placement.p.row(v).transpose();
@@ -260,14 +280,19 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
         if (improved) placement.p.row(v) = p.transpose();
       }
       if (!improved) mesh.V.row(v) = x0;
-      moved = std::max(moved, (mesh.V.row(v) - x0).norm());
+      const double moved_v = (mesh.V.row(v) - x0).norm();
+      if (moved_v > 1e-4 * edge)
+        for (int c : cells_of[v])
+          for (int i = 0; i < node_count(mesh.types[c]); ++i) next_active[mesh.C(c, i)] = 1;
+      moved = std::max(moved, moved_v);
       size = std::max(size, edge);
     }
+    active.swap(next_active);
     int unusable_left = 0;
     for (int v : free_vertices)
       for (int c : cells_of[v]) unusable_left += unusable(c);
     // Done when nothing is unusable and the smoothing has settled (or had a fair number of sweeps).
-    if (unusable_left == 0 && (moved < 1e-3 * size || report.sweeps >= 30)) break;
+    if (unusable_left == 0 && (visited == 0 || moved < 1e-3 * size || report.sweeps >= 30)) break;
   }
   tally(report.inverted_after, report.degenerate_after, report.bad_after, report.min_scaled_jacobian_after);
   return report;

@@ -14,7 +14,7 @@
 // where solvers evaluate it.
 //
 // Only vertices near bad cells move (within `rings` vertex rings of a cell that is inverted or whose scaled Jacobian
-// is below `min_scaled_jacobian`); a step never makes a cell unusable (inverted or degenerate) that was not, so the
+// is below `min_scaled_jacobian`, or below half its scaled Jacobian in the standard when that is lower); a step never makes a cell unusable (inverted or degenerate) that was not, so the
 // rest of the mapped mesh keeps exactly the shape the mapping gave it. Vertices move through parameters: the untangler
 // changes a vertex's parameters p, and a placement function gives its position x(p) and dx/dp. With p = x this is plain
 // smoothing in space; with p = (u, v, w) and x = the patient's inverse parameterization (hex_transfer.h), a vertex
@@ -32,6 +32,13 @@ namespace facehex {
 
 struct UntangleOptions {
   double min_scaled_jacobian = 0.2;  // cells below this count as bad, besides inverted ones
+  // Optional, #C: each cell's scaled Jacobian in the mesh it was mapped from. A cell counts as bad only below
+  // min(min_scaled_jacobian, half of it): a cell that was already that poor in the standard is kept as the standard
+  // has it (improving it would change the standard's shape, which the transfer is meant to keep).
+  Eigen::VectorXd reference_scaled_jacobian;
+  // Grow the region that may move from the unusable cells only (inverted or flat), not from every bad cell: for
+  // passes that finish the untangling of what an earlier pass left.
+  bool seed_unusable_only = false;
   int rings = 2;
   int max_sweeps = 60;
 };
@@ -39,7 +46,7 @@ struct UntangleOptions {
 struct UntangleReport {
   int inverted_before = 0, inverted_after = 0;
   int degenerate_before = 0, degenerate_after = 0;  // flat, not inverted (corner_jacobian.h)
-  int bad_before = 0, bad_after = 0;                // inverted or below min_scaled_jacobian
+  int bad_before = 0, bad_after = 0;                // inverted or below their bound (UntangleOptions)
   double min_scaled_jacobian_before = 0, min_scaled_jacobian_after = 0;
   int free_vertices = 0;  // vertices allowed to move
   int sweeps = 0;

@@ -5,7 +5,9 @@
 #include <vtkDataArray.h>
 #include <vtkImageCast.h>
 #include <vtkImageData.h>
+#include <vtkFloatArray.h>
 #include <vtkMetaImageReader.h>
+#include <vtkMetaImageWriter.h>
 #include <vtkNIFTIImageReader.h>
 #include <vtkNew.h>
 #include <vtkNrrdReader.h>
@@ -19,6 +21,7 @@
 #include <filesystem>
 #include <functional>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/io/vtk_util.h"
 
@@ -115,6 +118,29 @@ CtVolume read_ct_volume(const std::string& path, const CtOrientation& orientatio
   const auto [lo, hi] = std::minmax_element(ct.intensity.data.begin(), ct.intensity.data.end());
   if (*lo == *hi) throw Error(path, "every voxel has the same intensity: a blank volume, not a CT");
   return reorient(ct, orientation);
+}
+
+void write_ct_volume(const std::string& path, const CtVolume& ct) {
+  if (!ends_with(lower(path), ".mha")) throw Error(path, "CT volumes are written as .mha (single-file MetaImage)");
+  const GridGeometry& g = ct.intensity.geometry;
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(g.dims[0], g.dims[1], g.dims[2]);
+  image->SetSpacing(g.spacing.data());
+  image->SetOrigin(g.origin.data());
+  vtkNew<vtkFloatArray> values;
+  values->SetNumberOfValues(static_cast<vtkIdType>(g.size()));
+  std::copy(ct.intensity.data.begin(), ct.intensity.data.end(), values->GetPointer(0));
+  image->GetPointData()->SetScalars(values);
+  write_atomically(path, [&](const std::string& tmp) {
+    vtkNew<vtkMetaImageWriter> writer;
+    writer->SetInputData(image);
+    writer->SetFileName(tmp.c_str());
+    writer->SetCompression(false);
+    io::run_vtk(path, "writing the CT", writer, [&] {
+      writer->Write();
+      return 1;
+    });
+  });
 }
 
 bool is_ct_input(const std::string& path) {

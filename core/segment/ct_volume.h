@@ -26,6 +26,10 @@ struct CtOrientation {
 // blank (constant) volume, or an invalid orientation.
 CtVolume read_ct_volume(const std::string& path, const CtOrientation& orientation = {});
 
+// Writes the volume (already in the segmentation frame) as a single-file MetaImage (.mha, float voxels) with VTK's
+// writer, atomically. Throws facehex::Error(path, ...) on another extension or a failed write.
+void write_ct_volume(const std::string& path, const CtVolume& ct);
+
 // Whether `path` is a CT volume to segment (rather than a mesh): a file with one of ct_volume_extensions(), or a
 // folder (of DICOM slices).
 bool is_ct_input(const std::string& path);

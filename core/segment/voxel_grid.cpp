@@ -32,10 +32,14 @@ Field resample(const Field& field, double spacing) {
   out_g.spacing = Eigen::Vector3d::Constant(spacing);
   for (int a = 0; a < 3; ++a)
     out_g.dims[a] = static_cast<int>(std::floor((g.upper(a) - g.lower(a)) / spacing + 1e-9)) + 1;
-  Field out(out_g, 0.0f);
-  for (int k = 0; k < out_g.dims[2]; ++k)
-    for (int j = 0; j < out_g.dims[1]; ++j)
-      for (int i = 0; i < out_g.dims[0]; ++i) out(i, j, k) = static_cast<float>(sample(field, out_g.point(i, j, k)));
+  return resample(field, out_g);
+}
+
+Field resample(const Field& field, const GridGeometry& target) {
+  Field out(target, 0.0f);
+  for (int k = 0; k < target.dims[2]; ++k)
+    for (int j = 0; j < target.dims[1]; ++j)
+      for (int i = 0; i < target.dims[0]; ++i) out(i, j, k) = static_cast<float>(sample(field, target.point(i, j, k)));
   return out;
 }
 

@@ -55,6 +55,8 @@ double sample(const Field& field, const Eigen::Vector3d& p);
 
 // The same physical box (from the first voxel centre) sampled trilinearly on an isotropic grid of the given spacing.
 Field resample(const Field& field, double spacing);
+// Sampled trilinearly at the voxel centres of any target grid.
+Field resample(const Field& field, const GridGeometry& target);
 
 // Separable Gaussian blur, sigma in millimetres; the grid border is extended by replication.
 Field gaussian_smooth(const Field& field, double sigma);

@@ -101,6 +101,12 @@ TEST_F(Cli, BadInputsGiveOneLineErrorsNamingTheFileAndNoOutput) {
   EXPECT_NE(r.status, 0);  // no side labels and no constraint set
   EXPECT_NE(r.output.find("side_mask"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(path("f.vtu")));
+
+  for (const char* bad : {"--ct 512,512", "--ct 512,x,300", "--ct 1,512,300", "--sizes 100,-5"}) {
+    r = run(std::string("bench ") + bad);
+    EXPECT_EQ(r.status, 1) << bad << ": " << r.output;
+    EXPECT_NE(r.output.find(std::string(bad).substr(0, std::string(bad).find(' '))), std::string::npos) << r.output;
+  }
 }
 
 TEST_F(Cli, ConstraintSetErrorsNameTheConstraint) {

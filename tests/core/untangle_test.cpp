@@ -1,9 +1,12 @@
 #include "core/untangle.h"
 
 #include "core/corner_jacobian.h"
+#include "core/error.h"
 #include "test_meshes.h"
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
 
 namespace facehex {
 namespace {
@@ -63,6 +66,58 @@ TEST(Untangle, LeavesAGoodMeshUntouched) {
   const UntangleReport r = untangle(m, placement);
   EXPECT_EQ(r.bad_before, 0);
   EXPECT_EQ(m.V, before);
+}
+
+// A poorly shaped cell (a squeezed interior vertex) is bad on its own, but not when the mesh it was mapped from had
+// it as poor: then it is kept as it is.
+TEST(Untangle, KeepsCellsAsPoorAsInTheReference) {
+  VolumeMesh m = test::hex_box(3, 3, 3, 3, 3, 3);
+  auto id = [](int i, int j, int k) { return (k * 4 + j) * 4 + i; };
+  m.V.row(id(1, 1, 1)) += Eigen::RowVector3d(0.3, 0.3, 0.3);  // one corner of a cell at scaled Jacobian 0.18
+  ASSERT_TRUE(check_corner_jacobians(m).unusable().empty());
+  Eigen::VectorXd reference(m.num_cells());
+  for (int c = 0; c < m.num_cells(); ++c) reference(c) = scaled_jacobian(m.types[c], cell_nodes(m, c));
+  ASSERT_LT(reference.minCoeff(), 0.2);
+
+  UntangleOptions as_reference;
+  as_reference.reference_scaled_jacobian = reference;
+  VolumeMesh kept = m;
+  VertexPlacement placement = spatial_placement(kept.V, boundary_fixed(kept));
+  const UntangleReport r = untangle(kept, placement, as_reference);
+  EXPECT_EQ(r.bad_before, 0);
+  EXPECT_EQ(kept.V, m.V);
+
+  VolumeMesh improved = m;  // without the reference the same cells are bad and are improved
+  VertexPlacement free_placement = spatial_placement(improved.V, boundary_fixed(improved));
+  const UntangleReport r2 = untangle(improved, free_placement);
+  EXPECT_GT(r2.bad_before, 0);
+  EXPECT_GT(r2.min_scaled_jacobian_after, r2.min_scaled_jacobian_before);
+
+  UntangleOptions wrong_size;
+  wrong_size.reference_scaled_jacobian = Eigen::VectorXd::Ones(3);
+  EXPECT_THROW(untangle(improved, free_placement, wrong_size), Error);
+}
+
+// A finishing pass grows its region from the unusable cells only: a merely poor cell far from them is left alone.
+TEST(Untangle, FinishingPassMovesOnlyAroundUnusableCells) {
+  VolumeMesh m = test::hex_box(8, 3, 3, 8, 3, 3);
+  auto id = [](int i, int j, int k) { return (k * 4 + j) * 9 + i; };
+  m.V.row(id(1, 1, 1)) += Eigen::RowVector3d(1.6, 0.3, -0.2);   // inverts cells at the -x end
+  m.V.row(id(7, 1, 1)) += Eigen::RowVector3d(0.3, 0.3, 0.3);   // only squeezes a cell at the +x end
+  const VolumeMesh start = m;
+  const int squeezed = (1 * 3 + 1) * 8 + 7;  // the cell whose first corner is the vertex (7, 1, 1)
+  ASSERT_LT(scaled_jacobian(m.types[squeezed], cell_nodes(m, squeezed)), 0.2);
+  const std::vector<int> unusable = check_corner_jacobians(m).unusable();
+  ASSERT_EQ(std::count(unusable.begin(), unusable.end(), squeezed), 0);
+  UntangleOptions finishing;
+  finishing.seed_unusable_only = true;
+  finishing.rings = 1;
+  VertexPlacement placement = spatial_placement(m.V, boundary_fixed(m));
+  const UntangleReport r = untangle(m, placement, finishing);
+  EXPECT_GT(r.inverted_before, 0);
+  EXPECT_EQ(r.inverted_after, 0);
+  EXPECT_EQ(m.V.row(id(7, 1, 1)), start.V.row(id(7, 1, 1)));  // the squeezed vertex did not move
+  EXPECT_NE(m.V.row(id(1, 1, 1)), start.V.row(id(1, 1, 1)));
 }
 
 }  // namespace
