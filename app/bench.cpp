@@ -1,5 +1,16 @@
 // facehex bench: stage timings of one patient transfer at several model sizes (synthetic face-like shells made
 // with TetGen), the bundled standard's parameterization read from its cache (or computed once when the cache is stale).
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+
 #include "app/cli_args.h"
 #include "app/commands.h"
 #include "app/synthetic_patient.h"
@@ -17,17 +28,6 @@
 #include "core/standard/closed_domain.h"
 #include "core/stopwatch.h"
 #include "core/transfer_pipeline.h"
-
-#include <nlohmann/json.hpp>
-
-#include <algorithm>
-#include <cmath>
-#include <cstdio>
-#include <filesystem>
-#include <iostream>
-#include <optional>
-#include <sstream>
-#include <sys/resource.h>
 
 namespace facehex::cli {
 namespace {
@@ -129,7 +129,8 @@ int cmd_bench(const Argv& argv) {
   // Calibrate the edge length for a tet count on two small shells: tets ~ a * edge^-k, with k fitted (less than 3:
   // the shell's thickness takes fewer layers of coarse tets than of fine ones).
   const double edge_a = 6.0, edge_b = 4.0;
-  const double tets_a = synthetic_shell_patient(edge_a).num_cells(), tets_b = synthetic_shell_patient(edge_b).num_cells();
+  const double tets_a = synthetic_shell_patient(edge_a).num_cells(),
+               tets_b = synthetic_shell_patient(edge_b).num_cells();
   const double exponent = std::log(tets_b / tets_a) / std::log(edge_a / edge_b);
   nlohmann::json results = nlohmann::json::array();
   const std::string tmp = (std::filesystem::temp_directory_path() / "facehex-bench.vtu").string();
@@ -159,8 +160,8 @@ int cmd_bench(const Argv& argv) {
     stages["io_write_read_vtu"] = clock.lap();
     check_and_orient_tet_mesh(patient, "synthetic patient");
     stages["mesh_check"] = clock.lap();
-    const ResolvedConstraints constraints = resolve_constraints(side_constraints(), patient.V, patient.tets(),
-                                                                side_mask_of(patient), "synthetic patient");
+    const ResolvedConstraints constraints =
+        resolve_constraints(side_constraints(), patient.V, patient.tets(), side_mask_of(patient), "synthetic patient");
     stages["constraints"] = clock.lap();
     const HarmonicFields fields(patient.V, patient.tets(), constraints, HarmonicFieldsOptions{});
     const HarmonicFieldsResult r = fields.compute();
@@ -180,8 +181,11 @@ int cmd_bench(const Argv& argv) {
     for (const auto& [name, s] : stages)
       if (name != "io_write_read_vtu") total += s;
     const double peak_mb = peak_memory_mb();  // with sizes ascending, that of the largest run
-    results.push_back({{"tets", patient.num_cells()}, {"vertices", patient.num_vertices()}, {"stages", stages},
-                       {"total_seconds", total}, {"peak_memory_mb", peak_mb}});
+    results.push_back({{"tets", patient.num_cells()},
+                       {"vertices", patient.num_vertices()},
+                       {"stages", stages},
+                       {"total_seconds", total},
+                       {"peak_memory_mb", peak_mb}});
     if (!args.has("json")) {
       std::printf("%9d tets %8d vertices  transfer %.3f s  peak memory %.0f MB\n", patient.num_cells(),
                   patient.num_vertices(), total, peak_mb);

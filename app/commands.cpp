@@ -77,8 +77,9 @@ HarmonicFieldsOptions field_options(const Args& args) {
 void add_segment_options(Args& args) {
   args.option("skin", "skin threshold in the file's units (default: from the histogram)")
       .option("bone", "bone threshold in the file's units (default: from the histogram)")
-      .option("anterior", "direction the face looks to in the volume: +x -x +y -y +z -z", "+y")
-      .option("superior", "direction of the top of the head in the volume", "+z");
+      .option("anterior",
+              "voxel axis the face looks to: +x -x +y -y +z -z (default: from a DICOM series' orientation, else +y)")
+      .option("superior", "voxel axis towards the top of the head (default: from a DICOM series, else +z)");
 }
 
 SegmentOptions segment_options(const Args& args) {

@@ -6,6 +6,7 @@ packages=(
   libeigen3-dev libsuitesparse-dev libtet1.5-dev nlohmann-json3-dev
   libopenblas0-pthread  # CHOLMOD's supernodal factorization runs on BLAS; the reference BLAS is several times slower
   libvtk9-dev libvtk9-qt-dev qtbase5-dev libqt5opengl5-dev
+  libgdcm-dev  # DICOM series: scanning, any transfer syntax
   libgtest-dev
   calculix-ccx gmsh  # the FE export tests run the CalculiX solver and Gmsh on exported models
   xvfb xauth libgl1-mesa-dri

@@ -1,11 +1,10 @@
 #include "core/segment/ct_volume.h"
 
 #include <vtkAlgorithm.h>
-#include <vtkDICOMImageReader.h>
 #include <vtkDataArray.h>
+#include <vtkFloatArray.h>
 #include <vtkImageCast.h>
 #include <vtkImageData.h>
-#include <vtkFloatArray.h>
 #include <vtkMetaImageReader.h>
 #include <vtkMetaImageWriter.h>
 #include <vtkNIFTIImageReader.h>
@@ -24,6 +23,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/io/vtk_util.h"
+#include "core/segment/dicom_series.h"
 
 namespace facehex {
 namespace {
@@ -44,19 +44,12 @@ std::pair<int, int> parse_axis(const std::string& text, const std::string& what)
   throw Error("orientation", what + " axis must be one of +x, -x, +y, -y, +z, -z (got '" + text + "')");
 }
 
-}  // namespace
-
-CtVolume read_ct_volume(const std::string& path, const CtOrientation& orientation) {
-  namespace fs = std::filesystem;
-  if (!fs::exists(path)) throw Error(path, "no such file or folder");
+// A volume file through VTK's readers (in the file's voxel axes).
+CtVolume read_volume_file(const std::string& path) {
   const std::string name = lower(path);
   vtkSmartPointer<vtkAlgorithm> reader;
   std::function<double(double)> rescale = [](double v) { return v; };
-  if (fs::is_directory(path)) {
-    auto dicom = vtkSmartPointer<vtkDICOMImageReader>::New();
-    dicom->SetDirectoryName(path.c_str());
-    reader = dicom;
-  } else if (ends_with(name, ".mhd") || ends_with(name, ".mha")) {
+  if (ends_with(name, ".mhd") || ends_with(name, ".mha")) {
     auto meta = vtkSmartPointer<vtkMetaImageReader>::New();
     meta->SetFileName(path.c_str());
     reader = meta;
@@ -84,9 +77,6 @@ CtVolume read_ct_volume(const std::string& path, const CtOrientation& orientatio
   if (auto* nifti = vtkNIFTIImageReader::SafeDownCast(reader)) {
     const double slope = nifti->GetRescaleSlope(), intercept = nifti->GetRescaleIntercept();
     if (slope != 0) rescale = [slope, intercept](double v) { return slope * v + intercept; };
-  } else if (auto* dicom = vtkDICOMImageReader::SafeDownCast(reader)) {
-    const double slope = dicom->GetRescaleSlope(), intercept = dicom->GetRescaleOffset();
-    if (slope != 0) rescale = [slope, intercept](double v) { return slope * v + intercept; };
   }
 
   vtkImageData* image = cast->GetOutput();
@@ -94,9 +84,6 @@ CtVolume read_ct_volume(const std::string& path, const CtOrientation& orientatio
   int dims[3] = {0, 0, 0};
   if (image) image->GetDimensions(dims);
   if (!scalars || scalars->GetNumberOfTuples() == 0) throw Error(path, "could not read a volume");
-  if (dims[0] < 2 || dims[1] < 2 || dims[2] < 2)
-    throw Error(path, "is not a 3D volume (" + std::to_string(dims[0]) + " x " + std::to_string(dims[1]) + " x " +
-                          std::to_string(dims[2]) + " voxels)");
 
   CtVolume ct;
   ct.source = path;
@@ -109,15 +96,39 @@ CtVolume read_ct_volume(const std::string& path, const CtOrientation& orientatio
     g.spacing(a) = std::abs(spacing[a]);
     g.origin(a) = origin[a];
   }
-  if (g.spacing.minCoeff() <= 0) throw Error(path, "has a zero voxel spacing");
   ct.intensity.data.resize(g.size());
   const int components = scalars->GetNumberOfComponents();
   const auto* values = static_cast<const float*>(scalars->GetVoidPointer(0));
   for (size_t i = 0; i < g.size(); ++i) ct.intensity.data[i] = static_cast<float>(rescale(values[i * components]));
+  return ct;
+}
+
+}  // namespace
+
+CtVolume read_ct_volume(const std::string& path, const CtOrientation& orientation) {
+  namespace fs = std::filesystem;
+  if (!fs::exists(path)) throw Error(path, "no such file or folder");
+  CtVolume ct;
+  CtOrientation axes = orientation;  // a side not stated: the file's own orientation if it has one, else +y / +z
+  if (fs::is_directory(path)) {
+    DicomVolume dicom = read_dicom_series(path);
+    ct = CtVolume{std::move(dicom.intensity), path};
+    if (axes.anterior.empty()) axes.anterior = dicom.anterior;
+    if (axes.superior.empty()) axes.superior = dicom.superior;
+  } else {
+    ct = read_volume_file(path);
+  }
+  if (axes.anterior.empty()) axes.anterior = "+y";
+  if (axes.superior.empty()) axes.superior = "+z";
+  const GridGeometry& g = ct.intensity.geometry;
+  if (g.dims[0] < 2 || g.dims[1] < 2 || g.dims[2] < 2)
+    throw Error(path, "is not a 3D volume (" + std::to_string(g.dims[0]) + " x " + std::to_string(g.dims[1]) + " x " +
+                          std::to_string(g.dims[2]) + " voxels)");
+  if (!(g.spacing.minCoeff() > 0)) throw Error(path, "has a zero voxel spacing");
   // A blank volume has no tissue to find: say so here, naming the file, rather than at the thresholds.
   const auto [lo, hi] = std::minmax_element(ct.intensity.data.begin(), ct.intensity.data.end());
   if (*lo == *hi) throw Error(path, "every voxel has the same intensity: a blank volume, not a CT");
-  return reorient(ct, orientation);
+  return reorient(ct, axes);
 }
 
 void write_ct_volume(const std::string& path, const CtVolume& ct) {

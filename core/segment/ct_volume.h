@@ -14,16 +14,18 @@ struct CtVolume {
 };
 
 // Which axis of the file's voxel grid points anterior and which superior: "+x", "-x", "+y", "-y", "+z" or "-z".
-// The default is the segmentation frame itself; e.g. a DICOM series in LPS order is anterior "-y", superior "+z".
+// Empty: the file's own orientation where it has one (a DICOM series: from ImageOrientationPatient, see
+// dicom_series.h), else the segmentation frame itself (+y anterior, +z superior; MetaImage, NIfTI and NRRD
+// direction matrices are not read). E.g. a volume stored in LPS order is anterior "-y", superior "+z".
 struct CtOrientation {
-  std::string anterior = "+y";
-  std::string superior = "+z";
+  std::string anterior;
+  std::string superior;
 };
 
 // Reads a CT volume: .mhd/.mha (MetaImage), .nii/.nii.gz (NIfTI, scl_slope/inter applied), .nrrd/.nhdr, .vti, or a
-// folder of DICOM slices (rescale slope/intercept applied). Spacing and origin are the file's; the direction matrix
-// is ignored (state the orientation instead). Throws facehex::Error(path, ...) on a missing, unreadable, non-3D or
-// blank (constant) volume, or an invalid orientation.
+// folder holding one DICOM series (GDCM; rescale slope/intercept applied). Spacing and origin are the file's. Throws
+// facehex::Error(path, ...) on a missing, unreadable, non-3D or blank (constant) volume, a DICOM folder with several
+// series, or an invalid orientation.
 CtVolume read_ct_volume(const std::string& path, const CtOrientation& orientation = {});
 
 // Writes the volume (already in the segmentation frame) as a single-file MetaImage (.mha, float voxels) with VTK's

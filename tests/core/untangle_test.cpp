@@ -1,12 +1,12 @@
 #include "core/untangle.h"
 
-#include "core/corner_jacobian.h"
-#include "core/error.h"
-#include "test_meshes.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
+
+#include "core/corner_jacobian.h"
+#include "core/error.h"
+#include "test_meshes.h"
 
 namespace facehex {
 namespace {
@@ -102,7 +102,7 @@ TEST(Untangle, KeepsCellsAsPoorAsInTheReference) {
 TEST(Untangle, FinishingPassMovesOnlyAroundUnusableCells) {
   VolumeMesh m = test::hex_box(8, 3, 3, 8, 3, 3);
   auto id = [](int i, int j, int k) { return (k * 4 + j) * 9 + i; };
-  m.V.row(id(1, 1, 1)) += Eigen::RowVector3d(1.6, 0.3, -0.2);   // inverts cells at the -x end
+  m.V.row(id(1, 1, 1)) += Eigen::RowVector3d(1.6, 0.3, -0.2);  // inverts cells at the -x end
   m.V.row(id(7, 1, 1)) += Eigen::RowVector3d(0.3, 0.3, 0.3);   // only squeezes a cell at the +x end
   const VolumeMesh start = m;
   const int squeezed = (1 * 3 + 1) * 8 + 7;  // the cell whose first corner is the vertex (7, 1, 1)

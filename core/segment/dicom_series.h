@@ -1,0 +1,41 @@
+#pragma once
+// A DICOM series folder read with GDCM.
+//
+// Every file of the folder (not its subfolders) is scanned; files that are not DICOM images are skipped. The folder
+// must hold exactly one image series (SeriesInstanceUID): scanners export localizers and reconstructions side by side,
+// and stacking them would make a wrong volume, so several series are an error that lists them. The series' slices are
+// sorted along their normal by ImagePositionPatient, decoded (any transfer syntax GDCM reads: raw, JPEG, JPEG-LS,
+// JPEG 2000, RLE), rescaled with each slice's RescaleSlope/Intercept (Hounsfield units for CT) and stacked. A
+// multi-frame file is one series by itself.
+//
+// Voxel axes: i along the rows (ImageOrientationPatient's first vector), j along the columns (its second), k along the
+// slice normal (their cross product), in the order of increasing position. Spacing: PixelSpacing in plane, the step
+// between consecutive slice positions along the normal (which must be uniform within 1 %). The origin is the first
+// slice's position expressed in those axes. anterior/superior: which voxel axis points that way in the patient (LPS:
+// anterior is -y, superior +z), as "+x" ... "-z", the nearest axis for an oblique series.
+#include <string>
+#include <vector>
+
+#include "core/segment/voxel_grid.h"
+
+namespace facehex {
+
+struct DicomSeries {
+  std::string uid;
+  std::string description;  // SeriesDescription, may be empty
+  std::vector<std::string> files;
+};
+
+// The image series of a folder, largest first. Throws facehex::Error(folder, ...) if it is not a folder.
+std::vector<DicomSeries> dicom_series_in(const std::string& folder);
+
+struct DicomVolume {
+  Field intensity;
+  std::string anterior, superior;  // voxel axes, see above
+};
+
+// Throws facehex::Error(folder, ...) when the folder has no DICOM image, several series, slices of different sizes or
+// orientations, two slices at one position, uneven slice spacing, or a pixel format that is not a scalar number.
+DicomVolume read_dicom_series(const std::string& folder);
+
+}  // namespace facehex
