@@ -31,6 +31,7 @@
 #include "core/error.h"
 #include "core/side_mask.h"
 #include "core/sides.h"
+#include "core/tet_topology.h"
 
 namespace facehex {
 namespace {
@@ -301,33 +302,18 @@ TetrahedralizeResult tetrahedralize(const SurfaceMesh& surface, const Tetrahedra
     subface_label[sorted_key(corner[0], corner[1], corner[2])] = out.markers[f];
   }
 
-  // Boundary faces: tet faces used once. Each face of kFace is ordered so that its right-hand normal points away from
-  // the tet's fourth vertex, i.e. out of the mesh, for a positive tet.
-  static const int kFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-  std::map<FaceKey, std::pair<int, std::array<int, 3>>> faces;  // key -> (use count, oriented face)
-  for (int t = 0; t < T.rows(); ++t)
-    for (const auto& f : kFace) {
-      const std::array<int, 3> tri = {T(t, f[0]), T(t, f[1]), T(t, f[2])};
-      auto& entry = faces[sorted_key(tri[0], tri[1], tri[2])];
-      if (entry.first++ == 0) entry.second = tri;
-    }
-  std::vector<std::array<int, 3>> boundary;
-  std::vector<int> labels;
-  for (const auto& [key, entry] : faces) {
-    if (entry.first != 1) continue;
-    boundary.push_back(entry.second);
-    const auto it = subface_label.find(key);
-    labels.push_back(it == subface_label.end() ? 0 : it->second);
+  // Boundary faces (tet faces used once, oriented out of the mesh) with the label of TetGen's subface on each.
+  const BoundaryFaces boundary = boundary_faces(T);
+  std::vector<int> labels(static_cast<size_t>(boundary.F.rows()), 0);
+  for (Eigen::Index f = 0; f < boundary.F.rows(); ++f) {
+    const auto it = subface_label.find(sorted_key(boundary.F(f, 0), boundary.F(f, 1), boundary.F(f, 2)));
+    if (it != subface_label.end()) labels[static_cast<size_t>(f)] = it->second;
   }
 
   TetrahedralizeResult result;
   result.mesh = VolumeMesh::from_tets(Vc, T);
-  result.boundary_faces.resize(static_cast<int>(boundary.size()), 3);
-  result.boundary_labels.resize(static_cast<int>(boundary.size()));
-  for (size_t i = 0; i < boundary.size(); ++i) {
-    for (int k = 0; k < 3; ++k) result.boundary_faces(i, k) = boundary[i][k];
-    result.boundary_labels(i) = labels[i];
-  }
+  result.boundary_faces = boundary.F;
+  result.boundary_labels = Eigen::Map<const Eigen::VectorXi>(labels.data(), static_cast<Eigen::Index>(labels.size()));
   return result;
 }
 
