@@ -20,8 +20,9 @@ HarmonicFields::HarmonicFields(const Eigen::MatrixXd& V, const Eigen::MatrixXi& 
   G_ = gradient_operator(V, T);
   volumes_ = tet_volumes(V, T);
   setup_seconds_["laplacian_assembly"] = clock.lap();
-  // One after the other: run concurrently, CHOLMOD (Debian's SuiteSparse 5.12) gave results differing by 1e-3
-  // from run to run, i.e. it is not safe to use from several threads here.
+  // One after the other. Run concurrently, CHOLMOD's own orderings made results differ by 1e-3 from run to run; with
+  // the shared order they agree, but the three factorizations compete for memory bandwidth and BLAS threads: 22.5 s
+  // instead of 12.6 s at 1M tets (docs/benchmarks.md).
   report_progress(progress, "ordering the Laplacian for factorization", 0.0);
   const auto elimination_order = std::make_shared<const std::vector<int>>(fill_reducing_order(K_));
   for (int f = 0; f < 3; ++f) {
