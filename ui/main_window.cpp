@@ -367,7 +367,9 @@ void MainWindow::about() {
          "Nazari, Perrier, Chabanas, Payan, <i>Simulation of dynamic orofacial movements using a constitutive "
          "law varying with muscle activation</i>, CMBBE 2010; Lloyd, Stavness, Fels, <i>ArtiSynth: a fast "
          "interactive biomechanical modeling toolkit combining multibody and finite element simulation</i>, 2012."
-         "</li><li>CT sample data: the VTK headsq data set, Kitware.</li></ul>"
+         "</li><li>CT sample data: the VTK headsq data set, Kitware; the sample patient and the headsq-template "
+         "standard are derived from it.</li>"
+         "<li>DICOM reading: GDCM (Grassroots DICOM), BSD license.</li></ul>"
          "<p>Built with Qt %2 and VTK.</p>")
           .arg(FACEHEX_VERSION, qVersion()));
 }
