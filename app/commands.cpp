@@ -198,8 +198,9 @@ std::optional<ModelParameterization> cached_standard_parameterization(const std:
   std::string why_not;
   std::optional<ModelParameterization> cached = read_parameterization_cache(cache, domain, set, options, &why_not);
   if (!cached && !why_not.empty())
-    std::cerr << "note: " << why_not << "; the standard's parameterization is recomputed (refresh the cache with "
-              << "facehex standards --write-cache)\n";
+    std::cerr << "note: " << why_not << "; the standard's parameterization is computed instead (expected with "
+              << "--standard-domain, --standard-constraints, --iterations or --order; after editing a bundled "
+              << "standard, refresh it with facehex standards --write-cache)\n";
   return cached;
 }
 

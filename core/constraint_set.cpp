@@ -1,13 +1,12 @@
 #include "core/constraint_set.h"
 
+#include <cmath>
+#include <map>
+#include <nlohmann/json.hpp>
+
 #include "core/error.h"
 #include "core/tet_topology.h"
 #include "core/text_file.h"
-
-#include <nlohmann/json.hpp>
-
-#include <cmath>
-#include <map>
 
 namespace facehex {
 namespace {
@@ -148,6 +147,14 @@ ConstraintSet side_constraints() {
   return set;
 }
 
+bool within_selection_limits(const PlaneSelection& p, const Eigen::Vector3d& x, bool on_boundary, int side_mask) {
+  if (p.region == "boundary" && !on_boundary) return false;
+  if (p.region != "volume" && p.region != "boundary" && !(side_mask & side_bit(*side_from_name(p.region))))
+    return false;
+  if (p.within_center && (x - *p.within_center).norm() > p.within_radius) return false;
+  return (side_mask & p.exclude_sides) == 0;
+}
+
 std::vector<int> select_vertices(const Selection& selection, const Eigen::MatrixXd& V,
                                  const std::vector<char>& boundary_flags, const Eigen::VectorXi& side_mask) {
   std::vector<int> out;
@@ -160,9 +167,10 @@ std::vector<int> select_vertices(const Selection& selection, const Eigen::Matrix
     return out;
   }
   auto on_side = [&](int v, Side s) { return (side_mask(v) & side_bit(s)) != 0; };
-  const bool needs_mask = selection.side || (selection.plane && ((selection.plane->region != "volume" &&
-                                                                  selection.plane->region != "boundary") ||
-                                                                 selection.plane->exclude_sides != 0));
+  const bool needs_mask =
+      selection.side ||
+      (selection.plane && ((selection.plane->region != "volume" && selection.plane->region != "boundary") ||
+                           selection.plane->exclude_sides != 0));
   if (needs_mask && side_mask.size() != V.rows())
     throw std::runtime_error("selects by side but the model has no \"side_mask\" array");
   for (int v = 0; v < V.rows(); ++v) {
@@ -173,11 +181,8 @@ std::vector<int> select_vertices(const Selection& selection, const Eigen::Matrix
     const PlaneSelection& p = *selection.plane;
     const Eigen::Vector3d x = V.row(v).transpose();
     if (std::abs((x - p.point).dot(p.normal)) > p.band / 2) continue;
-    if (p.region == "boundary" && !boundary_flags[v]) continue;
-    if (p.region != "volume" && p.region != "boundary" && !on_side(v, *side_from_name(p.region))) continue;
-    if (p.within_center && (x - *p.within_center).norm() > p.within_radius) continue;
-    if (side_mask(v) & p.exclude_sides) continue;
-    out.push_back(v);
+    if (within_selection_limits(p, x, boundary_flags[v] != 0, side_mask.size() > 0 ? side_mask(v) : 0))
+      out.push_back(v);
   }
   return out;
 }

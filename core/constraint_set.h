@@ -22,15 +22,15 @@
 //             "within".radius of "within".center, and not those on the sides listed in "exclude" (e.g. a feature
 //             line of v stops where it meets the top or bottom cut). A geometric selection re-applies to a remeshed
 //             model.
-#include "core/harmonic_solver.h"
-#include "core/mesh.h"
-#include "core/sides.h"
-
 #include <Eigen/Core>
 #include <array>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "core/harmonic_solver.h"
+#include "core/mesh.h"
+#include "core/sides.h"
 
 namespace facehex {
 
@@ -39,11 +39,11 @@ constexpr std::array<const char*, 3> kFieldNames = {"u", "v", "w"};
 struct PlaneSelection {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   Eigen::Vector3d normal = Eigen::Vector3d::UnitX();
-  double band = 1.0;             // mm, full width of the slab
-  std::string region = "volume"; // "volume", "boundary" or a side name
+  double band = 1.0;              // mm, full width of the slab
+  std::string region = "volume";  // "volume", "boundary" or a side name
   std::optional<Eigen::Vector3d> within_center;
   double within_radius = 0;
-  int exclude_sides = 0;         // side bits: vertices on these sides are not selected
+  int exclude_sides = 0;  // side bits: vertices on these sides are not selected
 };
 
 struct Selection {
@@ -71,6 +71,10 @@ void write_constraint_set(const std::string& path, const ConstraintSet& set);  /
 
 // The six shape-end constraints selecting the sides by "side_mask" (the default for models that carry it).
 ConstraintSet side_constraints();
+
+// Whether a vertex at x (on the boundary or not, with side bits side_mask) passes a plane selection's restrictions
+// other than its plane and band: the region, the "within" sphere and the excluded sides.
+bool within_selection_limits(const PlaneSelection& p, const Eigen::Vector3d& x, bool on_boundary, int side_mask);
 
 // Vertices each constraint selects on a tet model (V #V x 3, T #T x 4, side_mask #V or empty).
 std::vector<int> select_vertices(const Selection& selection, const Eigen::MatrixXd& V,

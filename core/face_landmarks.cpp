@@ -31,17 +31,20 @@ struct Profile {
   // The longest run of bins at most `depth` mm behind `front` (one missing bin allowed), as (lowest z, highest z), if
   // it is at least `min_length` mm long: a flat plateau where the scan's field of view cut the face.
   std::optional<std::pair<double, double>> clipped_run(double front, double depth, double min_length) const {
-    std::optional<std::pair<double, double>> best, run;
+    std::optional<std::pair<double, double>> best;
+    bool in_run = false;
+    std::pair<double, double> run{0.0, 0.0};
     int gap = 0;
     for (size_t b = 0; b < bins.size(); ++b) {
       const double z = z0 + static_cast<double>(b) + 0.5;
       if (bins[b] && bins[b]->y() >= front - depth) {
-        run = run ? std::pair{run->first, z} : std::pair{z, z};
+        run = in_run ? std::pair{run.first, z} : std::pair{z, z};
+        in_run = true;
         gap = 0;
-      } else if (run && ++gap > 1) {
-        run.reset();
+      } else if (in_run && ++gap > 1) {
+        in_run = false;
       }
-      if (run && (!best || run->second - run->first > best->second - best->first)) best = run;
+      if (in_run && (!best || run.second - run.first > best->second - best->first)) best = run;
     }
     if (best && best->second - best->first >= min_length) return best;
     return std::nullopt;

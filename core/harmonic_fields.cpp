@@ -1,9 +1,9 @@
 #include "core/harmonic_fields.h"
 
+#include <set>
+
 #include "core/error.h"
 #include "core/stopwatch.h"
-
-#include <set>
 
 namespace facehex {
 
@@ -12,7 +12,8 @@ HarmonicFields::HarmonicFields(const Eigen::MatrixXd& V, const Eigen::MatrixXi& 
                                const ProgressCallback& progress)
     : options_(options) {
   const std::set<int> field_order(options.order.begin(), options.order.end());
-  if (field_order != std::set<int>{0, 1, 2}) throw Error("harmonic fields", "the field order must be a permutation of u, v, w");
+  if (field_order != std::set<int>{0, 1, 2})
+    throw Error("harmonic fields", "the field order must be a permutation of u, v, w");
   if (options.orthogonality_iterations < 0) throw Error("harmonic fields", "negative number of iterations");
   Stopwatch clock;
   report_progress(progress, "assembling the Laplacian", 0.0);
@@ -27,7 +28,8 @@ HarmonicFields::HarmonicFields(const Eigen::MatrixXd& V, const Eigen::MatrixXi& 
   const auto elimination_order = std::make_shared<const std::vector<int>>(fill_reducing_order(K_));
   for (int f = 0; f < 3; ++f) {
     report_progress(progress, std::string("factoring the ") + kFieldNames[f] + " system", (f + 1) / 4.0);
-    solvers_[f] = std::make_unique<HarmonicSolver>(K_, constraints.fields[f], HarmonicSolver::Options{kFieldNames[f], elimination_order});
+    solvers_[f] = std::make_unique<HarmonicSolver>(K_, constraints.fields[f],
+                                                   HarmonicSolver::Options{kFieldNames[f], elimination_order});
   }
   setup_seconds_["factorization"] = clock.lap();
 }

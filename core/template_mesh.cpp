@@ -44,6 +44,22 @@ int vertex_id(const TemplateGrid& grid, int i, int j, int k) {
   return (k * (grid.cells(1) + 1) + j) * (grid.cells(0) + 1) + i;
 }
 
+void check_options(const TemplateOptions& options) {
+  if (options.layers < 1) throw Error("template", "the number of layers must be at least 1");
+  if (options.cell_size < 0) throw Error("template", "the cell size must be positive (or 0 for automatic)");
+  if (options.curve_samples < 8) throw Error("template", "at least 8 samples per curve are needed");
+}
+
+// The sides (sides.h bits) of the grid vertex with indices (i, j, k): the first and last line of each field.
+int grid_side_mask(const TemplateGrid& grid, const std::array<int, 3>& index) {
+  int mask = 0;
+  for (int f = 0; f < 3; ++f) {
+    if (index[f] == 0) mask |= side_bit(static_cast<Side>(2 * f));
+    if (index[f] == grid.cells(f)) mask |= side_bit(static_cast<Side>(2 * f + 1));
+  }
+  return mask;
+}
+
 // Index of value in a field's lines, or -1.
 int line_index(const std::vector<double>& lines, double value) {
   for (size_t i = 0; i < lines.size(); ++i)
@@ -62,9 +78,7 @@ std::array<std::vector<double>, 3> feature_lines(const ConstraintSet& set) {
 
 TemplateGrid template_grid(const PatientMap& reference, const std::array<std::vector<double>, 3>& features,
                            const TemplateOptions& options) {
-  if (options.layers < 1) throw Error("template", "the number of layers must be at least 1");
-  if (options.cell_size < 0) throw Error("template", "the cell size must be positive (or 0 for automatic)");
-  if (options.curve_samples < 8) throw Error("template", "at least 8 samples per curve are needed");
+  check_options(options);
   if (!features[2].empty()) throw Error("template", "feature constraints on w are not supported (layers are uniform)");
   TemplateGrid grid;
   // Mean bone-to-skin distance along w over the middle of the face.
@@ -129,14 +143,7 @@ VolumeMesh grid_hex_mesh(const TemplateGrid& grid, bool mirrored) {
         const int v = vertex_id(grid, i, j, k);
         const Eigen::Vector3d uvw(grid.lines[0][i], grid.lines[1][j], grid.lines[2][k]);
         mesh.V.row(v) = mirrored ? Eigen::RowVector3d(uvw(0), uvw(2), uvw(1)) : uvw.transpose();
-        int mask = 0;
-        if (i == 0) mask |= side_bit(U0);
-        if (i == nu) mask |= side_bit(U1);
-        if (j == 0) mask |= side_bit(V0);
-        if (j == nv) mask |= side_bit(V1);
-        if (k == 0) mask |= side_bit(W0);
-        if (k == nw) mask |= side_bit(W1);
-        side_mask(v) = mask;
+        side_mask(v) = grid_side_mask(grid, {i, j, k});
       }
   mesh.point_data[kSideMaskArray] = side_mask;
   // VTK's hex corner order in the embedding's axes (a, b, c), as offsets in (i, j, k): the embedding's second and
@@ -174,18 +181,9 @@ ConstraintSet grid_constraints(const TemplateGrid& grid, const ConstraintSet& re
           const std::array<int, 3> index = {i, j, k};
           if (index[c.field] != line) continue;
           const int v = vertex_id(grid, i, j, k);
-          if (V.rows() > 0 && plane) {
-            int mask = 0;
-            for (int f = 0; f < 3; ++f) {
-              if (index[f] == 0) mask |= side_bit(static_cast<Side>(2 * f));
-              if (index[f] == grid.cells(f)) mask |= side_bit(static_cast<Side>(2 * f + 1));
-            }
-            if (mask & plane->exclude_sides) continue;
-            if (plane->region == "boundary" && mask == 0) continue;
-            if (const auto side = side_from_name(plane->region); side && !(mask & side_bit(*side))) continue;
-            if (plane->within_center && (V.row(v).transpose() - *plane->within_center).norm() > plane->within_radius)
-              continue;
-          }
+          const int mask = grid_side_mask(grid, index);  // a grid vertex is on the boundary iff on a side
+          if (V.rows() > 0 && plane && !within_selection_limits(*plane, V.row(v).transpose(), mask != 0, mask))
+            continue;
           row.select.ids.push_back(v);
         }
     if (row.select.ids.empty())
@@ -198,6 +196,7 @@ ConstraintSet grid_constraints(const TemplateGrid& grid, const ConstraintSet& re
 TemplateResult build_template(const VolumeMesh& reference, const ConstraintSet& reference_set,
                               const std::string& source, const TemplateOptions& options,
                               const TransferOptions& transfer, const ProgressCallback& progress) {
+  check_options(options);  // before the reference's parameterization, which takes a while
   TemplateResult result;
   TransferRun& run = result.run;
   report_progress(progress, "parameterizing the reference", 0.0);
