@@ -1,5 +1,14 @@
 #include "app/commands.h"
 
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <numeric>
+#include <optional>
+#include <set>
+#include <sstream>
+
 #include "app/cli_args.h"
 #include "app/compare.h"
 #include "app/report.h"
@@ -9,27 +18,18 @@
 #include "core/constraint_set.h"
 #include "core/error.h"
 #include "core/io/fe_sets.h"
-#include "core/io/parameterization_cache.h"
 #include "core/io/mesh_io.h"
+#include "core/io/parameterization_cache.h"
 #include "core/mesh_check.h"
 #include "core/resources.h"
 #include "core/segment/patient_input.h"
 #include "core/shell_sides.h"
-#include "core/standard/closed_domain.h"
 #include "core/sides.h"
+#include "core/standard/closed_domain.h"
 #include "core/template_mesh.h"
 #include "core/tet_topology.h"
 #include "core/text_file.h"
 #include "core/transfer_pipeline.h"
-
-#include <algorithm>
-#include <cstdio>
-#include <filesystem>
-#include <iostream>
-#include <numeric>
-#include <optional>
-#include <set>
-#include <sstream>
 
 namespace facehex::cli {
 namespace fs = std::filesystem;
@@ -117,6 +117,11 @@ StandardDomain standard_domain(const VolumeMesh& hex, const std::string& kind) {
 
 void write_json(const std::string& path, const json& j) { write_text_file(path, j.dump(2) + "\n"); }
 
+// How far the shape relaxation and the repair moved each vertex from where the harmonic mapping put it (mm).
+void attach_moved_from_mapping(VolumeMesh& hex, const TransferRun& run) {
+  hex.point_data["moved_from_mapping"] = (run.patient_hex.V - run.mapped_hex.V).rowwise().norm();
+}
+
 void attach_quality(VolumeMesh& mesh) {
   const ElementQuality q = element_quality(mesh);
   mesh.cell_data["shape"] = q.shape;
@@ -163,7 +168,8 @@ TransferOutputs execute_transfer(const TransferInputs& in) {
   TerminalProgress progress;
   std::cerr << "reading the standard " << in.standard.mesh << "\n";
   out.standard = read_volume_mesh(in.standard.mesh);
-  const std::string std_constraints = in.standard_constraints.empty() ? in.standard.constraints : in.standard_constraints;
+  const std::string std_constraints =
+      in.standard_constraints.empty() ? in.standard.constraints : in.standard_constraints;
   const ConstraintSet standard_set = read_constraint_set(std_constraints);
   std::cerr << "reading the patient " << in.patient << "\n";
   out.patient = load_tet_model(in.patient, in.segment);
@@ -186,6 +192,7 @@ TransferOutputs execute_transfer(const TransferInputs& in) {
   if (cached) out.run.standard_parameterization_source = cache;
   progress.finish();
   out.standard_quality = quality_report(out.standard, nullptr);
+  out.plain_mapping_quality = quality_report(out.run.mapped_hex, &out.standard);
   out.patient_quality = quality_report(out.run.patient_hex, &out.standard);
   out.distance = side_vertex_distances(out.run, out.standard);
   return out;
@@ -210,7 +217,12 @@ void add_transfer_options(Args& args) {
       .option("edge-length", "target edge length (mm) when the patient is a closed surface or a CT", "2")
       .option("standard-domain",
               "tet domain of the standard: closed (openings filled) or auxiliary (paper: split hexes only)", "closed")
-      .flag("allow-inverted", "continue even if the patient parameterization has inverted tets");
+      .flag("allow-inverted", "continue even if the patient parameterization has inverted tets")
+      .option("shape-relaxation",
+              "after the mapping, move vertices along the patient towards the standard's cell shapes; where the "
+              "mapping distorted a cell, its target moves this fraction of that distortion towards an ideal cell (0: "
+              "the standard's own shapes); off: the paper's plain mapping",
+              "0.5");
   add_field_options(args);
   add_segment_options(args);
 }
@@ -225,6 +237,13 @@ TransferInputs transfer_inputs(const Args& args, const std::string& patient, con
   in.segment = segment_options(args);
   in.options.fields = field_options(args);
   in.options.allow_inverted_parameterization = args.has("allow-inverted");
+  const std::string relaxation = args.get("shape-relaxation");
+  in.options.shape_relaxation = relaxation != "off";
+  if (in.options.shape_relaxation) {
+    in.options.relaxation_towards_ideal = args.number("shape-relaxation");
+    if (!(in.options.relaxation_towards_ideal >= 0 && in.options.relaxation_towards_ideal <= 1))
+      throw Error("--shape-relaxation", "expects off or a fraction from 0 to 1, got '" + relaxation + "'");
+  }
   return in;
 }
 
@@ -246,9 +265,9 @@ int cmd_info(const Argv& argv) {
   if (mask.size() > 0) {
     std::cout << "  side vertices:";
     for (int s = 0; s < kNumSides; ++s)
-      std::cout << " " << kSideNames[s] << " "
-                << std::count_if(mask.data(), mask.data() + mask.size(),
-                                 [&](int m) { return (m & side_bit(static_cast<Side>(s))) != 0; });
+      std::cout << " " << kSideNames[s] << " " << std::count_if(mask.data(), mask.data() + mask.size(), [&](int m) {
+        return (m & side_bit(static_cast<Side>(s))) != 0;
+      });
     std::cout << "\n";
   }
   std::cout << "  arrays:";
@@ -320,10 +339,9 @@ int cmd_fields(const Argv& argv) {
   }
   const ConstraintSet set = load_constraints(args.get("constraints"), mesh, path);
   TerminalProgress progress;
-  const ModelParameterization p =
-      parameterize_model(domain.V, domain.T, domain.side_mask, set,
-                         args.has("constraints") ? args.get("constraints") : path, field_options(args),
-                         progress.callback());
+  const ModelParameterization p = parameterize_model(domain.V, domain.T, domain.side_mask, set,
+                                                     args.has("constraints") ? args.get("constraints") : path,
+                                                     field_options(args), progress.callback());
   progress.finish();
   VolumeMesh out = parameterized_tet_mesh(p, &mesh);
   if (domain.side_mask.size() == p.V.rows()) out.point_data[kSideMaskArray] = domain.side_mask.cast<double>();
@@ -338,21 +356,23 @@ int cmd_fields(const Argv& argv) {
 }
 
 int cmd_map(const Argv& argv) {
-  Args args("map", "Maps a standard hex mesh onto a patient tet model through their harmonic parameterizations "
-                   "(or, with --method mesh-matching, by the elastic-registration baseline of docs/method.md).");
+  Args args("map",
+            "Maps a standard hex mesh onto a patient tet model through their harmonic parameterizations "
+            "(or, with --method mesh-matching, by the elastic-registration baseline of docs/method.md).");
   args.option("patient", "patient tet model or closed surface")
       .option("patient-constraints", "constraint set of the patient (default: six sides from side_mask)")
       .option("output", "output hex mesh (.vtu, .vtk, .msh)")
       .option("report", "write the JSON report here too")
-      .option("method", "harmonic (the paper's method) or mesh-matching (the baseline it is compared with)", "harmonic");
+      .option("method", "harmonic (the paper's method) or mesh-matching (the baseline it is compared with)",
+              "harmonic");
   add_transfer_options(args);
   if (!args.parse(argv)) return 0;
   if (!args.has("patient") || !args.has("output")) throw Error("facehex map", "needs --patient and -o OUTPUT");
   if (args.get("method") == "mesh-matching") {
     const BundledModel standard = find_standard(args.get("standard"));
-    MatchingOutputs out = execute_mesh_matching(read_volume_mesh(standard.mesh), standard.mesh,
-                                                load_tet_model(args.get("patient"), segment_options(args)),
-                                                args.get("patient"));
+    MatchingOutputs out =
+        execute_mesh_matching(read_volume_mesh(standard.mesh), standard.mesh,
+                              load_tet_model(args.get("patient"), segment_options(args)), args.get("patient"));
     attach_quality(out.result.hex);
     write_volume_mesh(args.get("output"), out.result.hex);
     if (args.has("report")) write_json(args.get("report"), mesh_matching_report(out));
@@ -364,17 +384,22 @@ int cmd_map(const Argv& argv) {
     throw Error("--method", "expects harmonic or mesh-matching, got '" + args.get("method") + "'");
   TransferOutputs out = execute_transfer(transfer_inputs(args, args.get("patient"), args.get("patient-constraints")));
   attach_quality(out.run.patient_hex);
+  attach_moved_from_mapping(out.run.patient_hex, out.run);
   write_volume_mesh(args.get("output"), out.run.patient_hex);
   if (args.has("report"))
-    write_json(args.get("report"), run_report(out.run, out.standard_quality, out.patient_quality, out.distance));
-  std::cout << run_summary_text(out.run, out.standard_quality, out.patient_quality, out.distance) << "wrote "
-            << args.get("output") << "\n";
+    write_json(args.get("report"),
+               run_report(out.run, out.standard_quality, out.plain_mapping_quality, out.patient_quality, out.distance));
+  std::cout << run_summary_text(out.run, out.standard_quality, out.plain_mapping_quality, out.patient_quality,
+                                out.distance)
+            << "wrote " << args.get("output") << "\n";
   return 0;
 }
 
 int cmd_quality(const Argv& argv) {
   Args args("quality", "Element quality of a hex-dominant mesh; with --reference, the dihedral-angle distortion.");
-  args.positional("MESH", "hex-dominant mesh").option("reference", "the standard it was mapped from").flag("json", "print JSON");
+  args.positional("MESH", "hex-dominant mesh")
+      .option("reference", "the standard it was mapped from")
+      .flag("json", "print JSON");
   if (!args.parse(argv)) return 0;
   const VolumeMesh m = read_volume_mesh(args.get("MESH"));
   VolumeMesh reference;
@@ -417,6 +442,7 @@ int cmd_run(const Argv& argv) {
   attach_fields(standard_hex, out.run.standard);
   attach_quality(standard_hex);
   attach_quality(out.run.patient_hex);
+  attach_moved_from_mapping(out.run.patient_hex, out.run);
   out.run.patient_hex.point_data["uvw"] = hex_vertex_uvw(out.run, out.standard.num_vertices());
   if (side_mask_of(out.standard).size() > 0)
     out.run.patient_hex.point_data[kSideMaskArray] = out.standard.point_data.at(kSideMaskArray);
@@ -425,13 +451,15 @@ int cmd_run(const Argv& argv) {
   write_volume_mesh((out_dir / "patient_model.vtu").string(), patient_model);
   write_volume_mesh((out_dir / "standard_hex.vtu").string(), standard_hex);
   write_volume_mesh((out_dir / "patient_hex.vtu").string(), out.run.patient_hex);
-  json report = run_report(out.run, out.standard_quality, out.patient_quality, out.distance);
+  json report = run_report(out.run, out.standard_quality, out.plain_mapping_quality, out.patient_quality, out.distance);
   report["inputs"] = {{"patient", input},
                       {"patient_constraints", constraints},
                       {"standard", out.standard.num_vertices() > 0 ? args.get("standard") : ""}};
   write_json((out_dir / "report.json").string(), report);
-  std::cout << run_summary_text(out.run, out.standard_quality, out.patient_quality, out.distance) << "outputs in "
-            << out_dir.string() << "/: patient_model.vtu, standard_hex.vtu, patient_hex.vtu, report.json\n";
+  std::cout << run_summary_text(out.run, out.standard_quality, out.plain_mapping_quality, out.patient_quality,
+                                out.distance)
+            << "outputs in " << out_dir.string()
+            << "/: patient_model.vtu, standard_hex.vtu, patient_hex.vtu, report.json\n";
   for (const std::string& ext : exports) {
     write_volume_mesh((out_dir / ("patient_hex." + ext)).string(), out.run.patient_hex, write_options(args));
     std::cout << "exported " << (out_dir / ("patient_hex." + ext)).string() << "\n";
@@ -461,9 +489,9 @@ int cmd_segment(const Argv& argv) {
   const Eigen::VectorXi mask = side_mask_of(model);
   std::cout << model.num_vertices() << " vertices, " << model.num_cells() << " tets; side vertices:";
   for (int s = 0; s < kNumSides; ++s)
-    std::cout << " " << kSideNames[s] << " "
-              << std::count_if(mask.data(), mask.data() + mask.size(),
-                               [&](int m) { return (m & side_bit(static_cast<Side>(s))) != 0; });
+    std::cout << " " << kSideNames[s] << " " << std::count_if(mask.data(), mask.data() + mask.size(), [&](int m) {
+      return (m & side_bit(static_cast<Side>(s))) != 0;
+    });
   std::cout << "\nwrote " << args.get("output") << "\n";
   return 0;
 }
@@ -493,7 +521,8 @@ int cmd_constraints(const Argv& argv) {
                                       : standard_domain(mesh, "closed");
     HarmonicFieldsOptions plain;
     plain.orthogonality_iterations = 0;
-    const ModelParameterization p = parameterize_model(domain.V, domain.T, domain.side_mask, side_constraints(), path, plain);
+    const ModelParameterization p =
+        parameterize_model(domain.V, domain.T, domain.side_mask, side_constraints(), path, plain);
     std::map<std::string, double> placeholder;
     for (const auto& spec : feature_specs()) placeholder[spec.name] = 0.5;
     const ConstraintSet probe = automatic_constraints(mesh.V, mask, placeholder, args.number("band"), &landmarks);
@@ -553,10 +582,9 @@ int cmd_template(const Argv& argv) {
     reference_set = read_constraint_set(args.get("constraints"));
   } else {
     FaceLandmarks landmarks;
-    reference_set =
-        automatic_constraints(reference.V, side_mask_of(reference),
-                              feature_values(read_constraint_set(find_standard(args.get("standard")).constraints)),
-                              kFeatureBand, &landmarks);
+    reference_set = automatic_constraints(
+        reference.V, side_mask_of(reference),
+        feature_values(read_constraint_set(find_standard(args.get("standard")).constraints)), kFeatureBand, &landmarks);
     std::cerr << "automatic constraints: six sides and " << feature_specs().size() << " features at the landmarks\n"
               << landmarks_text(landmarks, "  ");
   }
@@ -578,13 +606,14 @@ int cmd_template(const Argv& argv) {
   std::ostringstream readme;
   readme << "# Template standard from " << fs::path(input).filename().string() << " (" << t.grid.cells(0) << " x "
          << t.grid.cells(1) << " x " << t.grid.cells(2) << " hexes, mean shape " << quality.summary.shape_mean
-         << ")\n\nBuilt by `facehex template` (docs/method.md, template standards) from the reference " << input
-         << " (" << reference.num_cells() << " tets; mean bone-to-skin thickness " << t.grid.mean_thickness
-         << " mm), cells " << t.grid.cell_size << " mm along the face:\n\n    facehex template"
+         << ")\n\nBuilt by `facehex template` (docs/method.md, template standards) from the reference " << input << " ("
+         << reference.num_cells() << " tets; mean bone-to-skin thickness " << t.grid.mean_thickness << " mm), cells "
+         << t.grid.cell_size << " mm along the face:\n\n    facehex template"
          << std::accumulate(argv.begin(), argv.end(), std::string(),
                             [](std::string a, const std::string& b) { return a + " " + b; })
          << "\n\n`constraints.json`: the six sides and the reference's feature lines as rows of the grid.\n\n"
-         << "```\n" << quality_text(quality) << "```\n";
+         << "```\n"
+         << quality_text(quality) << "```\n";
   write_text_file((out_dir / "README.md").string(), readme.str());
   std::cout << "grid " << t.grid.cells(0) << " x " << t.grid.cells(1) << " x " << t.grid.cells(2) << " = "
             << t.mesh.num_cells() << " hexes (cell size " << t.grid.cell_size << " mm, mean thickness "

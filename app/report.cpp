@@ -1,10 +1,10 @@
 #include "app/report.h"
 
-#include "core/constraint_set.h"
-#include "core/tet_topology.h"
-
 #include <cstdio>
 #include <sstream>
+
+#include "core/constraint_set.h"
+#include "core/tet_topology.h"
 
 namespace facehex::cli {
 namespace {
@@ -47,6 +47,30 @@ json parameterization_json(const ModelParameterization& m) {
           {"seconds", m.fields.seconds}};
 }
 
+json untangle_json(const UntangleReport& u) {
+  return {{"inverted_before", u.inverted_before},
+          {"inverted_after", u.inverted_after},
+          {"degenerate_before", u.degenerate_before},
+          {"degenerate_after", u.degenerate_after},
+          {"bad_before", u.bad_before},
+          {"bad_after", u.bad_after},
+          {"min_scaled_jacobian_before", u.min_scaled_jacobian_before},
+          {"min_scaled_jacobian_after", u.min_scaled_jacobian_after},
+          {"free_vertices", u.free_vertices},
+          {"released_feature_vertices", u.released_feature_vertices},
+          {"released_side_vertices", u.released_side_vertices},
+          {"sweeps", u.sweeps}};
+}
+
+// The relaxation's report and how far the relaxation and the repair moved the vertices from where the mapping put
+// them (mm).
+json relaxation_json(const TransferRun& run) {
+  json j = untangle_json(run.relaxation);
+  const DistanceSummary moved = summarize_distances((run.patient_hex.V - run.mapped_hex.V).rowwise().norm());
+  j["moved_from_mapping_mm"] = {{"mean", moved.mean}, {"p95", moved.p95}, {"max", moved.max}};
+  return j;
+}
+
 }  // namespace
 
 MeshQualityReport quality_report(const VolumeMesh& mesh, const VolumeMesh* reference) {
@@ -75,7 +99,8 @@ json to_json(const MeshQualityReport& q) {
     json bins = json::array();
     const auto& lo = DihedralDistortion::kBinLower;
     for (size_t b = 0; b < lo.size(); ++b)
-      bins.push_back({{"from_deg", lo[b]}, {"to_deg", b + 1 < lo.size() ? json(lo[b + 1]) : json(nullptr)},
+      bins.push_back({{"from_deg", lo[b]},
+                      {"to_deg", b + 1 < lo.size() ? json(lo[b + 1]) : json(nullptr)},
                       {"percent", q.distortion.percent[b]}});
     j["dihedral_distortion"] = {{"bins", bins},
                                 {"max_deg", q.distortion.max_deg},
@@ -93,8 +118,8 @@ std::string quality_text(const MeshQualityReport& q) {
      << ", degenerate " << s.degenerate << "\n"
      << "  shape           min " << fmt("%.3f", s.shape_min) << "  mean " << fmt("%.3f", s.shape_mean) << "\n"
      << "  scaled Jacobian min " << fmt("%.3f", s.scaled_jacobian_min) << "  mean "
-     << fmt("%.3f", s.scaled_jacobian_mean) << "  below 0.3: " << fmt("%.2f", 100 * s.fraction_scaled_jacobian_below_0_3)
-     << " %\n";
+     << fmt("%.3f", s.scaled_jacobian_mean)
+     << "  below 0.3: " << fmt("%.2f", 100 * s.fraction_scaled_jacobian_below_0_3) << " %\n";
   if (q.has_distortion) {
     const auto& d = q.distortion;
     const auto& lo = DihedralDistortion::kBinLower;
@@ -127,7 +152,8 @@ DistanceSummary side_vertex_distances(const TransferRun& run, const VolumeMesh& 
 }
 
 json run_report(const TransferRun& run, const MeshQualityReport& standard_quality,
-                const MeshQualityReport& patient_quality, const DistanceSummary& distance) {
+                const MeshQualityReport& plain_mapping_quality, const MeshQualityReport& patient_quality,
+                const DistanceSummary& distance) {
   const TransferStatistics& t = run.transfer;
   double total = 0;
   for (const auto& [stage, s] : run.seconds) total += s;
@@ -153,24 +179,15 @@ json run_report(const TransferRun& run, const MeshQualityReport& standard_qualit
             {"walk_hits", t.walk_hits},
             {"side_vertex_distance_mm",
              {{"points", distance.points}, {"max", distance.max}, {"p95", distance.p95}, {"mean", distance.mean}}}}},
-          {"untangle",
-           {{"inverted_before", run.untangle.inverted_before},
-            {"inverted_after", run.untangle.inverted_after},
-            {"degenerate_before", run.untangle.degenerate_before},
-            {"degenerate_after", run.untangle.degenerate_after},
-            {"bad_before", run.untangle.bad_before},
-            {"bad_after", run.untangle.bad_after},
-            {"min_scaled_jacobian_before", run.untangle.min_scaled_jacobian_before},
-            {"min_scaled_jacobian_after", run.untangle.min_scaled_jacobian_after},
-            {"free_vertices", run.untangle.free_vertices},
-            {"released_feature_vertices", run.untangle.released_feature_vertices},
-            {"released_side_vertices", run.untangle.released_side_vertices},
-            {"sweeps", run.untangle.sweeps}}},
+          {"relaxation", relaxation_json(run)},
+          {"untangle", untangle_json(run.untangle)},
+          {"plain_mapping", {{"quality", to_json(plain_mapping_quality)}}},
           {"patient_hex", {{"quality", to_json(patient_quality)}}}};
 }
 
 std::string run_summary_text(const TransferRun& run, const MeshQualityReport& standard_quality,
-                             const MeshQualityReport& patient_quality, const DistanceSummary& distance) {
+                             const MeshQualityReport& plain_mapping_quality, const MeshQualityReport& patient_quality,
+                             const DistanceSummary& distance) {
   std::ostringstream os;
   double total = 0;
   for (const auto& [stage, s] : run.seconds) total += s;
@@ -181,14 +198,23 @@ std::string run_summary_text(const TransferRun& run, const MeshQualityReport& st
      << "gradient angles, mean |90 - angle|: " << fmt("%.1f", run.patient.fields.angles_initial.mean_deviation_from_90)
      << " deg before, " << fmt("%.1f", run.patient.fields.angles.mean_deviation_from_90)
      << " deg after the orthogonality improvement\n"
-     << "mapped hex mesh before repair: " << run.untangle.inverted_before << " inverted, "
-     << run.untangle.degenerate_before << " flat, " << run.untangle.bad_before
-     << " with scaled Jacobian < 0.2; after: " << run.untangle.inverted_after << " inverted, "
-     << run.untangle.degenerate_after << " flat, " << run.untangle.bad_after << "\n"
+     << "mapped hex mesh: " << plain_mapping_quality.summary.inverted << " inverted, shape mean "
+     << fmt("%.3f", plain_mapping_quality.summary.shape_mean) << ", dihedral change mean "
+     << fmt("%.2f", plain_mapping_quality.distortion.mean_deg) << " deg\n";
+  if (run.relaxation.sweeps > 0) {
+    const DistanceSummary moved = summarize_distances((run.patient_hex.V - run.mapped_hex.V).rowwise().norm());
+    os << "shape relaxation: " << run.relaxation.free_vertices << " vertices, " << run.relaxation.sweeps
+       << " sweeps, inverted cells " << run.relaxation.inverted_before << " -> " << run.relaxation.inverted_after
+       << "; vertices moved from the mapping by " << fmt("%.2f", moved.mean) << " mm on average (p95 "
+       << fmt("%.2f", moved.p95) << ", max " << fmt("%.1f", moved.max) << ")\n";
+  }
+  os << "repair: " << run.untangle.inverted_before << " inverted, " << run.untangle.degenerate_before << " flat, "
+     << run.untangle.bad_before << " below their scaled-Jacobian bound before; after: " << run.untangle.inverted_after
+     << " inverted, " << run.untangle.degenerate_after << " flat, " << run.untangle.bad_after << "\n"
      << "standard hex mesh:\n"
      << quality_text(standard_quality) << "patient hex mesh:\n"
-     << quality_text(patient_quality) << "  side vertices off the patient surface: p95 "
-     << fmt("%.2g", distance.p95) << " mm, max " << fmt("%.2g", distance.max) << " mm\n"
+     << quality_text(patient_quality) << "  side vertices off the patient surface: p95 " << fmt("%.2g", distance.p95)
+     << " mm, max " << fmt("%.2g", distance.max) << " mm\n"
      << "time: " << fmt("%.2f", total) << " s\n";
   return os.str();
 }

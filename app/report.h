@@ -2,13 +2,13 @@
 // The run report: stage timings, sizes, parameterization health, transfer statistics and the quality tables of
 // the paper (Table 1: dihedral-angle distortion; Table 2: mean element shape), as JSON for scripts and as a short
 // text summary for people.
+#include <nlohmann/json.hpp>
+#include <string>
+
 #include "core/mesh.h"
 #include "core/quality/hex_quality.h"
 #include "core/quality/surface_distance.h"
 #include "core/transfer_pipeline.h"
-
-#include <nlohmann/json.hpp>
-#include <string>
 
 namespace facehex::cli {
 
@@ -28,9 +28,12 @@ DistanceSummary side_vertex_distances(const Eigen::MatrixXd& mapped_V, const Vol
                                       const Eigen::MatrixXd& patient_V, const Eigen::MatrixXi& patient_T);
 DistanceSummary side_vertex_distances(const TransferRun& run, const VolumeMesh& standard);
 
+// plain_mapping_quality: of run.mapped_hex (the mapping before relaxation and repair) against the standard.
 nlohmann::json run_report(const TransferRun& run, const MeshQualityReport& standard_quality,
-                          const MeshQualityReport& patient_quality, const DistanceSummary& distance);
+                          const MeshQualityReport& plain_mapping_quality, const MeshQualityReport& patient_quality,
+                          const DistanceSummary& distance);
 std::string run_summary_text(const TransferRun& run, const MeshQualityReport& standard_quality,
-                             const MeshQualityReport& patient_quality, const DistanceSummary& distance);
+                             const MeshQualityReport& plain_mapping_quality, const MeshQualityReport& patient_quality,
+                             const DistanceSummary& distance);
 
 }  // namespace facehex::cli

@@ -16,7 +16,7 @@ namespace facehex::cli {
 struct TransferOutputs {
   VolumeMesh standard, patient;
   TransferRun run;
-  MeshQualityReport standard_quality, patient_quality;
+  MeshQualityReport standard_quality, plain_mapping_quality, patient_quality;  // plain: before relaxation, repair
   DistanceSummary distance;
 };
 

@@ -6,6 +6,7 @@
 // (built once, O(#T)). A query first walks from a hint tet (the previous hit, the paper's neighbour search: mesh
 // vertices come in spatially coherent order, so the walk is usually a few steps), and falls back to the grid.
 #include <Eigen/Core>
+#include <atomic>
 #include <vector>
 
 namespace facehex {
@@ -13,9 +14,9 @@ namespace facehex {
 class ParamLocator {
  public:
   struct Hit {
-    int tet = -1;                                  // -1 when the model has no tet at all
-    Eigen::Vector4d bary = Eigen::Vector4d::Zero(); // barycentric coordinates, summing to 1
-    double violation = 0;                          // 0 inside; otherwise -min(bary) of the nearest tet found
+    int tet = -1;                                    // -1 when the model has no tet at all
+    Eigen::Vector4d bary = Eigen::Vector4d::Zero();  // barycentric coordinates, summing to 1
+    double violation = 0;                            // 0 inside; otherwise -min(bary) of the nearest tet found
   };
 
   // P (#V x 3) parametric coordinates of the vertices, T (#T x 4).
@@ -39,7 +40,7 @@ class ParamLocator {
   Eigen::Vector3d lo_, cell_size_;
   Eigen::Vector3i dims_;
   std::vector<int> cell_start_, cell_tets_;  // CSR: tets overlapping each grid cell
-  mutable int walk_hits_ = 0;
+  mutable std::atomic<int> walk_hits_{0};    // atomic: the untangler places vertices from several threads
 };
 
 }  // namespace facehex

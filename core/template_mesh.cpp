@@ -212,7 +212,10 @@ TemplateResult build_template(const VolumeMesh& reference, const ConstraintSet& 
   run.standard = parameterize_model(domain.V, domain.T, domain.side_mask, grid_constraints(result.grid, reference_set),
                                     "template grid", transfer.fields);
   report_progress(progress, "mapping the grid onto the reference", 0.7);
-  map_parameterized(run, grid, source, transfer);
+  // The grid's coordinates are parameters, not a shape to keep: no relaxation towards them.
+  TransferOptions grid_transfer = transfer;
+  grid_transfer.shape_relaxation = false;
+  map_parameterized(run, grid, source, grid_transfer);
   result.mesh = run.patient_hex;
   result.mesh.point_data[kSideMaskArray] = grid.point_data.at(kSideMaskArray);
   result.constraints = grid_constraints(result.grid, reference_set, result.mesh.V);

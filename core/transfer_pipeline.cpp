@@ -138,7 +138,8 @@ TransferRun run_transfer(const VolumeMesh& standard, const StandardDomain& domai
   run.standard_domain_non_positive = domain.non_positive_tets;
   run.standard_relaxed_corner_vertices = domain.relaxed_corner_vertices;
   if (standard_parameterization) {
-    if (standard_parameterization->V.rows() != domain.V.rows() || standard_parameterization->T.rows() != domain.T.rows())
+    if (standard_parameterization->V.rows() != domain.V.rows() ||
+        standard_parameterization->T.rows() != domain.T.rows())
       throw Error(standard_source, "the given parameterization was not made on this standard's domain");
     run.standard = *standard_parameterization;
     run.standard_parameterization_source = "given";
@@ -167,16 +168,29 @@ void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::
                 "sides of its constraint set");
   const PatientMap patient_map(run.patient.V, run.patient.T, run.patient.fields.uvw);
   run.seconds["locator_build"] = clock.lap();
-  run.patient_hex = transfer_hex_mesh(standard, hex_vertex_uvw(run, standard.num_vertices()), patient_map,
-                                      &run.transfer, progress);
+  run.patient_hex =
+      transfer_hex_mesh(standard, hex_vertex_uvw(run, standard.num_vertices()), patient_map, &run.transfer, progress);
   run.seconds["mapping"] = clock.lap();
+  run.mapped_hex = run.patient_hex;
+  // One placement for both steps: its parameters follow the vertices' moves.
+  VertexPlacement placement = parametric_placement(run, patient_map, standard.num_vertices());
+  // With the relaxation, the repair keeps the standard's shapes too (the same energy), else it aims at ideal cells.
+  UntangleOptions shape = options.untangle_options;
+  if (options.shape_relaxation) {
+    shape.target = &standard;
+    shape.target_towards_ideal = options.relaxation_towards_ideal;
+    UntangleOptions relax = shape;
+    relax.whole_mesh = true;
+    run.relaxation = untangle(run.patient_hex, placement, relax);
+    run.seconds["shape_relaxation"] = clock.lap();
+  }
   if (options.untangle) {
-    VertexPlacement placement = parametric_placement(run, patient_map, standard.num_vertices());
     // While unusable (inverted or flat) cells remain: widen the region that may move (a fold may need room beyond two
-    // rings), then release the feature pins (never the sides) of the vertices of the cells still unusable: where the
-    // patient's anatomy squeezes a feature (a flat nose), a valid element matters more than an exact feature line.
+    // rings; not after the relaxation, which moved every vertex already), then release the feature pins (never the
+    // sides) of the vertices of the cells still unusable: where the patient's anatomy squeezes a feature (a flat
+    // nose), a valid element matters more than an exact feature line.
     const Eigen::MatrixXd uvw = hex_vertex_uvw(run, standard.num_vertices());
-    UntangleOptions pass = options.untangle_options;
+    UntangleOptions pass = shape;
     if (pass.reference_scaled_jacobian.size() == 0) {
       pass.reference_scaled_jacobian.resize(standard.num_cells());
       for (int c = 0; c < standard.num_cells(); ++c)
@@ -192,7 +206,7 @@ void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::
       run.untangle.free_vertices = std::max(run.untangle.free_vertices, again.free_vertices);
       run.untangle.sweeps += again.sweeps;
     };
-    for (int attempt = 0; attempt < 3 && remaining() > 0; ++attempt) {
+    for (int attempt = options.shape_relaxation ? 2 : 0; attempt < 3 && remaining() > 0; ++attempt) {
       // The first two passes improved the bad cells around the folds; the later ones finish the untangling.
       pass.seed_unusable_only = attempt > 0;
       if (attempt < 2) {

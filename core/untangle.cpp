@@ -1,6 +1,7 @@
 #include "core/untangle.h"
 
 #include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
@@ -36,6 +37,21 @@ const Eigen::Matrix3d& ideal_inverse(CellType type, int k) {
 double normalized_determinant(const Eigen::Matrix3d& S) {
   const double s2 = S.squaredNorm() / 3;
   return S.determinant() / (s2 * std::sqrt(s2));
+}
+
+// W^-1 for a target corner W whose ideal counterpart has inverse ideal_inv. With M = W ideal_inv (the target relative
+// to the ideal corner) and its polar decomposition M = R U, the stretch U is scaled to unit determinant and moved
+// `towards_ideal` of the way to the identity; R is dropped, since the energy does not change when S is rotated from
+// the right. A nearly flat or inverted target corner gives the ideal one.
+Eigen::Matrix3d target_corner_inverse(const Eigen::Matrix3d& W, const Eigen::Matrix3d& ideal_inv,
+                                      double towards_ideal) {
+  const Eigen::Matrix3d M = W * ideal_inv;
+  if (!(normalized_determinant(M) > kNearlyInverted)) return ideal_inv;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(M.transpose() * M);
+  Eigen::Vector3d stretch = eigen.eigenvalues().cwiseMax(0).cwiseSqrt();
+  stretch /= std::cbrt(stretch.prod());
+  const Eigen::Vector3d blended = (1 - towards_ideal) * stretch.array() + towards_ideal;
+  return ideal_inv * eigen.eigenvectors() * blended.cwiseInverse().asDiagonal() * eigen.eigenvectors().transpose();
 }
 
 struct Energy {
@@ -104,6 +120,9 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
   auto scaled = [&](int c) { return scaled_jacobian(mesh.types[c], cell_nodes(mesh, c)); };
   if (options.reference_scaled_jacobian.size() != 0 && options.reference_scaled_jacobian.size() != nc)
     throw Error("untangle", "the reference scaled Jacobians do not match the mesh's cells");
+  if (options.target && (options.target->num_cells() != nc || options.target->types != mesh.types ||
+                         options.target->C.cols() != mesh.C.cols() || options.target->C != mesh.C))
+    throw Error("untangle", "the target mesh does not have the mesh's cells");
   auto bound = [&](int c) {
     return options.reference_scaled_jacobian.size() == 0
                ? options.min_scaled_jacobian
@@ -125,7 +144,7 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
     }
   };
   tally(report.inverted_before, report.degenerate_before, report.bad_before, report.min_scaled_jacobian_before);
-  if (report.bad_before == 0) {
+  if (report.bad_before == 0 && !options.whole_mesh) {
     report.inverted_after = report.inverted_before;
     report.degenerate_after = report.degenerate_before;
     report.min_scaled_jacobian_after = report.min_scaled_jacobian_before;
@@ -143,7 +162,7 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
   const std::vector<char> region = within_cell_rings(mesh, std::move(in_bad_cell), options.rings);
   std::vector<int> free_vertices;
   for (int v = 0; v < nv; ++v)
-    if (region[v] && !movable[v].isZero()) free_vertices.push_back(v);
+    if ((options.whole_mesh || region[v]) && !movable[v].isZero()) free_vertices.push_back(v);
   report.free_vertices = static_cast<int>(free_vertices.size());
 
   // Corners touching each free vertex (the vertex is the corner node or one of its three neighbours), the centre of
@@ -163,6 +182,42 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
       }
     }
 
+  // W^-1 of each corner and interior sample of the cells around free vertices: the ideal cell's, or the target's
+  // moved towards the ideal by target_towards_ideal times the corner's distortion in the mesh as given.
+  const int slots = kSample + 9;
+  std::vector<Eigen::Matrix3d> target_inverse;
+  if (options.target) {
+    target_inverse.resize(static_cast<size_t>(nc) * slots);
+    std::vector<char> needed(nc, 0);
+    for (int v : free_vertices)
+      for (int c : cells_of[v]) needed[c] = 1;
+    auto target = [&](const Eigen::Matrix3d& W, const Eigen::Matrix3d& A, const Eigen::Matrix3d& ideal_inv) {
+      const double eta = Energy{}.corner(A, W.inverse(), nullptr);  // 1 where A has W's shape
+      const double distortion = std::isfinite(eta) && eta > 0 ? std::clamp(1 - 1 / eta, 0.0, 1.0) : 1.0;
+      return target_corner_inverse(W, ideal_inv, options.target_towards_ideal * distortion);
+    };
+    for (int c = 0; c < nc; ++c) {
+      if (!needed[c]) continue;
+      const CellType type = mesh.types[c];
+      const CellNodes Xt = cell_nodes(*options.target, c), X = cell_nodes(mesh, c);
+      for (int k = 0; k < node_count(type); ++k)
+        target_inverse[c * slots + k] =
+            target(corner_jacobian(type, Xt, k), corner_jacobian(type, X, k), ideal_inverse(type, k));
+      const auto& samples = interior_sample_weights(type);
+      for (size_t s = 0; s < samples.size(); ++s)
+        target_inverse[c * slots + kSample + s] =
+            target(Xt.transpose() * samples[s], X.transpose() * samples[s], Eigen::Matrix3d::Identity());
+    }
+  }
+  // The corner (or sample) matrix A of a cell with nodes X, and its W^-1.
+  auto corner_matrix = [&](const Corner& corner, const CellNodes& X, Eigen::Matrix3d& A) -> Eigen::Matrix3d {
+    const CellType type = mesh.types[corner.cell];
+    A = corner.k >= kSample ? (X.transpose() * interior_sample_weights(type)[corner.k - kSample]).eval()
+                            : corner_jacobian(type, X, corner.k);
+    if (options.target) return target_inverse[corner.cell * slots + corner.k];
+    return corner.k >= kSample ? Eigen::Matrix3d::Identity() : ideal_inverse(type, corner.k);
+  };
+
   Energy energy;
   auto vertex_energy = [&](int v, Eigen::Vector3d* gradient) {
     double e = 0;
@@ -170,18 +225,17 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
     for (const Corner& corner : corners_of[v]) {
       const CellType type = mesh.types[corner.cell];
       const CellNodes X = cell_nodes(mesh, corner.cell);
-      Eigen::Matrix3d dA;
+      Eigen::Matrix3d A, dA;
+      const Eigen::Matrix3d Winv = corner_matrix(corner, X, A);
+      e += energy.corner(A, Winv, gradient ? &dA : nullptr);
+      if (!gradient) continue;
       if (corner.k >= kSample) {  // A = X^T W: node i contributes dA * W.row(i)^T
         const SampleWeights& W = interior_sample_weights(type)[corner.k - kSample];
-        e += energy.corner(X.transpose() * W, Eigen::Matrix3d::Identity(), gradient ? &dA : nullptr);
-        if (gradient)
-          for (int i = 0; i < node_count(type); ++i)
-            if (mesh.C(corner.cell, i) == v) *gradient += dA * W.row(i).transpose();
+        for (int i = 0; i < node_count(type); ++i)
+          if (mesh.C(corner.cell, i) == v) *gradient += dA * W.row(i).transpose();
         continue;
       }
       const auto& n = corner_nodes(type, corner.k);
-      e += energy.corner(corner_jacobian(type, X, corner.k), ideal_inverse(type, corner.k), gradient ? &dA : nullptr);
-      if (!gradient) continue;
       // A = [x_a - x_k, x_b - x_k, x_c - x_k]: column j is +x_(n[j+1]) and -x_(n[0]).
       for (int j = 0; j < 3; ++j) {
         if (mesh.C(corner.cell, n[j + 1]) == v) *gradient += dA.col(j);
@@ -200,12 +254,9 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
     double sigma_min = std::numeric_limits<double>::infinity();
     for (int v : free_vertices)
       for (const Corner& corner : corners_of[v]) {
-        const CellType type = mesh.types[corner.cell];
-        const CellNodes X = cell_nodes(mesh, corner.cell);
-        const Eigen::Matrix3d S = corner.k >= kSample
-                                      ? (X.transpose() * interior_sample_weights(type)[corner.k - kSample]).eval()
-                                      : corner_jacobian(type, X, corner.k) * ideal_inverse(type, corner.k);
-        const double sigma = normalized_determinant(S);
+        Eigen::Matrix3d A;
+        const Eigen::Matrix3d Winv = corner_matrix(corner, cell_nodes(mesh, corner.cell), A);
+        const double sigma = normalized_determinant(A * Winv);
         sigma_min = std::min(sigma_min, sigma);
         if (sigma < kNearlyInverted) active[v] = 1;
       }
@@ -213,79 +264,117 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
     energy.delta2 = sigma_min < eps ? eps * (eps - sigma_min) : 0.0;
   };
 
+  // One Gauss-Seidel step at vertex v: how far it moved and its typical edge length.
+  struct Step {
+    double moved = 0, edge = 0;
+  };
+  auto step_vertex = [&](int v) -> Step {
+    Eigen::Vector3d gx;
+    const double e0 = vertex_energy(v, &gx);
+    const Eigen::Vector3d p0 = placement.p.row(v).transpose();
+    const Eigen::RowVector3d x0 = mesh.V.row(v);
+    Eigen::Vector3d x_at_p0;
+    Eigen::Matrix3d J;
+    if (!std::isfinite(e0) || !placement.place(v, p0, x_at_p0, J)) return Step{};
+    const Eigen::Matrix3d& M = movable[v];
+    const Eigen::Vector3d g = M * (J.transpose() * gx);  // gradient in the movable parameter directions
+    if (!(g.norm() > 0)) return Step{};
+    // Typical edge length at v (the mean: in a fold some edges have collapsed and would stall the steps).
+    double edge = 0;
+    int edges = 0;
+    for (const Corner& corner : corners_of[v])
+      if (corner.k < kSample)
+        for (int local : corner_nodes(mesh.types[corner.cell], corner.k))
+          if (mesh.C(corner.cell, local) != v) {
+            edge += (mesh.V.row(mesh.C(corner.cell, local)) - x0).norm();
+            ++edges;
+          }
+    edge /= std::max(1, edges);
+    // Newton direction: Hessian in space by finite differences of the analytic gradient, pulled back to the
+    // parameters (J^T H J) and restricted to the movable directions; steepest descent if not positive definite.
+    const double h = 1e-5 * edge;
+    Eigen::Matrix3d Hx;
+    for (int d = 0; d < 3; ++d) {
+      Eigen::Vector3d gd;
+      mesh.V(v, d) += h;
+      vertex_energy(v, &gd);
+      mesh.V(v, d) = x0(d);
+      Hx.col(d) = (gd - gx) / h;
+    }
+    Hx = 0.5 * (Hx + Hx.transpose()).eval();
+    const Eigen::Matrix3d Hp =
+        M * J.transpose() * Hx * J * M + (Eigen::Matrix3d::Identity() - M) * (J.transpose() * Hx * J).norm();
+    const Eigen::LLT<Eigen::Matrix3d> llt(Hp);
+    Eigen::Vector3d step =
+        (llt.info() == Eigen::Success && Hp.allFinite()) ? Eigen::Vector3d(-(M * llt.solve(g))) : Eigen::Vector3d(-g);
+    const double reach = (J * step).norm();
+    if (reach > 0.5 * edge) step *= 0.5 * edge / reach;  // no jumps across several cells
+    // A step never makes a cell around v unusable that was not before: the count of unusable cells only falls.
+    auto unusable_around = [&] {
+      int n = 0;
+      for (int c : cells_of[v]) n += unusable(c);
+      return n;
+    };
+    const int unusable_before = unusable_around();
+    bool improved = false;
+    double t = 1;
+    for (int halving = 0; halving < 30 && !improved; ++halving, t *= 0.5) {
+      Eigen::Vector3d x;
+      Eigen::Matrix3d unused;
+      const Eigen::Vector3d p = p0 + t * step;
+      if (!placement.place(v, p, x, unused)) continue;
+      mesh.V.row(v) = x.transpose();
+      improved = vertex_energy(v, nullptr) < e0 + 1e-4 * t * g.dot(step) && unusable_around() <= unusable_before;
+      if (improved) placement.p.row(v) = p.transpose();
+    }
+    if (!improved) mesh.V.row(v) = x0;
+    const double moved_v = (mesh.V.row(v) - x0).norm();
+    return Step{moved_v, edge};
+  };
+  // Vertices that share no cell can step at the same time (each step reads and writes only the cells around its
+  // vertex): colour classes of the free vertices, stepped class after class, each class in parallel.
+  std::vector<std::vector<int>> colours;
+  {
+    std::vector<int> colour(nv, -1);
+    std::vector<int> taken;  // colours of the neighbours, marked with the vertex id
+    for (int v : free_vertices) {
+      taken.assign(colours.size() + 1, -1);
+      for (int c : cells_of[v])
+        for (int i = 0; i < node_count(mesh.types[c]); ++i) {
+          const int other = colour[mesh.C(c, i)];
+          if (other >= 0) taken[other] = v;
+        }
+      int k = 0;
+      while (taken[k] == v) ++k;
+      if (k == static_cast<int>(colours.size())) colours.emplace_back();
+      colour[v] = k;
+      colours[k].push_back(v);
+    }
+  }
+  std::vector<Step> steps(nv);
   for (report.sweeps = 0; report.sweeps < options.max_sweeps; ++report.sweeps) {
     update_delta();
+    int visited = 0;
+    for (const std::vector<int>& members : colours) {
+      const int n = static_cast<int>(members.size());
+#pragma omp parallel for schedule(dynamic, 16) reduction(+ : visited)
+      for (int i = 0; i < n; ++i) {
+        const int v = members[i];
+        steps[v] = Step{};
+        if (!active[v]) continue;
+        ++visited;
+        steps[v] = step_vertex(v);
+      }
+    }
+    // The next sweep visits the vertices around those that moved.
     std::fill(next_active.begin(), next_active.end(), 0);
     double moved = 0, size = 0;
-    int visited = 0;
     for (int v : free_vertices) {
-      if (!active[v]) continue;
-      ++visited;
-      Eigen::Vector3d gx;
-      const double e0 = vertex_energy(v, &gx);
-      const Eigen::Vector3d p0 = placement.p.row(v).transpose();
-      const Eigen::RowVector3d x0 = mesh.V.row(v);
-      Eigen::Vector3d x_at_p0;
-      Eigen::Matrix3d J;
-      if (!std::isfinite(e0) || !placement.place(v, p0, x_at_p0, J)) continue;
-      const Eigen::Matrix3d& M = movable[v];
-      const Eigen::Vector3d g = M * (J.transpose() * gx);  // gradient in the movable parameter directions
-      if (!(g.norm() > 0)) continue;
-      // Typical edge length at v (the mean: in a fold some edges have collapsed and would stall the steps).
-      double edge = 0;
-      int edges = 0;
-      for (const Corner& corner : corners_of[v])
-        if (corner.k < kSample)
-          for (int local : corner_nodes(mesh.types[corner.cell], corner.k))
-            if (mesh.C(corner.cell, local) != v) {
-              edge += (mesh.V.row(mesh.C(corner.cell, local)) - x0).norm();
-              ++edges;
-            }
-      edge /= std::max(1, edges);
-      // Newton direction: Hessian in space by finite differences of the analytic gradient, pulled back to the
-      // parameters (J^T H J) and restricted to the movable directions; steepest descent if not positive definite.
-      const double h = 1e-5 * edge;
-      Eigen::Matrix3d Hx;
-      for (int d = 0; d < 3; ++d) {
-        Eigen::Vector3d gd;
-        mesh.V(v, d) += h;
-        vertex_energy(v, &gd);
-        mesh.V(v, d) = x0(d);
-        Hx.col(d) = (gd - gx) / h;
-      }
-      Hx = 0.5 * (Hx + Hx.transpose()).eval();
-      const Eigen::Matrix3d Hp =
-          M * J.transpose() * Hx * J * M + (Eigen::Matrix3d::Identity() - M) * (J.transpose() * Hx * J).norm();
-      const Eigen::LLT<Eigen::Matrix3d> llt(Hp);
-      Eigen::Vector3d step =
-          (llt.info() == Eigen::Success && Hp.allFinite()) ? Eigen::Vector3d(-(M * llt.solve(g))) : Eigen::Vector3d(-g);
-      const double reach = (J * step).norm();
-      if (reach > 0.5 * edge) step *= 0.5 * edge / reach;  // no jumps across several cells
-      // A step never makes a cell around v unusable that was not before: the count of unusable cells only falls.
-      auto unusable_around = [&] {
-        int n = 0;
-        for (int c : cells_of[v]) n += unusable(c);
-        return n;
-      };
-      const int unusable_before = unusable_around();
-      bool improved = false;
-      double t = 1;
-      for (int halving = 0; halving < 30 && !improved; ++halving, t *= 0.5) {
-        Eigen::Vector3d x;
-        Eigen::Matrix3d unused;
-        const Eigen::Vector3d p = p0 + t * step;
-        if (!placement.place(v, p, x, unused)) continue;
-        mesh.V.row(v) = x.transpose();
-        improved = vertex_energy(v, nullptr) < e0 + 1e-4 * t * g.dot(step) && unusable_around() <= unusable_before;
-        if (improved) placement.p.row(v) = p.transpose();
-      }
-      if (!improved) mesh.V.row(v) = x0;
-      const double moved_v = (mesh.V.row(v) - x0).norm();
-      if (moved_v > 1e-4 * edge)
+      moved = std::max(moved, steps[v].moved);
+      size = std::max(size, steps[v].edge);
+      if (steps[v].moved > 1e-4 * steps[v].edge)
         for (int c : cells_of[v])
           for (int i = 0; i < node_count(mesh.types[c]); ++i) next_active[mesh.C(c, i)] = 1;
-      moved = std::max(moved, moved_v);
-      size = std::max(size, edge);
     }
     active.swap(next_active);
     int unusable_left = 0;

@@ -14,14 +14,14 @@
 // where solvers evaluate it.
 //
 // Only vertices near bad cells move (within `rings` vertex rings of a cell that is inverted or whose scaled Jacobian
-// is below `min_scaled_jacobian`, or below half its scaled Jacobian in the standard when that is lower); a step never makes a cell unusable (inverted or degenerate) that was not, so the
-// rest of the mapped mesh keeps exactly the shape the mapping gave it. Vertices move through parameters: the untangler
-// changes a vertex's parameters p, and a placement function gives its position x(p) and dx/dp. With p = x this is plain
-// smoothing in space; with p = (u, v, w) and x = the patient's inverse parameterization (hex_transfer.h), a vertex
-// whose u is pinned (a shape end, or the mid-sagittal feature) keeps exactly that u: it stays exactly on the patient's
-// side or feature surface, and every vertex stays inside the patient. Each sweep visits the movable vertices and takes
-// a Newton step (finite-difference Hessian) in the movable parameter directions with a backtracking line search (local
-// Gauss-Seidel descent).
+// is below `min_scaled_jacobian`, or below half its scaled Jacobian in the standard when that is lower); a step never
+// makes a cell unusable (inverted or degenerate) that was not, so the rest of the mapped mesh keeps exactly the shape
+// the mapping gave it. Vertices move through parameters: the untangler changes a vertex's parameters p, and a placement
+// function gives its position x(p) and dx/dp. With p = x this is plain smoothing in space; with p = (u, v, w) and x =
+// the patient's inverse parameterization (hex_transfer.h), a vertex whose u is pinned (a shape end, or the mid-sagittal
+// feature) keeps exactly that u: it stays exactly on the patient's side or feature surface, and every vertex stays
+// inside the patient. Each sweep visits the movable vertices and takes a Newton step (finite-difference Hessian) in the
+// movable parameter directions with a backtracking line search (local Gauss-Seidel descent).
 #include <Eigen/Core>
 #include <functional>
 #include <vector>
@@ -39,6 +39,20 @@ struct UntangleOptions {
   // Grow the region that may move from the unusable cells only (inverted or flat), not from every bad cell: for
   // passes that finish the untangling of what an earlier pass left.
   bool seed_unusable_only = false;
+  // Optional: a mesh with the same cells (the standard this mesh was mapped from) whose cells give each corner's
+  // target shape: W_k is that cell's corner k (and each interior sample's target its Jacobian there) instead of the
+  // ideal cell's, so the energy measures how far each corner is from the target's shape, whatever its size and
+  // rotation (dihedral angles are what it keeps). Target corners that are nearly flat (normalized determinant below
+  // 0.1) or inverted use the ideal cell's.
+  const VolumeMesh* target = nullptr;
+  // Each target corner's shape is moved towards the ideal corner's by target_towards_ideal * d, with d = 1 - 1/eta
+  // in [0, 1) the corner's distortion against the target in the mesh as given (0 where it has the target's shape).
+  // Where the mesh already has the target's shape it is kept exactly (mapping a standard onto itself stays the
+  // identity); where it was forced far from it (a patient unlike the standard), the aim is a better-shaped corner
+  // rather than a copy of a poor one.
+  double target_towards_ideal = 0;
+  // Every movable vertex may move, not only those near bad cells (shape relaxation of the whole mesh).
+  bool whole_mesh = false;
   int rings = 2;
   int max_sweeps = 60;
 };

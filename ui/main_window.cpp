@@ -1,16 +1,5 @@
 #include "ui/main_window.h"
 
-#include "core/io/mesh_io.h"
-#include "core/resources.h"
-#include "core/segment/ct_volume.h"
-#include "ui/angle_histogram.h"
-#include "ui/autosave.h"
-#include "ui/constraint_panel.h"
-#include "ui/display_panel.h"
-#include "ui/model_view.h"
-#include "ui/quality_panel.h"
-#include "ui/transfer_controller.h"
-
 #include <QAction>
 #include <QComboBox>
 #include <QDockWidget>
@@ -29,6 +18,17 @@
 #include <QTabWidget>
 #include <QToolBar>
 #include <QUndoStack>
+
+#include "core/io/mesh_io.h"
+#include "core/resources.h"
+#include "core/segment/ct_volume.h"
+#include "ui/angle_histogram.h"
+#include "ui/autosave.h"
+#include "ui/constraint_panel.h"
+#include "ui/display_panel.h"
+#include "ui/model_view.h"
+#include "ui/quality_panel.h"
+#include "ui/transfer_controller.h"
 
 namespace facehex::gui {
 namespace {
@@ -79,9 +79,8 @@ MainWindow::MainWindow(QWidget* parent)
     progress_->setValue(static_cast<int>(1000 * f));
     progress_->setFormat(stage + "  %p%");
   });
-  connect(autosave_, &ConstraintAutosave::failed, this, [this](const QString& m) {
-    statusBar()->showMessage(tr("Autosave failed: %1").arg(m));
-  });
+  connect(autosave_, &ConstraintAutosave::failed, this,
+          [this](const QString& m) { statusBar()->showMessage(tr("Autosave failed: %1").arg(m)); });
   connect(session_, &SessionModel::modelChanged, this, [this](Role r) {
     updateSizes();
     updateActions();
@@ -105,8 +104,9 @@ void MainWindow::createActions() {
     return a;
   };
   openPatient_ = action(tr("Open &patient..."), QKeySequence::Open, &MainWindow::openPatientDialog);
-  openPatient_->setToolTip(tr("Open a head CT (MetaImage, NIfTI, NRRD: segmented on opening), a patient tet model "
-                              "or a closed surface (VTU, VTK, Gmsh, TetGen, ANSYS, STL, OBJ, PLY, VTP)"));
+  openPatient_->setToolTip(
+      tr("Open a head CT (MetaImage, NIfTI, NRRD: segmented on opening), a patient tet model "
+         "or a closed surface (VTU, VTK, Gmsh, TetGen, ANSYS, STL, OBJ, PLY, VTP)"));
   openDicom_ = action(tr("Open &DICOM folder..."), QKeySequence(), &MainWindow::openDicomDialog);
   openDicom_->setToolTip(tr("Open a head CT stored as a folder of DICOM slices (segmented on opening)"));
   openDemo_ = action(tr("Open &demo"), QKeySequence(), [this] { controller_->openDemo(); });
@@ -115,12 +115,12 @@ void MainWindow::createActions() {
   mergeConstraints_ = action(tr("&Merge constraints..."), QKeySequence(), [this] { constraintsDialog(true); });
   saveConstraints_ = action(tr("&Save constraints..."), QKeySequence::Save, &MainWindow::saveConstraintsDialog);
   recover_ = action(tr("&Recover autosaved"), QKeySequence(), &MainWindow::recoverAutosave);
-  features_ = action(tr("Facial &features"), QKeySequence(), [this] {
-    controller_->placeFeatureConstraints(session_->activeRole(), session_->plane().band);
-  });
-  features_->setToolTip(tr("Place the feature lines (mid-sagittal, eyebrow, below the nose, lips) at the model's "
-                           "landmarks again, valued as the standard's, selected with the band width above; they "
-                           "replace the ones of the same names"));
+  features_ = action(tr("Facial &features"), QKeySequence(),
+                     [this] { controller_->placeFeatureConstraints(session_->activeRole(), session_->plane().band); });
+  features_->setToolTip(
+      tr("Place the feature lines (mid-sagittal, eyebrow, below the nose, lips) at the model's "
+         "landmarks again, valued as the standard's, selected with the band width above; they "
+         "replace the ones of the same names"));
   recover_->setToolTip(tr("Load the constraints autosaved after the last edit of this model (after a crash)"));
   export_ = action(tr("&Export hex mesh..."), QKeySequence(tr("Ctrl+E")), &MainWindow::exportDialog);
   screenshot_ = action(tr("Save screens&hot..."), QKeySequence(), &MainWindow::screenshotDialog);
@@ -143,6 +143,16 @@ void MainWindow::createActions() {
   });
   allowInverted_->setCheckable(true);
   allowInverted_->setToolTip(tr("Map even when the patient parameterization folds (the CLI's --allow-inverted)"));
+  shapeRelaxation_ = action(tr("Keep the standard's cell &shapes"), QKeySequence(), [this](bool on) {
+    TransferOptions o = controller_->options();
+    o.shape_relaxation = on;
+    controller_->setOptions(o);
+  });
+  shapeRelaxation_->setCheckable(true);
+  shapeRelaxation_->setChecked(controller_->options().shape_relaxation);
+  shapeRelaxation_->setToolTip(
+      tr("After the mapping, slide vertices along the patient towards the standard's cell "
+         "shapes (the CLI's --shape-relaxation; off: the paper's plain mapping)"));
   about_ = action(tr("&About FaceHex"), QKeySequence(), &MainWindow::about);
   for (QAction* a : {openPatient_, openDicom_, openDemo_, loadConstraints_, mergeConstraints_, saveConstraints_,
                      export_, computeFields_, transfer_, cancel_, recover_, features_})
@@ -176,6 +186,7 @@ void MainWindow::createMenusAndToolbar() {
   for (QAction* a : {computeFields_, transfer_, cancel_}) run->addAction(a);
   run->addSeparator();
   run->addAction(allowInverted_);
+  run->addAction(shapeRelaxation_);
   menuBar()->addMenu(tr("&Help"))->addAction(about_);
   rebuildRecentMenu();
 
@@ -201,8 +212,8 @@ void MainWindow::createMenusAndToolbar() {
 }
 
 void MainWindow::createDocks() {
-  constraintPanel_ = new ConstraintPanel(
-      session_, {features_, loadConstraints_, mergeConstraints_, saveConstraints_, recover_}, this);
+  constraintPanel_ =
+      new ConstraintPanel(session_, {features_, loadConstraints_, mergeConstraints_, saveConstraints_, recover_}, this);
   // The panels on the right run the full height; the analysis tabs sit under the views only.
   setCorner(Qt::BottomRightCorner, Qt::RightDockWidgetArea);
   auto* constraints = new QDockWidget(tr("Constraints"), this);
@@ -288,8 +299,10 @@ void MainWindow::onStandardChosen(int index) {
   }
   const QString path = QFileDialog::getOpenFileName(this, tr("Open a standard hex mesh"), QString(),
                                                     filter(tr("Hex-dominant meshes"), {".vtu", ".vtk", ".msh"}));
-  if (!path.isEmpty()) controller_->openStandard(path);
-  else if (session_->hasModel(Role::Standard)) updateStandardChoice();
+  if (!path.isEmpty())
+    controller_->openStandard(path);
+  else if (session_->hasModel(Role::Standard))
+    updateStandardChoice();
 }
 
 void MainWindow::openPatientDialog() {
@@ -315,9 +328,9 @@ void MainWindow::openPatient(const QString& path) {
 }
 
 void MainWindow::constraintsDialog(bool merge) {
-  const QString path = QFileDialog::getOpenFileName(
-      this, merge ? tr("Merge a constraint set") : tr("Load a constraint set"), QString(),
-      tr("Constraint sets (*.json)"));
+  const QString path =
+      QFileDialog::getOpenFileName(this, merge ? tr("Merge a constraint set") : tr("Load a constraint set"), QString(),
+                                   tr("Constraint sets (*.json)"));
   if (!path.isEmpty()) controller_->loadConstraints(session_->activeRole(), path, merge);
 }
 

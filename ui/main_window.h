@@ -75,7 +75,7 @@ class MainWindow : public QMainWindow {
 
   QAction *openPatient_, *openDicom_, *openDemo_, *openStandardFile_, *loadConstraints_, *mergeConstraints_,
       *saveConstraints_, *recover_, *export_, *screenshot_, *quit_, *undo_, *redo_, *computeFields_, *transfer_,
-      *cancel_, *allowInverted_, *features_, *about_;
+      *cancel_, *allowInverted_, *shapeRelaxation_, *features_, *about_;
   QMenu* recentMenu_ = nullptr;
   QComboBox* standardChoice_ = nullptr;
   QLabel* sizes_ = nullptr;

@@ -1,17 +1,17 @@
 // The facehex command line as a user runs it: the demo end to end, and bad inputs.
-#include "core/constraint_set.h"
-#include "core/hex_to_tets.h"
-#include "core/io/mesh_io.h"
-#include "tests/core/test_meshes.h"
-
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+
+#include "core/constraint_set.h"
+#include "core/hex_to_tets.h"
+#include "core/io/mesh_io.h"
+#include "tests/core/test_meshes.h"
 
 namespace {
 namespace fs = std::filesystem;
@@ -59,15 +59,24 @@ TEST_F(Cli, DemoRunsTheWholeChainFromTheBundledCt) {
   double percent = 0;
   for (const auto& bin : q["dihedral_distortion"]["bins"]) percent += bin["percent"].get<double>();
   EXPECT_NEAR(percent, 100.0, 1e-6);
-  // Side vertices land on the patient's surface, except those the repair's last pass had to move off it around a
-  // fold (about 6 % on the demo; the target of p95 < 0.05 mm is not met since the landmark fix, see
-  // docs/results.md).
+  // Side vertices land on the patient's surface, except a few the repair's last pass had to move off it around a
+  // fold (measured: p95 3e-14 mm, max 3.4 mm).
   const auto& distance = report["transfer"]["side_vertex_distance_mm"];
-  EXPECT_LT(distance["mean"].get<double>(), 0.3);
-  EXPECT_LT(distance["p95"].get<double>(), 0.5);
+  EXPECT_LT(distance["mean"].get<double>(), 0.05);
+  EXPECT_LT(distance["p95"].get<double>(), 0.05);
   EXPECT_LT(distance["max"].get<double>(), 10.0);
-  // The mapping leaves folds (the sample CT squeezes the nose); the repair leaves no inverted or flat cell.
-  EXPECT_GT(report["untangle"]["inverted_before"].get<int>(), 0);
+  // The mapping leaves folds (the sample CT squeezes the nose); the shape relaxation opens most of them and brings
+  // the angles closer to the standard's; the repair leaves no inverted or flat cell.
+  const auto& plain = report["plain_mapping"]["quality"];
+  EXPECT_GT(plain["inverted"].get<int>(), 0);
+  EXPECT_EQ(report["relaxation"]["inverted_before"], plain["inverted"]);
+  EXPECT_LT(report["relaxation"]["inverted_after"].get<int>(), plain["inverted"].get<int>() / 10);
+  EXPECT_GT(report["relaxation"]["free_vertices"].get<int>(), 8000);
+  const double dihedral = q["dihedral_distortion"]["mean_deg"].get<double>();
+  EXPECT_LT(dihedral, plain["dihedral_distortion"]["mean_deg"].get<double>() - 1.0);
+  EXPECT_LT(dihedral, 12.5);  // measured 11.3 deg (the paper's 6.8 is not met on this patient: docs/results.md)
+  const double standard_shape = report["standard"]["quality"]["shape_mean"].get<double>();
+  EXPECT_GE(q["shape_mean"].get<double>(), 0.95 * standard_shape);  // measured 0.605 against 0.611
   EXPECT_EQ(report["untangle"]["inverted_after"].get<int>(), 0);
   EXPECT_EQ(report["untangle"]["degenerate_after"].get<int>(), 0);
   EXPECT_EQ(q["inverted"].get<int>(), 0);
@@ -174,8 +183,8 @@ int nonempty_lines(const std::string& text) {
 // facehex template on a tiny model: a standard folder that --standard takes, and one-line errors for bad inputs.
 TEST_F(Cli, TemplateBuildsAStandardThatRunAccepts) {
   write_tiny_models(dir_);
-  Result r = run("template " + path("box.vtu") + " --constraints " + path("box.json") + " --cell-size 10 --layers 2 -o " +
-                 path("tpl"));
+  Result r = run("template " + path("box.vtu") + " --constraints " + path("box.json") +
+                 " --cell-size 10 --layers 2 -o " + path("tpl"));
   ASSERT_EQ(r.status, 0) << r.output;
   for (const char* f : {"standard.vtu", "constraints.json", "README.md"})
     EXPECT_TRUE(fs::exists(path("tpl/") + f)) << f;
@@ -252,7 +261,7 @@ TEST_F(Cli, CompareOnTinyMeshesWritesTheReportAndMapRunsTheBaseline) {
     const auto& m = patient["methods"][method];
     for (const char* key : {"shape_mean", "dihedral_mean", "inverted", "seconds"}) EXPECT_TRUE(m.contains(key)) << key;
     EXPECT_EQ(m["inverted"], 0) << method;
-    EXPECT_GT(m["shape_mean"].get<double>(), 0.7) << method;   // the standard's is 0.84, the map nearly affine
+    EXPECT_GT(m["shape_mean"].get<double>(), 0.7) << method;  // the standard's is 0.84, the map nearly affine
     EXPECT_LT(m["dihedral_mean"].get<double>(), 5.0) << method;
     EXPECT_GT(m["seconds"].get<double>(), 0.0) << method;
   }

@@ -1,6 +1,7 @@
 // Integration tests on the real standard mesh (../shared; skipped when absent) and the bundled resources.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -49,9 +50,16 @@ TEST(BundledStandard, MapsOntoItsOwnTetModelAsTheIdentityAwayFromFolds) {
   options.untangle = false;
   const TransferRun run = run_transfer(hex, domain, set, standard.constraints, patient, set, "self", options);
   int exact = 0;
-  for (int v = 0; v < hex.num_vertices(); ++v) exact += (run.patient_hex.V.row(v) - hex.V.row(v)).norm() < 1e-6;
-  std::printf("identity within 1e-6 mm at %d of %d vertices\n", exact, hex.num_vertices());
+  for (int v = 0; v < hex.num_vertices(); ++v) exact += (run.mapped_hex.V.row(v) - hex.V.row(v)).norm() < 1e-6;
+  std::printf("mapping: identity within 1e-6 mm at %d of %d vertices\n", exact, hex.num_vertices());
   EXPECT_GT(exact, 0.97 * hex.num_vertices());
+  // The shape relaxation opens the folds and moves their neighbourhood a little; the rest stays in place.
+  std::vector<double> moved(hex.num_vertices());
+  for (int v = 0; v < hex.num_vertices(); ++v) moved[v] = (run.patient_hex.V.row(v) - hex.V.row(v)).norm();
+  std::sort(moved.begin(), moved.end());
+  std::printf("relaxed: moved p50 %.2g, p90 %.2g, p97 %.2g, max %.2g mm\n", moved[moved.size() / 2],
+              moved[moved.size() * 9 / 10], moved[moved.size() * 97 / 100], moved.back());
+  EXPECT_LT(moved[moved.size() / 2], 0.05);  // measured 0.015 mm (p90 0.29, max 20 next to the folds)
 }
 
 // The standard's hex vertices placed at their own (u, v, w): a feature slab that pins two rows of vertices to one value
@@ -91,8 +99,7 @@ TEST(BundledStandard, ParameterizationCachesAreFreshAndGiveTheComputedFields) {
     const ConstraintSet set = read_constraint_set(standard.constraints);
     const StandardDomain domain = closed_domain(hex);
     std::string why;
-    const auto cached =
-        read_parameterization_cache(parameterization_cache_path(standard.mesh), domain, set, {}, &why);
+    const auto cached = read_parameterization_cache(parameterization_cache_path(standard.mesh), domain, set, {}, &why);
     ASSERT_TRUE(cached) << standard.name << ": " << why;
     const ModelParameterization computed =
         parameterize_model(domain.V, domain.T, domain.side_mask, set, standard.constraints, {});

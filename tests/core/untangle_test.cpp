@@ -120,5 +120,86 @@ TEST(Untangle, FinishingPassMovesOnlyAroundUnusableCells) {
   EXPECT_NE(m.V.row(id(1, 1, 1)), start.V.row(id(1, 1, 1)));
 }
 
+// Shape relaxation with a target (the standard a mesh was mapped from): the target's own shape is where it settles.
+TEST(ShapeRelaxation, ReturnsAPerturbedMeshToItsTargetShape) {
+  VolumeMesh target = test::hex_box(4, 4, 4, 4, 4, 4);
+  test::jitter_interior(target, 0.25);  // a target that is not the ideal cube grid
+  VolumeMesh m = target;
+  test::jitter_interior(m, 0.2, 11);  // the "mapping" moved the interior
+  const double start = (m.V - target.V).cwiseAbs().maxCoeff();
+  ASSERT_GT(start, 0.1);
+  UntangleOptions relax;
+  relax.target = &target;
+  relax.whole_mesh = true;
+  relax.max_sweeps = 200;
+  VertexPlacement placement = spatial_placement(m.V, boundary_fixed(m));
+  const UntangleReport r = untangle(m, placement, relax);
+  EXPECT_EQ(r.free_vertices, 27);  // every interior vertex, though no cell is bad
+  EXPECT_LT((m.V - target.V).cwiseAbs().maxCoeff(), 1e-3);
+  // Without the target, the same steps aim at cubes: the jittered target is not where they settle.
+  VolumeMesh ideal = target;
+  test::jitter_interior(ideal, 0.2, 11);
+  UntangleOptions cubes = relax;
+  cubes.target = nullptr;
+  VertexPlacement ideal_placement = spatial_placement(ideal.V, boundary_fixed(ideal));
+  untangle(ideal, ideal_placement, cubes);
+  EXPECT_GT((ideal.V - target.V).cwiseAbs().maxCoeff(), 0.1);
+}
+
+// A mesh that already has its target's shape does not move, whatever the pull towards ideal cells (which acts only
+// in proportion to a corner's distortion): mapping a standard onto itself stays the identity.
+TEST(ShapeRelaxation, LeavesAMeshWithTheTargetShapeInPlace) {
+  VolumeMesh target = test::hex_box(4, 3, 5, 4, 3, 5);
+  test::jitter_interior(target, 0.3);
+  for (const double towards_ideal : {0.0, 0.5, 1.0}) {
+    VolumeMesh m = target;
+    m.V *= 2.5;  // size does not matter, only shape
+    const Eigen::MatrixXd start = m.V;
+    UntangleOptions relax;
+    relax.target = &target;
+    relax.target_towards_ideal = towards_ideal;
+    relax.whole_mesh = true;
+    VertexPlacement placement = spatial_placement(m.V, boundary_fixed(m));
+    untangle(m, placement, relax);
+    EXPECT_LT((m.V - start).cwiseAbs().maxCoeff(), 1e-9) << towards_ideal;
+  }
+}
+
+// The pull towards ideal cells: a mesh of cubes relaxed towards a poor target (a jittered grid) goes back to the
+// target's poor cells with target_towards_ideal = 0 and keeps better cells with 1.
+TEST(ShapeRelaxation, TowardsIdealImprovesCellsOfADistortedMesh) {
+  VolumeMesh target = test::hex_box(4, 4, 4, 4, 4, 4);
+  test::jitter_interior(target, 0.35);
+  const VolumeMesh cubes = test::hex_box(4, 4, 4, 4, 4, 4);
+  auto mean_scaled_jacobian = [](const VolumeMesh& mesh) {
+    double sum = 0;
+    for (int c = 0; c < mesh.num_cells(); ++c) sum += scaled_jacobian(mesh.types[c], cell_nodes(mesh, c));
+    return sum / mesh.num_cells();
+  };
+  std::vector<double> quality;
+  for (const double towards_ideal : {0.0, 1.0}) {
+    VolumeMesh m = cubes;
+    UntangleOptions relax;
+    relax.target = &target;
+    relax.target_towards_ideal = towards_ideal;
+    relax.whole_mesh = true;
+    VertexPlacement placement = spatial_placement(m.V, boundary_fixed(m));
+    untangle(m, placement, relax);
+    quality.push_back(mean_scaled_jacobian(m));
+  }
+  EXPECT_GT(quality[1], quality[0] + 0.02);
+  EXPECT_LT(quality[0], mean_scaled_jacobian(target) + 0.01);  // 0: the target's own cells, about
+}
+
+TEST(ShapeRelaxation, RejectsATargetWithOtherCells) {
+  VolumeMesh m = test::hex_box(2, 2, 2, 2, 2, 2);
+  const VolumeMesh other = test::hex_box(3, 2, 2, 3, 2, 2);
+  UntangleOptions relax;
+  relax.target = &other;
+  relax.whole_mesh = true;
+  VertexPlacement placement = spatial_placement(m.V, boundary_fixed(m));
+  EXPECT_THROW(untangle(m, placement, relax), Error);
+}
+
 }  // namespace
 }  // namespace facehex
