@@ -117,9 +117,11 @@ StandardDomain standard_domain(const VolumeMesh& hex, const std::string& kind) {
 
 void write_json(const std::string& path, const json& j) { write_text_file(path, j.dump(2) + "\n"); }
 
-// How far the shape relaxation and the repair moved each vertex from where the harmonic mapping put it (mm).
-void attach_moved_from_mapping(VolumeMesh& hex, const TransferRun& run) {
+// How far the shape relaxation and the repair moved each vertex from where the harmonic mapping put it (mm), and
+// each cell's mean dihedral-angle change against the standard (degrees; paper Table 1 per cell).
+void attach_transfer_arrays(VolumeMesh& hex, const TransferRun& run, const VolumeMesh& standard) {
   hex.point_data["moved_from_mapping"] = (run.patient_hex.V - run.mapped_hex.V).rowwise().norm();
+  hex.cell_data["dihedral_change"] = cell_dihedral_change(standard, hex);
 }
 
 void attach_quality(VolumeMesh& mesh) {
@@ -384,7 +386,7 @@ int cmd_map(const Argv& argv) {
     throw Error("--method", "expects harmonic or mesh-matching, got '" + args.get("method") + "'");
   TransferOutputs out = execute_transfer(transfer_inputs(args, args.get("patient"), args.get("patient-constraints")));
   attach_quality(out.run.patient_hex);
-  attach_moved_from_mapping(out.run.patient_hex, out.run);
+  attach_transfer_arrays(out.run.patient_hex, out.run, out.standard);
   write_volume_mesh(args.get("output"), out.run.patient_hex);
   if (args.has("report"))
     write_json(args.get("report"),
@@ -442,7 +444,7 @@ int cmd_run(const Argv& argv) {
   attach_fields(standard_hex, out.run.standard);
   attach_quality(standard_hex);
   attach_quality(out.run.patient_hex);
-  attach_moved_from_mapping(out.run.patient_hex, out.run);
+  attach_transfer_arrays(out.run.patient_hex, out.run, out.standard);
   out.run.patient_hex.point_data["uvw"] = hex_vertex_uvw(out.run, out.standard.num_vertices());
   if (side_mask_of(out.standard).size() > 0)
     out.run.patient_hex.point_data[kSideMaskArray] = out.standard.point_data.at(kSideMaskArray);

@@ -243,8 +243,10 @@ std::string report_markdown(const std::string& command, const std::string& stand
     md << "| paper #" << i + 1 << " | " << kPaperTable2[i].tets << " | " << fmt("%.3f", kPaperTable2[i].harmonic)
        << " | " << fmt("%.3f", kPaperTable2[i].mesh_matching) << " |\n";
 
-  md << "\n## Validity and fit\n\nHarmonic: after the repair of inverted cells (docs/method.md section 7; before it in "
-        "brackets). Mesh matching: as registered, nothing repaired. Side vertices: the mapped standard vertices on a "
+  md << "\n## Validity and fit\n\nHarmonic: after the shape relaxation and the repair of inverted cells "
+        "(docs/method.md "
+        "sections 6c and 7; the plain mapping's count in brackets). Mesh matching: as registered, nothing repaired. "
+        "Side vertices: the mapped standard vertices on a "
         "side, distance to the patient's boundary.\n\n"
      << "| patient | method | inverted | degenerate | min scaled Jacobian | % scaled Jacobian < 0.3 | min shape | "
         "side vertices off the surface, mean / p95 / max (mm) |\n|---|---|---:|---:|---:|---:|---:|---|\n";
@@ -409,7 +411,7 @@ int cmd_compare(const Argv& argv) {
     c.harmonic = method_metrics(h.standard, h.run.patient_hex, h.run.patient.V, h.run.patient.T, h.run.seconds);
     c.mesh_matching = std::move(m.metrics);
     c.registration = std::move(m.result);
-    c.inverted_before_repair = h.run.untangle.inverted_before;
+    c.inverted_before_repair = h.plain_mapping_quality.summary.inverted;  // the mapping's, before relaxation and repair
     c.gradients_before = h.run.patient.fields.angles_initial;
     c.gradients_after = h.run.patient.fields.angles;
     c.standard_gradients_before = h.run.standard.fields.angles_initial;

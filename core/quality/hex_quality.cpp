@@ -1,10 +1,5 @@
 #include "core/quality/hex_quality.h"
 
-#include "core/cell_faces.h"
-#include "core/corner_jacobian.h"
-#include "core/error.h"
-#include "core/quality/vtk_grid.h"
-
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
 #include <vtkDataSet.h>
@@ -20,6 +15,11 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "core/cell_faces.h"
+#include "core/corner_jacobian.h"
+#include "core/error.h"
+#include "core/quality/vtk_grid.h"
 
 namespace facehex {
 
@@ -179,6 +179,14 @@ Eigen::VectorXd dihedral_angle_changes(const VolumeMesh& reference, const Volume
     changes.insert(changes.end(), change.data(), change.data() + change.size());
   }
   return Eigen::Map<const Eigen::VectorXd>(changes.data(), static_cast<Eigen::Index>(changes.size()));
+}
+
+Eigen::VectorXd cell_dihedral_change(const VolumeMesh& reference, const VolumeMesh& mapped) {
+  require_same_connectivity(reference, mapped);
+  Eigen::VectorXd change(reference.num_cells());
+  for (int c = 0; c < reference.num_cells(); ++c)
+    change(c) = (cell_dihedral_angles(mapped, c) - cell_dihedral_angles(reference, c)).cwiseAbs().mean();
+  return change;
 }
 
 DihedralDistortion dihedral_distortion(const VolumeMesh& reference, const VolumeMesh& mapped) {

@@ -12,11 +12,11 @@
 //    edge lengths at that corner, in [-1, 1] (hexes and tets: Verdict via vtkMeshQuality, the same 8 / 4 corners
 //    as corner_jacobian.h; wedges: corner_jacobian.h, normalized so the equilateral prism gives 1).
 //  - inverted: any corner Jacobian <= 0 (corner_jacobian.h).
-#include "core/mesh.h"
-
 #include <Eigen/Core>
 #include <array>
 #include <string>
+
+#include "core/mesh.h"
 
 namespace facehex {
 
@@ -61,5 +61,8 @@ DihedralDistortion dihedral_distortion(const VolumeMesh& reference, const Volume
 // The absolute changes (degrees) behind dihedral_distortion, one per cell edge, cells in order and each cell's edges
 // in the order of cell_dihedral_angles (for histograms). Same checks and errors.
 Eigen::VectorXd dihedral_angle_changes(const VolumeMesh& reference, const VolumeMesh& mapped);
+
+// Per cell (#C), the mean absolute change (degrees) of its dihedral angles: where the distortion is. Same checks.
+Eigen::VectorXd cell_dihedral_change(const VolumeMesh& reference, const VolumeMesh& mapped);
 
 }  // namespace facehex

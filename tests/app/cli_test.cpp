@@ -79,6 +79,14 @@ TEST_F(Cli, DemoRunsTheWholeChainFromTheBundledCt) {
   EXPECT_GE(q["shape_mean"].get<double>(), 0.95 * standard_shape);  // measured 0.605 against 0.611
   EXPECT_EQ(report["untangle"]["inverted_after"].get<int>(), 0);
   EXPECT_EQ(report["untangle"]["degenerate_after"].get<int>(), 0);
+  // Where the angles changed and how far vertices moved from the mapping, per cell and vertex in patient_hex.vtu.
+  const facehex::VolumeMesh hex = facehex::read_volume_mesh(path("demo/patient_hex.vtu"));
+  const Eigen::MatrixXd& change = hex.cell_data.at("dihedral_change");
+  ASSERT_EQ(change.rows(), 6342);
+  EXPECT_LE(change.maxCoeff(), q["dihedral_distortion"]["max_deg"].get<double>() + 1e-9);
+  EXPECT_NEAR(change.mean(), dihedral, 1.0);  // per-cell means (hexes have 12 edges, wedges 9)
+  EXPECT_NEAR(hex.point_data.at("moved_from_mapping").maxCoeff(),
+              report["relaxation"]["moved_from_mapping_mm"]["max"].get<double>(), 1e-9);
   EXPECT_EQ(q["inverted"].get<int>(), 0);
   EXPECT_EQ(q["degenerate"].get<int>(), 0);
   // The standard's parameterization came from its cache.

@@ -1,14 +1,14 @@
 #include "core/quality/hex_quality.h"
 
-#include "core/corner_jacobian.h"
-#include "core/error.h"
-
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <utility>
 #include <vector>
+
+#include "core/corner_jacobian.h"
+#include "core/error.h"
 
 namespace facehex {
 namespace {
@@ -198,6 +198,10 @@ TEST(DihedralDistortion, ShearChangesTheFourEdgesAlongZByItsAngle) {
   EXPECT_NEAR(d.mean_deg, 4 * t / 12, 1e-12);
   EXPECT_NEAR(d.percent[0], 100.0 * 8 / 12, 1e-12);
   EXPECT_NEAR(d.percent[1], 100.0 * 4 / 12, 1e-12);  // 10 deg in [4, 16)
+  const Eigen::VectorXd per_cell = cell_dihedral_change(reference, sheared);
+  ASSERT_EQ(per_cell.size(), 1);
+  EXPECT_NEAR(per_cell(0), 4 * t / 12, 1e-12);
+  EXPECT_NEAR(cell_dihedral_change(reference, reference)(0), 0.0, 1e-12);
 }
 
 TEST(DihedralDistortion, BinsEveryRangeOfTable1) {
