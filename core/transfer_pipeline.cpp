@@ -181,6 +181,7 @@ void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::
     shape.target_towards_ideal = options.relaxation_towards_ideal;
     UntangleOptions relax = shape;
     relax.whole_mesh = true;
+    relax.over_relaxation = 1.5;
     run.relaxation = untangle(run.patient_hex, placement, relax);
     run.seconds["shape_relaxation"] = clock.lap();
   }

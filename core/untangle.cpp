@@ -317,7 +317,7 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
     };
     const int unusable_before = unusable_around();
     bool improved = false;
-    double t = 1;
+    double t = options.over_relaxation;
     for (int halving = 0; halving < 30 && !improved; ++halving, t *= 0.5) {
       Eigen::Vector3d x;
       Eigen::Matrix3d unused;

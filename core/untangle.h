@@ -55,6 +55,11 @@ struct UntangleOptions {
   bool whole_mesh = false;
   int rings = 2;
   int max_sweeps = 60;
+  // The line search starts from this multiple of the Newton step, then halves (successive over-relaxation): long,
+  // smooth moves, which Gauss-Seidel sweeps propagate slowly, need fewer sweeps. The transfer's shape relaxation uses
+  // 1.5 (on the bundled patient a lower energy in 60 sweeps: dihedral change 11.0 deg instead of 11.3); the repair
+  // keeps 1, since with 1.5 one fold of a synthetic patient stayed inverted.
+  double over_relaxation = 1;
 };
 
 struct UntangleReport {
