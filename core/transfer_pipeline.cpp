@@ -182,6 +182,7 @@ void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::
     UntangleOptions relax = shape;
     relax.whole_mesh = true;
     relax.over_relaxation = 1.5;
+    relax.keep_above = 0.05;
     run.relaxation = untangle(run.patient_hex, placement, relax);
     run.seconds["shape_relaxation"] = clock.lap();
   }
@@ -258,6 +259,18 @@ void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::
           final_pass ? spatial_placement(run.patient_hex.V, fixed) : sliding_placement(run, patient_map, uvw, fixed);
       pass.max_sweeps = 2 * options.untangle_options.max_sweeps;  // few vertices: cheap, and a long way may remain
       take(untangle(run.patient_hex, last, pass));
+    }
+    // Polish: cells still below their bound (a cell next to a fold can come out of the untangling nearly flat, valid
+    // but useless to a solver) get one more pass in space, their vertices that are on no side and no feature free.
+    // Nothing is inverted now, so the energy's regularization is off and its barrier against flat corners whole.
+    if (run.untangle.bad_after > 0) {
+      std::vector<char> fixed(standard.num_vertices());
+      for (int v = 0; v < standard.num_vertices(); ++v) fixed[v] = run.standard.fixed.row(v).any();
+      VertexPlacement polish = spatial_placement(run.patient_hex.V, fixed);
+      UntangleOptions last = pass;
+      last.rings = 1;
+      last.seed_unusable_only = false;
+      take(untangle(run.patient_hex, polish, last));
     }
     run.seconds["untangle"] = clock.lap();
   }

@@ -53,9 +53,9 @@ struct TransferOptions {
   // between; this keeps the correspondence of sides and features and the standard's angles.
   bool shape_relaxation = true;
   // The relaxation's target corners: the standard's, moved towards the ideal cell's by this fraction of their
-  // distortion in the mapped mesh (UntangleOptions::target_towards_ideal). On the bundled patient: 0 keeps the
-  // standard's angles best (11.0 deg mean change) but leaves a mean shape 8 % below the standard's; 0.5 gives
-  // 11.3 deg and a mean shape 1 % below it; 1 gives 12.0 deg and 5 % above it.
+  // distortion in the mapped mesh (UntangleOptions::target_towards_ideal). On the bundled patient (plain steps): 0
+  // keeps the standard's angles best (11.0 deg mean change) but leaves a mean shape 8 % below the standard's; 0.5
+  // gives 11.3 deg and a mean shape 1 % below it; 1 gives 12.0 deg and 5 % above it.
   double relaxation_towards_ideal = 0.5;
 };
 

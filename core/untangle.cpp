@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "core/corner_jacobian.h"
@@ -316,6 +317,16 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
       return n;
     };
     const int unusable_before = unusable_around();
+    // Cells around v at or above options.keep_above: none may drop below it.
+    std::array<char, 64> good_before{};
+    const int around = std::min<int>(static_cast<int>(cells_of[v].size()), 64);
+    if (options.keep_above > 0)
+      for (int i = 0; i < around; ++i) good_before[i] = scaled(cells_of[v][i]) >= options.keep_above;
+    auto kept_good = [&] {
+      for (int i = 0; i < around; ++i)
+        if (good_before[i] && scaled(cells_of[v][i]) < options.keep_above) return false;
+      return true;
+    };
     bool improved = false;
     double t = options.over_relaxation;
     for (int halving = 0; halving < 30 && !improved; ++halving, t *= 0.5) {
@@ -324,7 +335,8 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
       const Eigen::Vector3d p = p0 + t * step;
       if (!placement.place(v, p, x, unused)) continue;
       mesh.V.row(v) = x.transpose();
-      improved = vertex_energy(v, nullptr) < e0 + 1e-4 * t * g.dot(step) && unusable_around() <= unusable_before;
+      improved = vertex_energy(v, nullptr) < e0 + 1e-4 * t * g.dot(step) && unusable_around() <= unusable_before &&
+                 kept_good();
       if (improved) placement.p.row(v) = p.transpose();
     }
     if (!improved) mesh.V.row(v) = x0;

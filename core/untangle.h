@@ -60,6 +60,10 @@ struct UntangleOptions {
   // 1.5 (on the bundled patient a lower energy in 60 sweeps: dihedral change 11.0 deg instead of 11.3); the repair
   // keeps 1, since with 1.5 one fold of a synthetic patient stayed inverted.
   double over_relaxation = 1;
+  // If > 0, a step never brings a cell whose scaled Jacobian is at or above this below it. The transfer's shape
+  // relaxation uses 0.05: while folds remain, the energy's regularization weakens its barrier against flat corners,
+  // and a cell far from any fold once came out of it at a scaled Jacobian of 1e-5.
+  double keep_above = 0;
 };
 
 struct UntangleReport {
