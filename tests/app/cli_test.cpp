@@ -60,7 +60,7 @@ TEST_F(Cli, DemoRunsTheWholeChainFromTheBundledCt) {
   for (const auto& bin : q["dihedral_distortion"]["bins"]) percent += bin["percent"].get<double>();
   EXPECT_NEAR(percent, 100.0, 1e-6);
   // Side vertices land on the patient's surface, except a few the repair's last pass had to move off it around a
-  // fold (measured: p95 3e-14 mm, max 1.5 mm).
+  // fold (measured: p95 3e-14 mm, max 1.7 mm).
   const auto& distance = report["transfer"]["side_vertex_distance_mm"];
   EXPECT_LT(distance["mean"].get<double>(), 0.05);
   EXPECT_LT(distance["p95"].get<double>(), 0.05);
@@ -74,7 +74,7 @@ TEST_F(Cli, DemoRunsTheWholeChainFromTheBundledCt) {
   EXPECT_GT(report["relaxation"]["free_vertices"].get<int>(), 8000);
   const double dihedral = q["dihedral_distortion"]["mean_deg"].get<double>();
   EXPECT_LT(dihedral, plain["dihedral_distortion"]["mean_deg"].get<double>() - 1.0);
-  EXPECT_LT(dihedral, 12.0);  // measured 11.0 deg (the paper's 6.8 is not met on this patient: docs/results.md)
+  EXPECT_LT(dihedral, 12.0);  // measured 11.03 deg (the paper's 6.8 is not met on this patient: docs/results.md)
   const double standard_shape = report["standard"]["quality"]["shape_mean"].get<double>();
   EXPECT_GE(q["shape_mean"].get<double>(), 0.95 * standard_shape);  // measured 0.606 against 0.611
   EXPECT_EQ(report["untangle"]["inverted_after"].get<int>(), 0);
