@@ -95,7 +95,9 @@ SegmentOptions segment_options(const Args& args) {
 // The patient model of a CT, tet mesh or closed surface (core/segment/patient_input.h), with notes on stderr.
 VolumeMesh load_tet_model(const std::string& path, const SegmentOptions& options) {
   if (is_ct_input(path)) std::cerr << "segmenting the facial soft tissue from the CT " << path << "\n";
-  PatientTetModel model = load_patient_model(path, options);
+  TerminalProgress progress;  // the segmentation's steps (about 15 s for the bundled CT)
+  PatientTetModel model = load_patient_model(path, options, progress.callback());
+  progress.finish();
   if (model.check.reoriented) std::cerr << "note: " << path << ": all tets were negatively oriented; flipped\n";
   return std::move(model.mesh);
 }
