@@ -122,7 +122,7 @@ void write_json(const std::string& path, const json& j) { write_text_file(path, 
 // How far the shape relaxation and the repair moved each vertex from where the harmonic mapping put it (mm), and
 // each cell's mean dihedral-angle change against the standard (degrees; paper Table 1 per cell).
 void attach_transfer_arrays(VolumeMesh& hex, const TransferRun& run, const VolumeMesh& standard) {
-  hex.point_data["moved_from_mapping"] = (run.patient_hex.V - run.mapped_hex.V).rowwise().norm();
+  hex.point_data["moved_from_mapping"] = moved_from_mapping(run);
   hex.cell_data["dihedral_change"] = cell_dihedral_change(standard, hex);
 }
 

@@ -66,7 +66,7 @@ json untangle_json(const UntangleReport& u) {
 // them (mm).
 json relaxation_json(const TransferRun& run) {
   json j = untangle_json(run.relaxation);
-  const DistanceSummary moved = summarize_distances((run.patient_hex.V - run.mapped_hex.V).rowwise().norm());
+  const DistanceSummary moved = summarize_distances(moved_from_mapping(run));
   j["moved_from_mapping_mm"] = {{"mean", moved.mean}, {"p95", moved.p95}, {"max", moved.max}};
   return j;
 }
@@ -202,7 +202,7 @@ std::string run_summary_text(const TransferRun& run, const MeshQualityReport& st
      << fmt("%.3f", plain_mapping_quality.summary.shape_mean) << ", dihedral change mean "
      << fmt("%.2f", plain_mapping_quality.distortion.mean_deg) << " deg\n";
   if (run.relaxation.sweeps > 0) {
-    const DistanceSummary moved = summarize_distances((run.patient_hex.V - run.mapped_hex.V).rowwise().norm());
+    const DistanceSummary moved = summarize_distances(moved_from_mapping(run));
     os << "shape relaxation: " << run.relaxation.free_vertices << " vertices, " << run.relaxation.sweeps
        << " sweeps, inverted cells " << run.relaxation.inverted_before << " -> " << run.relaxation.inverted_after
        << "; vertices moved from the mapping by " << fmt("%.2f", moved.mean) << " mm on average (p95 "

@@ -276,6 +276,10 @@ void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::
   }
 }
 
+Eigen::VectorXd moved_from_mapping(const TransferRun& run) {
+  return (run.patient_hex.V - run.mapped_hex.V).rowwise().norm();
+}
+
 Eigen::MatrixXd hex_vertex_uvw(const TransferRun& run, int hex_vertices) {
   return run.standard.fields.uvw.topRows(hex_vertices);
 }

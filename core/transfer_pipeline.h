@@ -90,6 +90,9 @@ TransferRun run_transfer(const VolumeMesh& standard, const StandardDomain& domai
 void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::string& patient_source,
                        const TransferOptions& options, const ProgressCallback& progress = {});
 
+// How far the shape relaxation and the repair moved each standard vertex from where the mapping put it (#Vs, mm).
+Eigen::VectorXd moved_from_mapping(const TransferRun& run);
+
 // The standard's (u,v,w) at its hex vertices: the first rows of its domain's parameterization (#Vs x 3).
 Eigen::MatrixXd hex_vertex_uvw(const TransferRun& run, int hex_vertices);
 

@@ -3,7 +3,6 @@
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
-#include <array>
 #include <cmath>
 
 #include "core/corner_jacobian.h"
@@ -156,14 +155,17 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
   std::vector<std::vector<int>> cells_of(nv);
   for (int c = 0; c < nc; ++c)
     for (int i = 0; i < node_count(mesh.types[c]); ++i) cells_of[mesh.C(c, i)].push_back(c);
-  std::vector<char> in_bad_cell(nv, 0);
-  for (int c = 0; c < nc; ++c)
-    if (options.seed_unusable_only ? unusable(c) : is_bad(c))
-      for (int i = 0; i < node_count(mesh.types[c]); ++i) in_bad_cell[mesh.C(c, i)] = 1;
-  const std::vector<char> region = within_cell_rings(mesh, std::move(in_bad_cell), options.rings);
+  std::vector<char> region(nv, 1);
+  if (!options.whole_mesh) {
+    std::vector<char> in_bad_cell(nv, 0);
+    for (int c = 0; c < nc; ++c)
+      if (options.seed_unusable_only ? unusable(c) : is_bad(c))
+        for (int i = 0; i < node_count(mesh.types[c]); ++i) in_bad_cell[mesh.C(c, i)] = 1;
+    region = within_cell_rings(mesh, std::move(in_bad_cell), options.rings);
+  }
   std::vector<int> free_vertices;
   for (int v = 0; v < nv; ++v)
-    if ((options.whole_mesh || region[v]) && !movable[v].isZero()) free_vertices.push_back(v);
+    if (region[v] && !movable[v].isZero()) free_vertices.push_back(v);
   report.free_vertices = static_cast<int>(free_vertices.size());
 
   // Corners touching each free vertex (the vertex is the corner node or one of its three neighbours), the centre of
@@ -318,14 +320,13 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
     };
     const int unusable_before = unusable_around();
     // Cells around v at or above options.keep_above: none may drop below it.
-    std::array<char, 64> good_before{};
-    const int around = std::min<int>(static_cast<int>(cells_of[v].size()), 64);
+    std::vector<int> good_before;
     if (options.keep_above > 0)
-      for (int i = 0; i < around; ++i) good_before[i] = scaled(cells_of[v][i]) >= options.keep_above;
+      for (int c : cells_of[v])
+        if (scaled(c) >= options.keep_above) good_before.push_back(c);
     auto kept_good = [&] {
-      for (int i = 0; i < around; ++i)
-        if (good_before[i] && scaled(cells_of[v][i]) < options.keep_above) return false;
-      return true;
+      return std::all_of(good_before.begin(), good_before.end(),
+                         [&](int c) { return scaled(c) >= options.keep_above; });
     };
     bool improved = false;
     double t = options.over_relaxation;

@@ -309,6 +309,15 @@ TEST_F(Cli, CompareAndMapRejectBadInputsWithOneLineErrors) {
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("--method: expects harmonic or mesh-matching"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(path("m.vtu")));
+
+  for (const char* value : {"2", "-0.1"}) {
+    r = run("map --shape-relaxation " + std::string(value) + " --patient " + path("box.vtu") + " -o " + path("m.vtu"));
+    EXPECT_NE(r.status, 0) << value;
+    EXPECT_NE(r.output.find("--shape-relaxation: expects off or a fraction from 0 to 1"), std::string::npos)
+        << r.output;
+    EXPECT_EQ(nonempty_lines(r.output), 1) << r.output;
+    EXPECT_FALSE(fs::exists(path("m.vtu")));
+  }
 }
 
 }  // namespace

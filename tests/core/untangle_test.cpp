@@ -120,6 +120,16 @@ TEST(Untangle, FinishingPassMovesOnlyAroundUnusableCells) {
   EXPECT_NE(m.V.row(id(1, 1, 1)), start.V.row(id(1, 1, 1)));
 }
 
+// Relaxes the whole of m (boundary fixed) towards the shapes of target, blended towards_ideal (UntangleOptions).
+void relax_towards(VolumeMesh& m, const VolumeMesh& target, double towards_ideal) {
+  UntangleOptions relax;
+  relax.target = &target;
+  relax.target_towards_ideal = towards_ideal;
+  relax.whole_mesh = true;
+  VertexPlacement placement = spatial_placement(m.V, boundary_fixed(m));
+  untangle(m, placement, relax);
+}
+
 // Shape relaxation with a target (the standard a mesh was mapped from): the target's own shape is where it settles.
 TEST(ShapeRelaxation, ReturnsAPerturbedMeshToItsTargetShape) {
   VolumeMesh target = test::hex_box(4, 4, 4, 4, 4, 4);
@@ -155,12 +165,7 @@ TEST(ShapeRelaxation, LeavesAMeshWithTheTargetShapeInPlace) {
     VolumeMesh m = target;
     m.V *= 2.5;  // size does not matter, only shape
     const Eigen::MatrixXd start = m.V;
-    UntangleOptions relax;
-    relax.target = &target;
-    relax.target_towards_ideal = towards_ideal;
-    relax.whole_mesh = true;
-    VertexPlacement placement = spatial_placement(m.V, boundary_fixed(m));
-    untangle(m, placement, relax);
+    relax_towards(m, target, towards_ideal);
     EXPECT_LT((m.V - start).cwiseAbs().maxCoeff(), 1e-9) << towards_ideal;
   }
 }
@@ -179,12 +184,7 @@ TEST(ShapeRelaxation, TowardsIdealImprovesCellsOfADistortedMesh) {
   std::vector<double> quality;
   for (const double towards_ideal : {0.0, 1.0}) {
     VolumeMesh m = cubes;
-    UntangleOptions relax;
-    relax.target = &target;
-    relax.target_towards_ideal = towards_ideal;
-    relax.whole_mesh = true;
-    VertexPlacement placement = spatial_placement(m.V, boundary_fixed(m));
-    untangle(m, placement, relax);
+    relax_towards(m, target, towards_ideal);
     quality.push_back(mean_scaled_jacobian(m));
   }
   EXPECT_GT(quality[1], quality[0] + 0.02);
