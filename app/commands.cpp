@@ -435,12 +435,13 @@ int cmd_run(const Argv& argv) {
     input = default_ct();
     std::cerr << "no input given: running the bundled demo, the whole chain from the sample CT " << input << "\n";
   }
+  const TransferInputs inputs = transfer_inputs(args, input, constraints);  // option errors before any folder
   const fs::path out_dir = args.get("output");
   std::error_code ec;
   fs::create_directories(out_dir, ec);
   if (ec) throw Error(out_dir.string(), "cannot create the output folder: " + ec.message());
 
-  TransferOutputs out = execute_transfer(transfer_inputs(args, input, constraints));
+  TransferOutputs out = execute_transfer(inputs);
   VolumeMesh patient_model = parameterized_tet_mesh(out.run.patient, &out.patient);
   VolumeMesh standard_hex = out.standard;
   attach_fields(standard_hex, out.run.standard);

@@ -318,6 +318,9 @@ TEST_F(Cli, CompareAndMapRejectBadInputsWithOneLineErrors) {
     EXPECT_EQ(nonempty_lines(r.output), 1) << r.output;
     EXPECT_FALSE(fs::exists(path("m.vtu")));
   }
+  r = run("run " + path("box.vtu") + " --shape-relaxation 2 -o " + path("run_out"));
+  EXPECT_NE(r.status, 0);
+  EXPECT_FALSE(fs::exists(path("run_out")));  // not even an empty folder
 }
 
 }  // namespace
