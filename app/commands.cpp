@@ -11,6 +11,7 @@
 
 #include "app/cli_args.h"
 #include "app/compare.h"
+#include "app/output_folder.h"
 #include "app/report.h"
 #include "app/terminal_progress.h"
 #include "app/transfer_command.h"
@@ -436,10 +437,8 @@ int cmd_run(const Argv& argv) {
     std::cerr << "no input given: running the bundled demo, the whole chain from the sample CT " << input << "\n";
   }
   const TransferInputs inputs = transfer_inputs(args, input, constraints);  // option errors before any folder
-  const fs::path out_dir = args.get("output");
-  std::error_code ec;
-  fs::create_directories(out_dir, ec);
-  if (ec) throw Error(out_dir.string(), "cannot create the output folder: " + ec.message());
+  OutputFolder folder(args.get("output"));
+  const fs::path& out_dir = folder.path();
 
   TransferOutputs out = execute_transfer(inputs);
   VolumeMesh patient_model = parameterized_tet_mesh(out.run.patient, &out.patient);
@@ -469,6 +468,7 @@ int cmd_run(const Argv& argv) {
     write_volume_mesh((out_dir / ("patient_hex." + ext)).string(), out.run.patient_hex, write_options(args));
     std::cout << "exported " << (out_dir / ("patient_hex." + ext)).string() << "\n";
   }
+  folder.keep();
   const QualitySummary& q = out.patient_quality.summary;
   if (q.inverted + q.degenerate > 0)
     std::cerr << "warning: " << q.inverted << " inverted and " << q.degenerate
@@ -576,10 +576,8 @@ int cmd_template(const Argv& argv) {
   if (!args.has("output")) throw Error("facehex template", "missing -o OUTPUT_FOLDER");
   std::string input = args.get("REFERENCE");
   if (input.empty()) input = default_ct();
-  const fs::path out_dir = args.get("output");
-  std::error_code ec;
-  fs::create_directories(out_dir, ec);
-  if (ec) throw Error(out_dir.string(), "cannot create the output folder: " + ec.message());
+  OutputFolder folder(args.get("output"));
+  const fs::path& out_dir = folder.path();
 
   const VolumeMesh reference = load_tet_model(input, segment_options(args));
   ConstraintSet reference_set;
@@ -620,6 +618,7 @@ int cmd_template(const Argv& argv) {
          << "```\n"
          << quality_text(quality) << "```\n";
   write_text_file((out_dir / "README.md").string(), readme.str());
+  folder.keep();
   std::cout << "grid " << t.grid.cells(0) << " x " << t.grid.cells(1) << " x " << t.grid.cells(2) << " = "
             << t.mesh.num_cells() << " hexes (cell size " << t.grid.cell_size << " mm, mean thickness "
             << t.grid.mean_thickness << " mm)\n"

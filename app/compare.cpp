@@ -1,7 +1,5 @@
 #include "app/compare.h"
 
-#include <unistd.h>
-
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -11,6 +9,7 @@
 #include "app/cli_args.h"
 #include "app/commands.h"
 #include "app/histogram_png.h"
+#include "app/output_folder.h"
 #include "app/terminal_progress.h"
 #include "app/transfer_command.h"
 #include "core/error.h"
@@ -382,12 +381,8 @@ int cmd_compare(const Argv& argv) {
   if (!args.parse(argv)) return 0;
   if (!args.has("output")) throw Error("facehex compare", "missing -o OUTPUT_FOLDER");
   const std::vector<PatientInput> inputs = patient_inputs(args);
-  const fs::path out_dir = args.get("output");
-  std::error_code ec;
-  fs::create_directories(out_dir, ec);
-  if (ec || !fs::is_directory(out_dir))
-    throw Error(out_dir.string(), "cannot create the output folder" + (ec ? ": " + ec.message() : std::string()));
-  if (::access(out_dir.c_str(), W_OK | X_OK) != 0) throw Error(out_dir.string(), "the output folder is not writable");
+  OutputFolder folder(args.get("output"));
+  const fs::path& out_dir = folder.path();
   std::string command = "facehex compare";
   for (const std::string& a : argv) command += " " + a;
 
@@ -437,6 +432,7 @@ int cmd_compare(const Argv& argv) {
                        {"paper", paper_json()}};
   write_text_file((out_dir / "report.json").string(), report.dump(2) + "\n");
   write_text_file((out_dir / "report.md").string(), report_markdown(command, standard_name, standard_quality, results));
+  folder.keep();
   std::cout << "patient / method                 shape mean  dihedral mean (deg)  inverted  seconds\n";
   for (const auto& c : results)
     for (const auto* m : {&c.harmonic, &c.mesh_matching}) {

@@ -323,4 +323,20 @@ TEST_F(Cli, CompareAndMapRejectBadInputsWithOneLineErrors) {
   EXPECT_FALSE(fs::exists(path("run_out")));  // not even an empty folder
 }
 
+TEST_F(Cli, AFailedRunOrTemplateRemovesTheFoldersItCreatedAndKeepsAnExistingOne) {
+  write("bad.vtu", "not a VTK file");
+  for (const std::string command : {"run", "template"}) {
+    Result r = run(command + " " + path("bad.vtu") + " -o " + path("new/nested/out"));
+    EXPECT_NE(r.status, 0) << command;
+    EXPECT_NE(r.output.find("bad.vtu: reading VTK XML failed"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(path("new"))) << command;  // the outermost folder it created, not only the last
+
+    fs::create_directories(path("existing"));
+    write("existing/earlier.txt", "a user's file");
+    r = run(command + " " + path("bad.vtu") + " -o " + path("existing"));
+    EXPECT_NE(r.status, 0) << command;
+    EXPECT_TRUE(fs::exists(path("existing/earlier.txt"))) << command;
+  }
+}
+
 }  // namespace
