@@ -1,5 +1,6 @@
 // facehex bench: stage timings of one patient transfer at several model sizes (synthetic face-like shells made
-// with TetGen), the bundled standard's parameterization read from its cache (or computed once when the cache is stale).
+// with TetGen) or for given patient models, the standard's parameterization read from its cache (or computed once
+// when the cache is stale); and the whole run on a resampled CT.
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -15,6 +16,7 @@
 #include "app/commands.h"
 #include "app/synthetic_patient.h"
 #include "app/transfer_command.h"
+#include "core/automatic_constraints.h"
 #include "core/constraint_set.h"
 #include "core/error.h"
 #include "core/harmonic_fields.h"
@@ -100,99 +102,153 @@ int ct_bench(const Args& args) {
   return 0;
 }
 
+// The standard's side of every transfer (paper 3.4: done once): its mesh and the parameters of its vertices.
+struct BenchStandard {
+  VolumeMesh mesh;
+  Eigen::MatrixXd uvw;
+  std::map<std::string, double> feature_values;
+};
+
+BenchStandard bench_standard(const Args& args) {
+  const BundledModel files = find_standard(args.get("standard"));
+  const std::string constraints =
+      args.has("standard-constraints") ? args.get("standard-constraints") : files.constraints;
+  BenchStandard b;
+  b.mesh = read_volume_mesh(files.mesh);
+  const StandardDomain domain = closed_domain(b.mesh);
+  const ConstraintSet set = read_constraint_set(constraints);
+  const std::optional<ModelParameterization> cached =
+      cached_standard_parameterization(parameterization_cache_path(files.mesh), domain, set, HarmonicFieldsOptions{});
+  const ModelParameterization param =
+      cached ? *cached
+             : parameterize_model(domain.V, domain.T, domain.side_mask, set, constraints, HarmonicFieldsOptions{});
+  b.uvw = param.fields.uvw.topRows(b.mesh.num_vertices());
+  b.feature_values = feature_values(set);
+  return b;
+}
+
+// Times the paper's transfer of one patient (its checks, constraints, parameterization, point location and
+// interpolation) and a VTU write + read of it, listed apart. set: the patient's constraint set; nullopt: the
+// automatic one (sides + features at the landmarks), found inside the "constraints" stage.
+nlohmann::json time_transfer(VolumeMesh patient, const std::optional<ConstraintSet>& set, const BenchStandard& standard,
+                             const std::string& source) {
+  std::map<std::string, double> stages;
+  const std::string tmp = (std::filesystem::temp_directory_path() / "facehex-bench.vtu").string();
+  Stopwatch clock;
+  write_volume_mesh(tmp, patient);
+  patient = read_volume_mesh(tmp);
+  std::filesystem::remove(tmp);
+  stages["io_write_read_vtu"] = clock.lap();
+  check_and_orient_tet_mesh(patient, source);
+  stages["mesh_check"] = clock.lap();
+  const Eigen::VectorXi side_mask = side_mask_of(patient);
+  const ConstraintSet used =
+      set ? *set : automatic_constraints(patient.V, side_mask, standard.feature_values, kFeatureBand, nullptr);
+  const ResolvedConstraints constraints = resolve_constraints(used, patient.V, patient.tets(), side_mask, source);
+  stages["constraints"] = clock.lap();
+  const HarmonicFields fields(patient.V, patient.tets(), constraints, HarmonicFieldsOptions{});
+  const HarmonicFieldsResult r = fields.compute();
+  clock.lap();
+  for (const auto& [name, s] : r.seconds) stages[name] = s;
+  for (size_t i = 0; i < r.iteration_seconds.size(); ++i)
+    stages["orthogonality_iteration_" + std::to_string(i + 1)] = r.iteration_seconds[i];
+  stages.erase("orthogonality_improvement");
+  TransferStatistics t;
+  const Eigen::MatrixXd uvw = r.uvw.cwiseMax(0.0).cwiseMin(1.0);
+  const Eigen::MatrixXi T = patient.tets();
+  const PatientMap patient_map(patient.V, T, uvw);
+  stages["locator_build"] = clock.lap();
+  transfer_hex_mesh(standard.mesh, standard.uvw, patient_map, &t);
+  stages["point_location_and_interpolation"] = t.seconds_mapping;
+  double total = 0;
+  for (const auto& [name, s] : stages)
+    if (name != "io_write_read_vtu") total += s;
+  return {{"tets", patient.num_cells()},
+          {"vertices", patient.num_vertices()},
+          {"stages", stages},
+          {"total_seconds", total},
+          {"peak_memory_mb", peak_memory_mb()}};  // with sizes ascending, that of the largest run
+}
+
+void print_timing(const nlohmann::json& result) {
+  std::printf("%9d tets %8d vertices  transfer %.3f s  peak memory %.0f MB\n", result["tets"].get<int>(),
+              result["vertices"].get<int>(), result["total_seconds"].get<double>(),
+              result["peak_memory_mb"].get<double>());
+  for (const auto& [name, s] : result["stages"].items())
+    std::printf("    %-36s %9.4f s\n", name.c_str(), s.get<double>());
+}
+
+// A synthetic shell patient of about `target` tets (core/synthetic_shell.h, tetrahedralized by TetGen).
+VolumeMesh synthetic_patient_of_size(long target, double edge_a, double tets_a, double edge_b, double tets_b) {
+  // tets ~ a * edge^-k, with k fitted on two small shells (less than 3: the shell's thickness takes fewer layers of
+  // coarse tets than of fine ones).
+  const double exponent = std::log(tets_b / tets_a) / std::log(edge_a / edge_b);
+  const double edge = edge_b * std::pow(tets_b / static_cast<double>(target), 1.0 / exponent);
+  std::cerr << "building a synthetic patient of about " << target << " tets (edge " << edge << " mm)\n";
+  VolumeMesh patient = synthetic_shell_patient(edge);
+  // The fit is local, and the count jumps where the shell's thickness takes one more layer of tets: bisect the
+  // edge (in log scale, between one too fine and one too coarse) for up to three more meshes, keeping the closest.
+  auto miss = [&](const VolumeMesh& m) { return std::abs(std::log(m.num_cells() / static_cast<double>(target))); };
+  double too_fine = 0, too_coarse = 0;  // edges known to give too many / too few tets (0: none yet)
+  double tried = edge;
+  int tried_cells = patient.num_cells();
+  for (int attempt = 0; attempt < 3 && miss(patient) > std::log(1.25); ++attempt) {
+    (tried_cells > target ? too_fine : too_coarse) = tried;
+    tried = too_fine > 0 && too_coarse > 0 ? std::sqrt(too_fine * too_coarse)
+                                           : tried * std::cbrt(tried_cells / static_cast<double>(target));
+    std::cerr << "  got " << tried_cells << " tets; again with edge " << tried << " mm\n";
+    VolumeMesh again = synthetic_shell_patient(tried);
+    tried_cells = again.num_cells();
+    if (miss(again) < miss(patient)) patient = std::move(again);
+  }
+  return patient;
+}
+
 }  // namespace
 
 int cmd_bench(const Argv& argv) {
   Args args("bench",
-            "Times each stage of one patient transfer for synthetic patients of about the given tet counts (the "
-            "bundled standard's parameterization is read from its cache first).");
+            "Times each stage of one patient transfer (the paper's scope: checks, constraints, parameterization, "
+            "point location and interpolation) for synthetic patients of about the given tet counts, or for given "
+            "patient models. The standard's parameterization is read from its cache first.");
   args.option("sizes", "approximate tet counts", "10000,50000,200000,1000000")
+      .option("patient",
+              "instead: time these tet models (comma-separated; constraints: PATIENT.json beside one, else automatic)")
       .option("ct", "instead: time the whole run on the bundled CT resampled to NX,NY,NZ voxels (e.g. 512,512,300)")
       .flag("json", "print JSON");
   add_transfer_options(args);
   if (!args.parse(argv)) return 0;
   if (args.has("ct")) return ct_bench(args);
-  const std::vector<long> sizes = parse_counts("--sizes", args.get("sizes"));
-
-  const BundledModel standard_files = default_standard();
-  const VolumeMesh standard = read_volume_mesh(standard_files.mesh);
-  const StandardDomain domain = closed_domain(standard);
-  const ConstraintSet standard_set = read_constraint_set(standard_files.constraints);
-  const std::optional<ModelParameterization> cached = cached_standard_parameterization(
-      parameterization_cache_path(standard_files.mesh), domain, standard_set, HarmonicFieldsOptions{});
-  const ModelParameterization standard_param =
-      cached ? *cached
-             : parameterize_model(domain.V, domain.T, domain.side_mask, standard_set, standard_files.constraints,
-                                  HarmonicFieldsOptions{});
-  const Eigen::MatrixXd standard_uvw = standard_param.fields.uvw.topRows(standard.num_vertices());
-
-  // Calibrate the edge length for a tet count on two small shells: tets ~ a * edge^-k, with k fitted (less than 3:
-  // the shell's thickness takes fewer layers of coarse tets than of fine ones).
-  const double edge_a = 6.0, edge_b = 4.0;
-  const double tets_a = synthetic_shell_patient(edge_a).num_cells(),
-               tets_b = synthetic_shell_patient(edge_b).num_cells();
-  const double exponent = std::log(tets_b / tets_a) / std::log(edge_a / edge_b);
-  nlohmann::json results = nlohmann::json::array();
-  const std::string tmp = (std::filesystem::temp_directory_path() / "facehex-bench.vtu").string();
-  for (const long target : sizes) {
-    const double edge = edge_b * std::pow(tets_b / static_cast<double>(target), 1.0 / exponent);
-    std::cerr << "building a synthetic patient of about " << target << " tets (edge " << edge << " mm)\n";
-    VolumeMesh patient = synthetic_shell_patient(edge);
-    // The fit is local, and the count jumps where the shell's thickness takes one more layer of tets: bisect the
-    // edge (in log scale, between one too fine and one too coarse) for up to three more meshes, keeping the closest.
-    auto miss = [&](const VolumeMesh& m) { return std::abs(std::log(m.num_cells() / static_cast<double>(target))); };
-    double too_fine = 0, too_coarse = 0;  // edges known to give too many / too few tets (0: none yet)
-    double tried = edge;
-    int tried_cells = patient.num_cells();
-    for (int attempt = 0; attempt < 3 && miss(patient) > std::log(1.25); ++attempt) {
-      (tried_cells > target ? too_fine : too_coarse) = tried;
-      tried = too_fine > 0 && too_coarse > 0 ? std::sqrt(too_fine * too_coarse)
-                                             : tried * std::cbrt(tried_cells / static_cast<double>(target));
-      std::cerr << "  got " << tried_cells << " tets; again with edge " << tried << " mm\n";
-      VolumeMesh again = synthetic_shell_patient(tried);
-      tried_cells = again.num_cells();
-      if (miss(again) < miss(patient)) patient = std::move(again);
-    }
-    std::map<std::string, double> stages;
-    Stopwatch clock;
-    write_volume_mesh(tmp, patient);
-    patient = read_volume_mesh(tmp);
-    stages["io_write_read_vtu"] = clock.lap();
-    check_and_orient_tet_mesh(patient, "synthetic patient");
-    stages["mesh_check"] = clock.lap();
-    const ResolvedConstraints constraints =
-        resolve_constraints(side_constraints(), patient.V, patient.tets(), side_mask_of(patient), "synthetic patient");
-    stages["constraints"] = clock.lap();
-    const HarmonicFields fields(patient.V, patient.tets(), constraints, HarmonicFieldsOptions{});
-    const HarmonicFieldsResult r = fields.compute();
-    clock.lap();
-    for (const auto& [name, s] : r.seconds) stages[name] = s;
-    for (size_t i = 0; i < r.iteration_seconds.size(); ++i)
-      stages["orthogonality_iteration_" + std::to_string(i + 1)] = r.iteration_seconds[i];
-    stages.erase("orthogonality_improvement");
-    TransferStatistics t;
-    const Eigen::MatrixXd uvw = r.uvw.cwiseMax(0.0).cwiseMin(1.0);
-    const Eigen::MatrixXi T = patient.tets();
-    const PatientMap patient_map(patient.V, T, uvw);
-    stages["locator_build"] = clock.lap();
-    transfer_hex_mesh(standard, standard_uvw, patient_map, &t);
-    stages["point_location_and_interpolation"] = t.seconds_mapping;
-    double total = 0;
-    for (const auto& [name, s] : stages)
-      if (name != "io_write_read_vtu") total += s;
-    const double peak_mb = peak_memory_mb();  // with sizes ascending, that of the largest run
-    results.push_back({{"tets", patient.num_cells()},
-                       {"vertices", patient.num_vertices()},
-                       {"stages", stages},
-                       {"total_seconds", total},
-                       {"peak_memory_mb", peak_mb}});
-    if (!args.has("json")) {
-      std::printf("%9d tets %8d vertices  transfer %.3f s  peak memory %.0f MB\n", patient.num_cells(),
-                  patient.num_vertices(), total, peak_mb);
-      for (const auto& [name, s] : stages) std::printf("    %-36s %9.4f s\n", name.c_str(), s);
+  std::vector<std::string> patients;
+  if (args.has("patient")) {
+    std::stringstream ss(args.get("patient"));
+    for (std::string item; std::getline(ss, item, ',');) {
+      if (!std::filesystem::is_regular_file(item)) throw Error(item, "no such patient file");
+      patients.push_back(item);
     }
   }
-  std::filesystem::remove(tmp);
+  const std::vector<long> sizes = patients.empty() ? parse_counts("--sizes", args.get("sizes")) : std::vector<long>{};
+
+  const BenchStandard standard = bench_standard(args);
+  nlohmann::json results = nlohmann::json::array();
+  for (const std::string& file : patients) {
+    const std::filesystem::path beside = std::filesystem::path(file).replace_extension(".json");
+    std::optional<ConstraintSet> set;
+    if (std::filesystem::is_regular_file(beside)) set = read_constraint_set(beside.string());
+    results.push_back(time_transfer(read_volume_mesh(file), set, standard, file));
+    results.back()["patient"] = file;
+    if (!args.has("json")) print_timing(results.back());
+  }
+  if (!sizes.empty()) {
+    const double edge_a = 6.0, edge_b = 4.0;
+    const double tets_a = synthetic_shell_patient(edge_a).num_cells(),
+                 tets_b = synthetic_shell_patient(edge_b).num_cells();
+    for (const long target : sizes) {
+      results.push_back(time_transfer(synthetic_patient_of_size(target, edge_a, tets_a, edge_b, tets_b),
+                                      side_constraints(), standard, "synthetic patient"));
+      if (!args.has("json")) print_timing(results.back());
+    }
+  }
   if (args.has("json")) std::cout << results.dump(2) << "\n";
   return 0;
 }

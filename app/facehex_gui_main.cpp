@@ -4,6 +4,7 @@
 //       opens the inputs (default: the bundled demo; for the state ct, the bundled CT), brings the window to STATE,
 //       saves it as PNG and exits.
 // PATIENT is a head CT (.mhd, .mha, .nii, .nii.gz, .nrrd, .nhdr or a DICOM folder), a tet model or a closed surface.
+#include "core/allocator_tuning.h"
 #include "ui/autosave.h"
 #include "ui/main_window.h"
 #include "ui/scripted_states.h"
@@ -47,6 +48,7 @@ int screenshot(MainWindow& window, const QString& file, const QString& stateName
 }  // namespace
 
 int main(int argc, char** argv) {
+  facehex::keep_freed_memory_for_reuse();
   // QVTKOpenGLNativeWidget needs its OpenGL format (core profile, depth, alpha) before the application exists.
   QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
   QApplication app(argc, argv);

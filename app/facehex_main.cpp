@@ -1,5 +1,6 @@
 // facehex: the command-line tool. Never links Qt.
 #include "app/commands.h"
+#include "core/allocator_tuning.h"
 #include "core/error.h"
 #include "core/progress.h"
 
@@ -46,6 +47,7 @@ void print_usage() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  facehex::keep_freed_memory_for_reuse();
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
     print_usage();
     return argc < 2 ? 2 : 0;

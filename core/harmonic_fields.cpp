@@ -1,5 +1,6 @@
 #include "core/harmonic_fields.h"
 
+#include <exception>
 #include <set>
 
 #include "core/error.h"
@@ -21,16 +22,34 @@ HarmonicFields::HarmonicFields(const Eigen::MatrixXd& V, const Eigen::MatrixXi& 
   G_ = gradient_operator(V, T);
   volumes_ = tet_volumes(V, T);
   setup_seconds_["laplacian_assembly"] = clock.lap();
-  // One after the other. Run concurrently, CHOLMOD's own orderings made results differ by 1e-3 from run to run; with
-  // the shared order they agree, but the three factorizations compete for memory bandwidth and BLAS threads: 22.5 s
-  // instead of 12.6 s at 1M tets (docs/benchmarks.md).
   report_progress(progress, "ordering the Laplacian for factorization", 0.0);
-  const auto elimination_order = std::make_shared<const std::vector<int>>(fill_reducing_order(K_));
-  for (int f = 0; f < 3; ++f) {
-    report_progress(progress, std::string("factoring the ") + kFieldNames[f] + " system", (f + 1) / 4.0);
-    solvers_[f] = std::make_unique<HarmonicSolver>(K_, constraints.fields[f],
-                                                   HarmonicSolver::Options{kFieldNames[f], elimination_order});
+  double factor_flops = 0;
+  const auto elimination_order = std::make_shared<const std::vector<int>>(fill_reducing_order(K_, &factor_flops));
+  // Small (simplicial) factorizations run concurrently, one per thread. Supernodal ones run one after the other:
+  // concurrently they compete for memory bandwidth and BLAS threads (22.5 s instead of 12.6 s at 1M tets,
+  // docs/benchmarks.md). With the shared order, the results do not depend on which thread factors what.
+  const bool concurrent = factor_flops < kSupernodalAboveFlops;
+  std::array<std::exception_ptr, 3> failure;
+  auto factor = [&](int f) {
+    try {
+      if (!concurrent)
+        report_progress(progress, std::string("factoring the ") + kFieldNames[f] + " system", (f + 1) / 4.0);
+      solvers_[f] = std::make_unique<HarmonicSolver>(K_, constraints.fields[f],
+                                                     HarmonicSolver::Options{kFieldNames[f], elimination_order});
+    } catch (...) {
+      failure[f] = std::current_exception();
+    }
+  };
+  // Not one parallel loop with an if clause: CHOLMOD's supernodal factorization is 4x slower when called inside even
+  // an inactive OpenMP region.
+  if (concurrent) {
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int f = 0; f < 3; ++f) factor(f);
+  } else {
+    for (int f = 0; f < 3; ++f) factor(f);
   }
+  for (const std::exception_ptr& e : failure)
+    if (e) std::rethrow_exception(e);
   setup_seconds_["factorization"] = clock.lap();
 }
 

@@ -4,11 +4,6 @@
 // recovery. Each field's system is factored once; the initial Laplace solve and every Poisson re-solve reuse it.
 //
 // V is #V x 3, T is #T x 4 positively oriented; the result uvw is #V x 3 (columns u, v, w).
-#include "core/constraint_set.h"
-#include "core/harmonic_solver.h"
-#include "core/orthogonalize.h"
-#include "core/progress.h"
-
 #include <Eigen/Core>
 #include <array>
 #include <map>
@@ -16,20 +11,25 @@
 #include <string>
 #include <vector>
 
+#include "core/constraint_set.h"
+#include "core/harmonic_solver.h"
+#include "core/orthogonalize.h"
+#include "core/progress.h"
+
 namespace facehex {
 
 struct HarmonicFieldsOptions {
-  int orthogonality_iterations = 6;     // paper: six
-  std::array<int, 3> order = {2, 0, 1}; // {basic, second, third}: default keeps w (depth), corrects u, then v
+  int orthogonality_iterations = 6;      // paper: six
+  std::array<int, 3> order = {2, 0, 1};  // {basic, second, third}: default keeps w (depth), corrects u, then v
 };
 
 struct HarmonicFieldsResult {
-  Eigen::MatrixXd uvw_initial;  // #V x 3, harmonic fields before the orthogonality improvement
-  Eigen::MatrixXd uvw;          // #V x 3, after it
+  Eigen::MatrixXd uvw_initial;                  // #V x 3, harmonic fields before the orthogonality improvement
+  Eigen::MatrixXd uvw;                          // #V x 3, after it
   GradientFields gradients_initial, gradients;  // per tet, #T x 3 each
   AngleStatistics angles_initial, angles;
-  std::map<std::string, double> seconds;        // per stage
-  std::vector<double> iteration_seconds;        // per orthogonality iteration
+  std::map<std::string, double> seconds;  // per stage
+  std::vector<double> iteration_seconds;  // per orthogonality iteration
 };
 
 class HarmonicFields {
@@ -42,14 +42,15 @@ class HarmonicFields {
   HarmonicFieldsResult compute(const ProgressCallback& progress = {}) const;
 
   const SparseMatrix& stiffness() const { return K_; }
-  const SparseMatrix& gradient() const { return G_; }
+  const GradientMatrix& gradient() const { return G_; }
   const Eigen::VectorXd& volumes() const { return volumes_; }
 
  private:
   GradientFields gradients_of(const Eigen::MatrixXd& uvw) const;
 
   HarmonicFieldsOptions options_;
-  SparseMatrix K_, G_;
+  SparseMatrix K_;
+  GradientMatrix G_;
   Eigen::VectorXd volumes_;
   std::array<std::unique_ptr<HarmonicSolver>, 3> solvers_;
   std::map<std::string, double> setup_seconds_;

@@ -1,9 +1,9 @@
 #include "core/harmonic_solver.h"
 
-#include "core/error.h"
-
 #include <Eigen/CholmodSupport>
 #include <algorithm>
+
+#include "core/error.h"
 
 namespace facehex {
 
@@ -53,7 +53,7 @@ bool is_permutation_of_rows(const std::vector<int>& order, int n) {
 
 }  // namespace
 
-std::vector<int> fill_reducing_order(const SparseMatrix& K) {
+std::vector<int> fill_reducing_order(const SparseMatrix& K, double* factor_flops) {
   cholmod_common common;
   cholmod_start(&common);
   SparseMatrix lower = K.triangularView<Eigen::Lower>();
@@ -64,6 +64,7 @@ std::vector<int> fill_reducing_order(const SparseMatrix& K) {
   if (L != nullptr) {
     const int* perm = static_cast<const int*>(L->Perm);
     order.assign(perm, perm + L->n);
+    if (factor_flops != nullptr) *factor_flops = common.fl;
     cholmod_free_factor(&L, &common);
   }
   cholmod_finish(&common);
@@ -105,8 +106,16 @@ HarmonicSolver::HarmonicSolver(const SparseMatrix& K, const DirichletConditions&
   const SparseMatrix Sf = selection(free_, n_), Sc = selection(fixed_, n_);
   const SparseMatrix K_ff = Sf * K * Sf.transpose();
   K_free_fixed_ = Sf * K * Sc.transpose();
-  factorization_->cholmod.compute(K_ff);
-  if (factorization_->cholmod.info() != Eigen::Success)
+  auto& cholmod = factorization_->cholmod;
+  cholmod.analyzePattern(K_ff);
+  if (cholmod.info() == Eigen::Success && cholmod.cholmod().fl < kSupernodalAboveFlops) {
+    // Small systems: supernodes are short and the dense BLAS kernels' overhead dominates.
+    cholmod.cholmod().supernodal = CHOLMOD_SIMPLICIAL;
+    cholmod.cholmod().final_ll = 1;
+    cholmod.analyzePattern(K_ff);
+  }
+  if (cholmod.info() == Eigen::Success) cholmod.factorize(K_ff);
+  if (cholmod.info() != Eigen::Success)
     throw Error(name_, "the sparse Cholesky factorization failed (the stiffness matrix is not positive definite)");
 }
 

@@ -20,8 +20,14 @@ struct DirichletConditions {
 // A fill-reducing elimination order of all #V rows of K (CHOLMOD's pick among AMD and METIS), for sharing between
 // solvers on the same K: their free-free blocks are K minus different fixed rows, and the order restricted to a
 // block's rows serves it nearly as well as its own, while the symbolic analysis that finds it is about 40 % of a
-// factorization's time.
-std::vector<int> fill_reducing_order(const SparseMatrix& K);
+// factorization's time. factor_flops, if given, receives CHOLMOD's predicted flop count of factoring K in that
+// order (each block's is a little less).
+std::vector<int> fill_reducing_order(const SparseMatrix& K, double* factor_flops = nullptr);
+
+// Factorizations predicted to take fewer floating-point operations than this are done simplicial, the others
+// supernodal (dense BLAS kernels on supernodes). Measured crossover on the benchmark shells (2 cores, OpenBLAS):
+// simplicial 31 ms against 62 ms at 1e8 flops, 0.78 s against 0.25 s at 1.7e9 (docs/benchmarks.md).
+constexpr double kSupernodalAboveFlops = 4e8;
 
 class HarmonicSolver {
  public:

@@ -20,12 +20,15 @@
 namespace facehex {
 
 using SparseMatrix = Eigen::SparseMatrix<double>;
+// G is stored by rows (each has the 4 entries of one tet's gradient component): it is built straight into its
+// arrays, and G u, the product of every iteration, runs along rows.
+using GradientMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 
 // Signed volumes (#T), positive for positively oriented tets.
 Eigen::VectorXd tet_volumes(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T);
 
 // Gradient operator G (3#T x #V).
-SparseMatrix gradient_operator(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T);
+GradientMatrix gradient_operator(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T);
 
 // Cotangent stiffness matrix K (#V x #V, symmetric positive semi-definite, rows sum to zero).
 SparseMatrix cotangent_stiffness(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T);
@@ -39,6 +42,6 @@ Eigen::VectorXd dual_volumes(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T)
 SparseMatrix normalized_laplacian(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T);
 
 // Per-tet gradients of a scalar field as #T x 3 rows (the same numbers as G u, reshaped).
-Eigen::MatrixXd tet_gradients(const SparseMatrix& G, const Eigen::VectorXd& u);
+Eigen::MatrixXd tet_gradients(const GradientMatrix& G, const Eigen::VectorXd& u);
 
 }  // namespace facehex

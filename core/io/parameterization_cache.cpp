@@ -103,7 +103,7 @@ std::optional<ModelParameterization> read_parameterization_cache(const std::stri
     HarmonicFieldsResult fields;
     fields.uvw = m.point_data.at("uvw");
     fields.uvw_initial = m.point_data.at("uvw_initial");
-    const SparseMatrix G = gradient_operator(domain.V, domain.T);
+    const GradientMatrix G = gradient_operator(domain.V, domain.T);
     for (int f = 0; f < 3; ++f) {
       fields.gradients[f] = tet_gradients(G, fields.uvw.col(f));
       fields.gradients_initial[f] = tet_gradients(G, fields.uvw_initial.col(f));

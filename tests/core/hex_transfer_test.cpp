@@ -1,13 +1,15 @@
 #include "core/hex_transfer.h"
 
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "core/error.h"
+#include "core/harmonic_fields.h"
 #include "core/hex_to_tets.h"
 #include "core/param_locator.h"
 #include "core/transfer_pipeline.h"
 #include "test_meshes.h"
-
-#include <gtest/gtest.h>
-
-#include <random>
 
 namespace facehex {
 namespace {
@@ -53,8 +55,8 @@ TEST(HexTransfer, StandardOntoItselfIsTheIdentity) {
   const VolumeMesh patient = VolumeMesh::from_tets(standard.V, split_into_tets(standard).T);
   VolumeMesh patient_with_mask = patient;
   patient_with_mask.point_data = standard.point_data;
-  const TransferRun run = run_transfer(standard, auxiliary_domain(standard), side_constraints(), "standard", patient_with_mask,
-                                       side_constraints(), "patient", default_options());
+  const TransferRun run = run_transfer(standard, auxiliary_domain(standard), side_constraints(), "standard",
+                                       patient_with_mask, side_constraints(), "patient", default_options());
   EXPECT_TRUE(run.patient.health.ok());
   EXPECT_LT((run.patient_hex.V - standard.V).cwiseAbs().maxCoeff(), 1e-6);
   EXPECT_EQ(run.patient_hex.C, standard.C);
@@ -70,8 +72,8 @@ TEST(HexTransfer, BoxOntoStretchedBoxIsTheAffineMap) {
   target_hex.V = target_hex.V * scale.asDiagonal();
   VolumeMesh patient = VolumeMesh::from_tets(target_hex.V, split_into_tets(target_hex).T);
   patient.point_data = target_hex.point_data;
-  const TransferRun run =
-      run_transfer(standard, auxiliary_domain(standard), side_constraints(), "standard", patient, side_constraints(), "patient", default_options());
+  const TransferRun run = run_transfer(standard, auxiliary_domain(standard), side_constraints(), "standard", patient,
+                                       side_constraints(), "patient", default_options());
   const Eigen::MatrixXd expected = standard.V * scale.asDiagonal();
   EXPECT_LT((run.patient_hex.V - expected).cwiseAbs().maxCoeff(), 1e-6);
   EXPECT_EQ(run.transfer.snap_failures, 0);
@@ -89,7 +91,8 @@ TEST(HexTransfer, BoxOntoStretchedBoxIsTheAffineMap) {
 namespace facehex {
 namespace {
 
-// The same input gives bit-identical fields (the solvers run one after the other: concurrent CHOLMOD calls did not).
+// The same input gives bit-identical fields (small systems are factored concurrently, one per thread: with the
+// shared elimination order, which thread factors which field does not change a bit).
 TEST(HarmonicFieldsDeterminism, TwoRunsAreBitIdentical) {
   VolumeMesh hex = test::hex_box(12, 6, 10, 60, 15, 50);
   test::jitter_interior(hex, 0.8);
@@ -99,6 +102,22 @@ TEST(HarmonicFieldsDeterminism, TwoRunsAreBitIdentical) {
   const ModelParameterization b =
       parameterize_model(domain.V, domain.T, domain.side_mask, side_constraints(), "box", HarmonicFieldsOptions{});
   EXPECT_EQ(a.fields.uvw, b.fields.uvw);
+}
+
+// A field whose factorization fails (here: no Dirichlet condition) is reported by name, also when the three fields
+// are factored concurrently.
+TEST(HarmonicFieldsDeterminism, AFailedFactorizationIsReportedByItsField) {
+  const VolumeMesh hex = test::hex_box(6, 4, 5, 60, 15, 50);
+  const StandardDomain domain = auxiliary_domain(hex);
+  ResolvedConstraints constraints =
+      resolve_constraints(side_constraints(), domain.V, domain.T, domain.side_mask, "box");
+  constraints.fields[1] = DirichletConditions{};
+  try {
+    const HarmonicFields fields(domain.V, domain.T, constraints, HarmonicFieldsOptions{});
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("v: no Dirichlet condition"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -1,0 +1,13 @@
+#pragma once
+// Process-wide allocator settings for the engine's allocation pattern, called first thing by both mains.
+
+namespace facehex {
+
+// Makes glibc's malloc serve every allocation from its heap and never give freed memory back to the system
+// (mallopt: M_MMAP_MAX = 0, M_TRIM_THRESHOLD = max). By default, blocks over 128 kB (triplet lists, factors,
+// gradient fields) get fresh pages from the kernel on each allocation and every page then costs a fault on first
+// touch, which on the virtual machines we measured cost a third of a transfer's time (docs/benchmarks.md). The peak
+// resident size does not change: the heap keeps what the largest step needed and reuses it. No effect elsewhere.
+void keep_freed_memory_for_reuse();
+
+}  // namespace facehex
