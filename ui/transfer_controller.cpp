@@ -1,13 +1,5 @@
 #include "ui/transfer_controller.h"
 
-#include "core/automatic_constraints.h"
-#include "core/error.h"
-#include "core/io/mesh_io.h"
-#include "core/io/parameterization_cache.h"
-#include "core/resources.h"
-#include "core/segment/ct_volume.h"
-#include "ui/model_loading.h"
-
 #include <QEventLoop>
 #include <QFileInfo>
 #include <QTimer>
@@ -15,6 +7,14 @@
 #include <algorithm>
 #include <memory>
 #include <optional>
+
+#include "core/automatic_constraints.h"
+#include "core/error.h"
+#include "core/io/mesh_io.h"
+#include "core/io/parameterization_cache.h"
+#include "core/resources.h"
+#include "core/segment/ct_volume.h"
+#include "ui/model_loading.h"
 
 namespace facehex::gui {
 namespace {
@@ -32,6 +32,15 @@ QString sizeText(const LoadedModel& m) {
 }
 
 const char* kStale = QT_TRANSLATE_NOOP("TransferController", " (not applied: the models changed meanwhile)");
+
+// The parameterization cached beside a model's file (the bundled standards have one), when it fits the model as
+// edited (its constraints may have changed) and the options; nullopt otherwise (then it is computed).
+std::optional<ModelParameterization> cachedParameterization(const QString& path, const StandardDomain& domain,
+                                                            const ConstraintSet& set,
+                                                            const HarmonicFieldsOptions& options) {
+  if (path.isEmpty()) return std::nullopt;
+  return read_parameterization_cache(parameterization_cache_path(path.toStdString()), domain, set, options);
+}
 
 }  // namespace
 
@@ -54,8 +63,12 @@ bool TransferController::start(const QString& what, Work work) {
     const int percent = static_cast<int>(100 * fraction);
     if (lastReport_.exchange(percent) != percent) {
       const QString s = QString::fromStdString(stage);
-      QMetaObject::invokeMethod(this, [this, s, fraction] { if (busy()) emit progress(s, fraction); },
-                                Qt::QueuedConnection);
+      QMetaObject::invokeMethod(
+          this,
+          [this, s, fraction] {
+            if (busy()) emit progress(s, fraction);
+          },
+          Qt::QueuedConnection);
     }
     return !cancelRequested_;
   };
@@ -94,7 +107,9 @@ void TransferController::cancel() { cancelRequested_ = true; }
 bool TransferController::waitUntilIdle(int timeoutMs) {
   if (!busy()) return true;
   QEventLoop loop;
-  connect(this, &TransferController::busyChanged, &loop, [&loop](bool b) { if (!b) loop.quit(); });
+  connect(this, &TransferController::busyChanged, &loop, [&loop](bool b) {
+    if (!b) loop.quit();
+  });
   QTimer::singleShot(timeoutMs, &loop, &QEventLoop::quit);
   loop.exec();
   return !busy();
@@ -104,9 +119,9 @@ bool TransferController::openPatient(const QString& path) {
   const std::string p = path.toStdString();
   const bool ct = is_ct_input(p);
   // Without a standard there is nothing to value the features with: the patient opens with its six sides.
-  const std::map<std::string, double> values =
-      session_->hasModel(Role::Standard) ? feature_values(session_->constraints(Role::Standard).set)
-                                         : std::map<std::string, double>();
+  const std::map<std::string, double> values = session_->hasModel(Role::Standard)
+                                                   ? feature_values(session_->constraints(Role::Standard).set)
+                                                   : std::map<std::string, double>();
   const QString file = QFileInfo(path).fileName();
   return start(ct ? tr("Segmenting %1").arg(file) : tr("Opening %1").arg(file),
                [p, ct, values](const ProgressCallback& progress) -> Apply {
@@ -140,8 +155,7 @@ bool TransferController::openDemo(const QString& standardName) {
     auto note = std::make_shared<QString>();
     auto patient = std::make_shared<LoadedModel>(demo_patient(feature_values(standard->constraints.set), *note));
     return [standard, patient, note](SessionModel& s) {
-      const QString text =
-          tr("Opened the demo: standard %1, patient %2; %3").arg(standard->name, patient->name, *note);
+      const QString text = tr("Opened the demo: standard %1, patient %2; %3").arg(standard->name, patient->name, *note);
       s.setModel(Role::Standard, std::move(*standard));
       s.setModel(Role::Patient, std::move(*patient));
       return text;
@@ -152,6 +166,7 @@ bool TransferController::openDemo(const QString& standardName) {
 bool TransferController::computeFields() {
   struct Input {
     Role role;
+    QString path;
     StandardDomain domain;
     ConstraintSet set;
     std::string source;
@@ -161,7 +176,7 @@ bool TransferController::computeFields() {
   for (Role r : kRoles)
     if (session_->hasModel(r)) {
       const LoadedModel& m = session_->model(r);
-      inputs.push_back({r, m.domain, m.constraints.set, m.source(), session_->revision(r)});
+      inputs.push_back({r, m.path, m.domain, m.constraints.set, m.source(), session_->revision(r)});
     }
   if (inputs.empty()) {
     emit failed(tr("fields: open a model first"));
@@ -170,20 +185,26 @@ bool TransferController::computeFields() {
   const HarmonicFieldsOptions options = options_.fields;
   return start(tr("Computing the fields"), [inputs, options](const ProgressCallback& progress) -> Apply {
     auto results = std::make_shared<std::vector<ModelParameterization>>();
+    auto fromCache = std::make_shared<std::vector<bool>>();
     for (size_t i = 0; i < inputs.size(); ++i) {
       const Input& in = inputs[i];
       const double lo = double(i) / inputs.size(), hi = double(i + 1) / inputs.size();
-      results->push_back(parameterize_model(in.domain.V, in.domain.T, in.domain.side_mask, in.set, in.source,
-                                            options, part(progress, roleName(in.role), lo, hi)));
+      std::optional<ModelParameterization> cached = cachedParameterization(in.path, in.domain, in.set, options);
+      fromCache->push_back(cached.has_value());
+      results->push_back(cached ? std::move(*cached)
+                                : parameterize_model(in.domain.V, in.domain.T, in.domain.side_mask, in.set, in.source,
+                                                     options, part(progress, roleName(in.role), lo, hi)));
     }
-    return [inputs, results](SessionModel& s) {
+    return [inputs, results, fromCache](SessionModel& s) {
       QStringList parts;
       for (size_t i = 0; i < inputs.size(); ++i) {
         const ModelParameterization& p = (*results)[i];
         // The angles are in the histogram tab; the status line says what decides whether the transfer can go on.
         QString text = tr("%1 %L2 tets folded (%3%)")
-                           .arg(roleName(inputs[i].role)).arg(p.health.inverted)
+                           .arg(roleName(inputs[i].role))
+                           .arg(p.health.inverted)
                            .arg(100.0 * p.health.inverted / std::max(1, p.health.tets), 0, 'f', 2);
+        if ((*fromCache)[i]) text += tr(" (from its cache)");
         if (s.revision(inputs[i].role) == inputs[i].revision)
           s.setParameterization(inputs[i].role, std::move((*results)[i]));
         else
@@ -205,16 +226,11 @@ bool TransferController::runTransfer() {
   const std::array<quint64, 2> revisions = {session_->revision(Role::Standard), session_->revision(Role::Patient)};
   const TransferOptions options = options_;
   return start(tr("Transfer"), [standard, patient, revisions, options](const ProgressCallback& progress) -> Apply {
-    // The standard's cached parameterization when it fits the standard as edited (its constraints may have changed).
-    const std::string cache =
-        standard->path.isEmpty() ? std::string() : parameterization_cache_path(standard->path.toStdString());
     const std::optional<ModelParameterization> cached =
-        cache.empty() ? std::nullopt
-                      : read_parameterization_cache(cache, standard->domain, standard->constraints.set, options.fields);
-    auto run = std::make_shared<TransferRun>(run_transfer(standard->mesh, standard->domain, standard->constraints.set,
-                                                          standard->source(), patient->mesh, patient->constraints.set,
-                                                          patient->source(), options, progress,
-                                                          cached ? &*cached : nullptr));
+        cachedParameterization(standard->path, standard->domain, standard->constraints.set, options.fields);
+    auto run = std::make_shared<TransferRun>(
+        run_transfer(standard->mesh, standard->domain, standard->constraints.set, standard->source(), patient->mesh,
+                     patient->constraints.set, patient->source(), options, progress, cached ? &*cached : nullptr));
     report_progress(progress, "quality", 1.0);
     // Quality and the exported arrays as `facehex run` writes them.
     auto result = std::make_shared<TransferResult>();
@@ -234,8 +250,10 @@ bool TransferController::runTransfer() {
     return [run, result, revisions](SessionModel& s) {
       const QualitySummary& q = result->patientQuality;
       QString text = tr("Transfer done: %1 cells, %2 inverted, mean shape %3 (standard %4)")
-                         .arg(count(q.cells)).arg(q.inverted)
-                         .arg(q.shape_mean, 0, 'f', 3).arg(result->standardQuality.shape_mean, 0, 'f', 3);
+                         .arg(count(q.cells))
+                         .arg(q.inverted)
+                         .arg(q.shape_mean, 0, 'f', 3)
+                         .arg(result->standardQuality.shape_mean, 0, 'f', 3);
       if (s.revision(Role::Standard) != revisions[0] || s.revision(Role::Patient) != revisions[1])
         return text + tr(kStale);
       s.setParameterization(Role::Standard, std::move(run->standard));

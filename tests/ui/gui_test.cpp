@@ -25,6 +25,7 @@
 #include "core/error.h"
 #include "core/hex_to_tets.h"
 #include "core/io/mesh_io.h"
+#include "core/io/parameterization_cache.h"
 #include "core/quality/hex_quality.h"
 #include "core/resources.h"
 #include "core/segment/patient_input.h"
@@ -49,6 +50,7 @@ class GuiTest : public QObject {
   void undoAndRedoAConstraintEdit();
   void facialFeaturesAreRecomputedByTheButton();
   void cancelStopsTheWorker();
+  void computeFieldsReadsTheStandardsCache();
   void transfersTheBundledModels();
   void scriptedTransferStatesShowTheModels();
   void cancelStopsTheSegmentation();
@@ -198,6 +200,25 @@ void GuiTest::facialFeaturesAreRecomputedByTheButton() {
   session()->undoStack()->undo();
   QCOMPARE(constraintCount(), n);
   window_->findChild<QDoubleSpinBox*>("bandWidth")->setValue(kFeatureBand);
+}
+
+void GuiTest::computeFieldsReadsTheStandardsCache() {
+  // The bundled standard has its parameterization cached beside it: Compute fields reads it, as the transfer does.
+  QSignalSpy finished(window_->controller(), &TransferController::finished);
+  QVERIFY(window_->controller()->computeFields());
+  QVERIFY(window_->controller()->waitUntilIdle());
+  QVERIFY2(error_.isEmpty(), qPrintable(error_));
+  const QString status = finished.first().first().toString();
+  // "Fields computed: standard ... (from its cache), patient ...": the patient has no cache and is computed.
+  QVERIFY2(status.section(", ", 0, 0).contains("standard") && status.section(", ", 0, 0).endsWith("(from its cache)"),
+           qPrintable(status));
+  QCOMPARE(status.count("from its cache"), 1);
+  const LoadedModel& standard = session()->model(Role::Standard);
+  const std::optional<ModelParameterization> cached =
+      read_parameterization_cache(parameterization_cache_path(standard.path.toStdString()), standard.domain,
+                                  standard.constraints.set, HarmonicFieldsOptions{});
+  QVERIFY(cached && session()->parameterization(Role::Standard));
+  QVERIFY(session()->parameterization(Role::Standard)->fields.uvw == cached->fields.uvw);
 }
 
 void GuiTest::cancelStopsTheWorker() {
