@@ -58,23 +58,28 @@ Field distance_to(const Mask& features, std::vector<std::int64_t>* nearest) {
   const size_t stride[3] = {1, static_cast<size_t>(g.dims[0]), static_cast<size_t>(g.dims[0]) * g.dims[1]};
   for (int axis = 0; axis < 3; ++axis) {
     const int len = g.dims[axis];
-    std::vector<double> f(len), d(len), z(len + 1);
-    std::vector<int> arg(len), v(len);
-    std::vector<std::int64_t> line_near(nearest ? len : 0);
     const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
-    for (int u = 0; u < g.dims[a2]; ++u)
-      for (int w = 0; w < g.dims[a1]; ++w) {
-        const size_t start = static_cast<size_t>(u) * stride[a2] + static_cast<size_t>(w) * stride[a1];
-        for (int x = 0; x < len; ++x) {
-          f[x] = sq[start + x * stride[axis]];
-          if (nearest) line_near[x] = near[start + x * stride[axis]];
+    // The lines of one pass are independent: split over threads, each with its own line buffers.
+#pragma omp parallel
+    {
+      std::vector<double> f(len), d(len), z(len + 1);
+      std::vector<int> arg(len), v(len);
+      std::vector<std::int64_t> line_near(nearest ? len : 0);
+#pragma omp for schedule(static)
+      for (int u = 0; u < g.dims[a2]; ++u)
+        for (int w = 0; w < g.dims[a1]; ++w) {
+          const size_t start = static_cast<size_t>(u) * stride[a2] + static_cast<size_t>(w) * stride[a1];
+          for (int x = 0; x < len; ++x) {
+            f[x] = sq[start + x * stride[axis]];
+            if (nearest) line_near[x] = near[start + x * stride[axis]];
+          }
+          lower_envelope(f, len, g.spacing(axis), d, arg, v, z);
+          for (int x = 0; x < len; ++x) {
+            sq[start + x * stride[axis]] = d[x];
+            if (nearest) near[start + x * stride[axis]] = arg[x] < 0 ? -1 : line_near[arg[x]];
+          }
         }
-        lower_envelope(f, len, g.spacing(axis), d, arg, v, z);
-        for (int x = 0; x < len; ++x) {
-          sq[start + x * stride[axis]] = d[x];
-          if (nearest) near[start + x * stride[axis]] = arg[x] < 0 ? -1 : line_near[arg[x]];
-        }
-      }
+    }
   }
   Field out(g, 0.0f);
   for (size_t i = 0; i < n; ++i) out.data[i] = static_cast<float>(std::sqrt(sq[i]));

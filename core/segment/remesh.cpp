@@ -12,7 +12,6 @@
 #include <array>
 #include <cmath>
 #include <map>
-#include <set>
 #include <utility>
 #include <vector>
 
@@ -132,20 +131,30 @@ class Remesher {
       if (faces_[f][0] == b || faces_[f][1] == b || faces_[f][2] == b) out.push_back(f);
     return out;
   }
-  std::set<int> neighbours(int v) const {
-    std::set<int> out;
+  // Sorted, without repeats (a sorted vector: a std::set here was 5 % of the segmentation's time).
+  std::vector<int> neighbours(int v) const {
+    std::vector<int> out;
     for (int f : vertex_faces_[v])
       for (int w : faces_[f])
-        if (w != v) out.insert(w);
-    return out;
+        if (w != v) out.push_back(w);
+    return sorted_unique(std::move(out));
+  }
+  std::vector<int> face_labels(int v) const {
+    std::vector<int> out;
+    for (int f : vertex_faces_[v]) out.push_back(labels_[f]);
+    return sorted_unique(std::move(out));
+  }
+  static std::vector<int> sorted_unique(std::vector<int> values) {
+    std::sort(values.begin(), values.end());
+    values.erase(std::unique(values.begin(), values.end()), values.end());
+    return values;
   }
   bool is_feature_edge(int a, int b) const {
     const auto fs = edge_faces(a, b);
     return fs.size() == 2 && labels_[fs[0]] != labels_[fs[1]];
   }
   Role role(int v) const {
-    std::set<int> labels;
-    for (int f : vertex_faces_[v]) labels.insert(labels_[f]);
+    const std::vector<int> labels = face_labels(v);
     if (labels.size() == 1) return kFree;
     if (labels.size() > 2) return kCorner;
     int feature_edges = 0;
@@ -222,7 +231,7 @@ class Remesher {
     if (fs.size() != 2) return false;
     const Role ra = role(a);
     if (ra == kCorner || (ra == kFeature && !is_feature_edge(a, b))) return false;
-    const std::set<int> na = neighbours(a), nb = neighbours(b);
+    const std::vector<int> na = neighbours(a), nb = neighbours(b);
     std::vector<int> common;
     std::set_intersection(na.begin(), na.end(), nb.begin(), nb.end(), std::back_inserter(common));
     if (common.size() != 2) return false;  // link condition: else the surface would pinch
@@ -273,9 +282,11 @@ class Remesher {
     const int f2 = fs[0] == f1 ? fs[1] : fs[0];
     const int c = faces_[f1][0] + faces_[f1][1] + faces_[f1][2] - a - b;
     const int d = faces_[f2][0] + faces_[f2][1] + faces_[f2][2] - a - b;
-    if (c == d || neighbours(c).count(d)) return;
+    if (c == d) return;
+    const std::vector<int> nc = neighbours(c);
+    if (std::binary_search(nc.begin(), nc.end(), d)) return;
     const int va = static_cast<int>(neighbours(a).size()), vb = static_cast<int>(neighbours(b).size());
-    const int vc = static_cast<int>(neighbours(c).size()), vd = static_cast<int>(neighbours(d).size());
+    const int vc = static_cast<int>(nc.size()), vd = static_cast<int>(neighbours(d).size());
     if (va <= 3 || vb <= 3) return;
     if (rule == kValence) {
       const int before = std::abs(va - 6) + std::abs(vb - 6) + std::abs(vc - 6) + std::abs(vd - 6);
@@ -310,7 +321,7 @@ class Remesher {
       const Eigen::Vector3d& p = points_[v];
       if (r == kFree) {
         Eigen::Vector3d centroid = Eigen::Vector3d::Zero(), n = Eigen::Vector3d::Zero();
-        const std::set<int> ns = neighbours(v);
+        const std::vector<int> ns = neighbours(v);
         for (int w : ns) centroid += points_[w];
         centroid /= static_cast<double>(ns.size());
         for (int f : vertex_faces_[v]) n += normal(f);
@@ -324,9 +335,8 @@ class Remesher {
           if (is_feature_edge(v, w)) along.push_back(w);
         const Eigen::Vector3d t = (points_[along[1]] - points_[along[0]]).normalized();
         const Eigen::Vector3d q = p + t.dot((points_[along[0]] + points_[along[1]]) / 2 - p) * t;
-        std::set<int> labels;
-        for (int f : vertex_faces_[v]) labels.insert(labels_[f]);
-        const auto line = line_.find({*labels.begin(), *labels.rbegin()});
+        const std::vector<int> labels = face_labels(v);
+        const auto line = line_.find({labels.front(), labels.back()});
         moved[v] = line == line_.end() ? q : line->second(q);
       }
     }
