@@ -213,7 +213,8 @@ int cmd_bench(const Argv& argv) {
             "patient models. The standard's parameterization is read from its cache first.");
   args.option("sizes", "approximate tet counts", "10000,50000,200000,1000000")
       .option("patient",
-              "instead: time these tet models (comma-separated; constraints: PATIENT.json beside one, else automatic)")
+              "instead: time these patients, as run takes them (tet models, closed surfaces or CTs, segmented first "
+              "and not timed; comma-separated; constraints: PATIENT.json beside one, else automatic)")
       .option("ct", "instead: time the whole run on the bundled CT resampled to NX,NY,NZ voxels (e.g. 512,512,300)")
       .flag("json", "print JSON");
   add_transfer_options(args);
@@ -223,7 +224,7 @@ int cmd_bench(const Argv& argv) {
   if (args.has("patient")) {
     std::stringstream ss(args.get("patient"));
     for (std::string item; std::getline(ss, item, ',');) {
-      if (!std::filesystem::is_regular_file(item)) throw Error(item, "no such patient file");
+      if (!std::filesystem::exists(item)) throw Error(item, "no such patient file or DICOM folder");
       patients.push_back(item);
     }
   }
@@ -235,7 +236,7 @@ int cmd_bench(const Argv& argv) {
     const std::filesystem::path beside = std::filesystem::path(file).replace_extension(".json");
     std::optional<ConstraintSet> set;
     if (std::filesystem::is_regular_file(beside)) set = read_constraint_set(beside.string());
-    results.push_back(time_transfer(read_volume_mesh(file), set, standard, file));
+    results.push_back(time_transfer(load_tet_model(file, segment_options(args)), set, standard, file));
     results.back()["patient"] = file;
     if (!args.has("json")) print_timing(results.back());
   }

@@ -83,26 +83,6 @@ void add_segment_options(Args& args) {
       .option("superior", "voxel axis towards the top of the head (default: from a DICOM series, else +z)");
 }
 
-SegmentOptions segment_options(const Args& args) {
-  SegmentOptions o;
-  if (args.has("skin")) o.skin_threshold = args.number("skin");
-  if (args.has("bone")) o.bone_threshold = args.number("bone");
-  o.orientation.anterior = args.get("anterior");
-  o.orientation.superior = args.get("superior");
-  o.tets.target_edge_length = args.number("edge-length");
-  return o;
-}
-
-// The patient model of a CT, tet mesh or closed surface (core/segment/patient_input.h), with notes on stderr.
-VolumeMesh load_tet_model(const std::string& path, const SegmentOptions& options) {
-  if (is_ct_input(path)) std::cerr << "segmenting the facial soft tissue from the CT " << path << "\n";
-  TerminalProgress progress;  // the segmentation's steps (about 15 s for the bundled CT)
-  PatientTetModel model = load_patient_model(path, options, progress.callback());
-  progress.finish();
-  if (model.check.reoriented) std::cerr << "note: " << path << ": all tets were negatively oriented; flipped\n";
-  return std::move(model.mesh);
-}
-
 // The constraint set of a model: the given file, else the six sides from its "side_mask".
 ConstraintSet load_constraints(const std::string& path, const VolumeMesh& mesh, const std::string& mesh_path) {
   if (!path.empty()) return read_constraint_set(path);
@@ -158,6 +138,25 @@ VolumeMesh parameterized_tet_mesh(const ModelParameterization& p, const VolumeMe
 }
 
 }  // namespace
+
+SegmentOptions segment_options(const Args& args) {
+  SegmentOptions o;
+  if (args.has("skin")) o.skin_threshold = args.number("skin");
+  if (args.has("bone")) o.bone_threshold = args.number("bone");
+  o.orientation.anterior = args.get("anterior");
+  o.orientation.superior = args.get("superior");
+  o.tets.target_edge_length = args.number("edge-length");
+  return o;
+}
+
+VolumeMesh load_tet_model(const std::string& path, const SegmentOptions& options) {
+  if (is_ct_input(path)) std::cerr << "segmenting the facial soft tissue from the CT " << path << "\n";
+  TerminalProgress progress;  // the segmentation's steps (about 10 s for the bundled CT)
+  PatientTetModel model = load_patient_model(path, options, progress.callback());
+  progress.finish();
+  if (model.check.reoriented) std::cerr << "note: " << path << ": all tets were negatively oriented; flipped\n";
+  return std::move(model.mesh);
+}
 
 struct TransferInputs {
   BundledModel standard;

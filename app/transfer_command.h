@@ -9,6 +9,7 @@
 #include "app/report.h"
 #include "core/mesh.h"
 #include "core/quality/surface_distance.h"
+#include "core/segment/soft_tissue.h"
 #include "core/transfer_pipeline.h"
 
 namespace facehex::cli {
@@ -30,6 +31,13 @@ std::optional<ModelParameterization> cached_standard_parameterization(const std:
 // The options execute_transfer reads: --standard, --standard-constraints, --standard-domain, the field and the
 // segmentation options.
 void add_transfer_options(Args& args);
+
+// The segmentation options of add_transfer_options (--edge-length, --skin, --bone, --anterior, --superior).
+SegmentOptions segment_options(const Args& args);
+
+// The patient model of a CT (segmented, its steps shown on the terminal), tet mesh or closed surface
+// (core/segment/patient_input.h), with notes on stderr.
+VolumeMesh load_tet_model(const std::string& path, const SegmentOptions& options);
 
 // patient_constraints: a constraint-set file, or empty for the automatic constraints.
 TransferOutputs execute_transfer(const Args& args, const std::string& patient, const std::string& patient_constraints);

@@ -344,7 +344,7 @@ TEST_F(Cli, BenchTimesTheStagesOfAGivenPatient) {
 
   r = run("bench --patient " + path("missing.vtu"));
   EXPECT_NE(r.status, 0);
-  EXPECT_NE(r.output.find("missing.vtu: no such patient file"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("missing.vtu: no such patient file or DICOM folder"), std::string::npos) << r.output;
 }
 
 TEST_F(Cli, AFailedRunOrTemplateRemovesTheFoldersItCreatedAndKeepsAnExistingOne) {
