@@ -271,6 +271,8 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
   struct Step {
     double moved = 0, edge = 0;
   };
+  std::vector<Eigen::Matrix3d> hessian(nv);  // each vertex's last finite-difference Hessian in space
+  std::vector<char> has_hessian(nv, 0);
   auto step_vertex = [&](int v) -> Step {
     Eigen::Vector3d gx;
     const double e0 = vertex_energy(v, &gx);
@@ -295,16 +297,20 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
     edge /= std::max(1, edges);
     // Newton direction: Hessian in space by finite differences of the analytic gradient, pulled back to the
     // parameters (J^T H J) and restricted to the movable directions; steepest descent if not positive definite.
-    const double h = 1e-5 * edge;
-    Eigen::Matrix3d Hx;
-    for (int d = 0; d < 3; ++d) {
-      Eigen::Vector3d gd;
-      mesh.V(v, d) += h;
-      vertex_energy(v, &gd);
-      mesh.V(v, d) = x0(d);
-      Hx.col(d) = (gd - gx) / h;
+    // The finite differences are refreshed every options.hessian_every_sweeps sweeps and reused in between.
+    Eigen::Matrix3d& Hx = hessian[v];
+    if (!has_hessian[v] || report.sweeps % std::max(1, options.hessian_every_sweeps) == 0) {
+      const double h = 1e-5 * edge;
+      for (int d = 0; d < 3; ++d) {
+        Eigen::Vector3d gd;
+        mesh.V(v, d) += h;
+        vertex_energy(v, &gd);
+        mesh.V(v, d) = x0(d);
+        Hx.col(d) = (gd - gx) / h;
+      }
+      Hx = 0.5 * (Hx + Hx.transpose()).eval();
+      has_hessian[v] = 1;
     }
-    Hx = 0.5 * (Hx + Hx.transpose()).eval();
     const Eigen::Matrix3d Hp =
         M * J.transpose() * Hx * J * M + (Eigen::Matrix3d::Identity() - M) * (J.transpose() * Hx * J).norm();
     const Eigen::LLT<Eigen::Matrix3d> llt(Hp);

@@ -55,6 +55,11 @@ struct UntangleOptions {
   bool whole_mesh = false;
   int rings = 2;
   int max_sweeps = 60;
+  // A vertex's Newton step uses a finite-difference Hessian of its energy (3 of the step's 4 gradient evaluations);
+  // it is recomputed every this many sweeps and reused in between (the line search keeps every step a descent). On
+  // the bundled patient, 3 instead of 1: relaxation 9.7 to 7.3 s, repair 3.5 to 1.7 s, dihedral change 10.95 to
+  // 10.98 deg, 13 instead of 17 folds left to the repair.
+  int hessian_every_sweeps = 3;
   // The line search starts from this multiple of the Newton step, then halves (successive over-relaxation): long,
   // smooth moves, which Gauss-Seidel sweeps propagate slowly, need fewer sweeps. The transfer's shape relaxation uses
   // 1.5 (on the bundled patient a lower energy in 60 sweeps: dihedral change 11.0 deg instead of 11.3); the repair
