@@ -27,7 +27,6 @@
 #include "core/resources.h"
 #include "core/segment/ct_volume.h"
 #include "core/segment/voxel_grid.h"
-#include "core/standard/closed_domain.h"
 #include "core/stopwatch.h"
 #include "core/transfer_pipeline.h"
 
@@ -107,6 +106,7 @@ struct BenchStandard {
   VolumeMesh mesh;
   Eigen::MatrixXd uvw;
   std::map<std::string, double> feature_values;
+  HarmonicFieldsOptions fields;  // --iterations, --order: for the patient too
 };
 
 BenchStandard bench_standard(const Args& args) {
@@ -115,13 +115,13 @@ BenchStandard bench_standard(const Args& args) {
       args.has("standard-constraints") ? args.get("standard-constraints") : files.constraints;
   BenchStandard b;
   b.mesh = read_volume_mesh(files.mesh);
-  const StandardDomain domain = closed_domain(b.mesh);
+  b.fields = field_options(args);
+  const StandardDomain domain = standard_domain(b.mesh, args.get("standard-domain"));
   const ConstraintSet set = read_constraint_set(constraints);
   const std::optional<ModelParameterization> cached =
-      cached_standard_parameterization(parameterization_cache_path(files.mesh), domain, set, HarmonicFieldsOptions{});
+      cached_standard_parameterization(parameterization_cache_path(files.mesh), domain, set, b.fields);
   const ModelParameterization param =
-      cached ? *cached
-             : parameterize_model(domain.V, domain.T, domain.side_mask, set, constraints, HarmonicFieldsOptions{});
+      cached ? *cached : parameterize_model(domain.V, domain.T, domain.side_mask, set, constraints, b.fields);
   b.uvw = param.fields.uvw.topRows(b.mesh.num_vertices());
   b.feature_values = feature_values(set);
   return b;
@@ -146,7 +146,7 @@ nlohmann::json time_transfer(VolumeMesh patient, const std::optional<ConstraintS
       set ? *set : automatic_constraints(patient.V, side_mask, standard.feature_values, kFeatureBand, nullptr);
   const ResolvedConstraints constraints = resolve_constraints(used, patient.V, patient.tets(), side_mask, source);
   stages["constraints"] = clock.lap();
-  const HarmonicFields fields(patient.V, patient.tets(), constraints, HarmonicFieldsOptions{});
+  const HarmonicFields fields(patient.V, patient.tets(), constraints, standard.fields);
   const HarmonicFieldsResult r = fields.compute();
   clock.lap();
   for (const auto& [name, s] : r.seconds) stages[name] = s;

@@ -65,16 +65,6 @@ void add_field_options(Args& args) {
       .option("order", "orthogonalization order: basic, second, third field (e.g. wuv)", "wuv");
 }
 
-HarmonicFieldsOptions field_options(const Args& args) {
-  HarmonicFieldsOptions o;
-  o.orthogonality_iterations = args.integer("iterations");
-  const std::string order = args.get("order");
-  if (order.size() != 3 || std::set<char>(order.begin(), order.end()) != std::set<char>{'u', 'v', 'w'})
-    throw Error("--order", "expects a permutation of u, v, w such as wuv, got '" + order + "'");
-  for (int i = 0; i < 3; ++i) o.order[i] = order[i] - 'u';
-  return o;
-}
-
 void add_segment_options(Args& args) {
   args.option("skin", "skin threshold in the file's units (default: from the histogram)")
       .option("bone", "bone threshold in the file's units (default: from the histogram)")
@@ -89,13 +79,6 @@ ConstraintSet load_constraints(const std::string& path, const VolumeMesh& mesh, 
   if (side_mask_of(mesh).size() == 0)
     throw Error(mesh_path, "no constraint set given and the model has no \"side_mask\" array (use --constraints)");
   return side_constraints();
-}
-
-// The tet domain a hex standard is parameterized on: "closed" (openings filled) or "auxiliary" (the paper's).
-StandardDomain standard_domain(const VolumeMesh& hex, const std::string& kind) {
-  if (kind == "closed") return closed_domain(hex);
-  if (kind == "auxiliary") return auxiliary_domain(hex);
-  throw Error("--standard-domain", "expects closed or auxiliary, got '" + kind + "'");
 }
 
 void write_json(const std::string& path, const json& j) { write_text_file(path, j.dump(2) + "\n"); }
@@ -138,6 +121,22 @@ VolumeMesh parameterized_tet_mesh(const ModelParameterization& p, const VolumeMe
 }
 
 }  // namespace
+
+HarmonicFieldsOptions field_options(const Args& args) {
+  HarmonicFieldsOptions o;
+  o.orthogonality_iterations = args.integer("iterations");
+  const std::string order = args.get("order");
+  if (order.size() != 3 || std::set<char>(order.begin(), order.end()) != std::set<char>{'u', 'v', 'w'})
+    throw Error("--order", "expects a permutation of u, v, w such as wuv, got '" + order + "'");
+  for (int i = 0; i < 3; ++i) o.order[i] = order[i] - 'u';
+  return o;
+}
+
+StandardDomain standard_domain(const VolumeMesh& hex, const std::string& kind) {
+  if (kind == "closed") return closed_domain(hex);
+  if (kind == "auxiliary") return auxiliary_domain(hex);
+  throw Error("--standard-domain", "expects closed or auxiliary, got '" + kind + "'");
+}
 
 SegmentOptions segment_options(const Args& args) {
   SegmentOptions o;

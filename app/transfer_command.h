@@ -10,6 +10,7 @@
 #include "core/mesh.h"
 #include "core/quality/surface_distance.h"
 #include "core/segment/soft_tissue.h"
+#include "core/standard_domain.h"
 #include "core/transfer_pipeline.h"
 
 namespace facehex::cli {
@@ -31,6 +32,13 @@ std::optional<ModelParameterization> cached_standard_parameterization(const std:
 // The options execute_transfer reads: --standard, --standard-constraints, --standard-domain, the field and the
 // segmentation options.
 void add_transfer_options(Args& args);
+
+// The field options of add_transfer_options (--iterations, --order).
+HarmonicFieldsOptions field_options(const Args& args);
+
+// The tet domain a hex standard is parameterized on (--standard-domain): "closed" (openings filled) or "auxiliary"
+// (the paper's: its cells split into tets).
+StandardDomain standard_domain(const VolumeMesh& hex, const std::string& kind);
 
 // The segmentation options of add_transfer_options (--edge-length, --skin, --bone, --anterior, --superior).
 SegmentOptions segment_options(const Args& args);

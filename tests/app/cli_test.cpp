@@ -342,6 +342,16 @@ TEST_F(Cli, BenchTimesTheStagesOfAGivenPatient) {
   EXPECT_GT(sum, 0.0);
   EXPECT_LE(sum, b["total_seconds"].get<double>() + 1e-9);
 
+  // The field options apply, as in run: two orthogonality iterations timed, not six.
+  r = run("bench --patient " + path("box.vtu") + " --iterations 2 --json");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const nlohmann::json two = nlohmann::json::parse(r.output.substr(r.output.find('[')))[0]["stages"];
+  EXPECT_TRUE(two.contains("orthogonality_iteration_2"));
+  EXPECT_FALSE(two.contains("orthogonality_iteration_3"));
+  r = run("bench --patient " + path("box.vtu") + " --standard-domain cubes");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("--standard-domain: expects closed or auxiliary"), std::string::npos) << r.output;
+
   r = run("bench --patient " + path("missing.vtu"));
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("missing.vtu: no such patient file or DICOM folder"), std::string::npos) << r.output;
