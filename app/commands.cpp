@@ -1,6 +1,7 @@
 #include "app/commands.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -70,7 +71,15 @@ void add_segment_options(Args& args) {
       .option("bone", "bone threshold in the file's units (default: from the histogram)")
       .option("anterior",
               "voxel axis the face looks to: +x -x +y -y +z -z (default: from a DICOM series' orientation, else +y)")
-      .option("superior", "voxel axis towards the top of the head (default: from a DICOM series, else +z)");
+      .option("superior", "voxel axis towards the top of the head (default: from a DICOM series, else +z)")
+      .option("top-cut",
+              "height z (mm, segmentation frame) of the top cut (default: --face-height above the bottom cut)")
+      .option("bottom-cut", "height z (mm) of the bottom cut (default: --chin-clearance below the chin's bone)")
+      .option("posterior-cut", "y (mm) of the posterior cut (default: --ear-clearance in front of the ears)")
+      .option("mid-plane", "x (mm) of the plane between the u0 and u1 ends (default: the head's mean x)")
+      .option("face-height", "mm from the bottom to the top cut when --top-cut is not given", "130")
+      .option("chin-clearance", "mm from the chin's bone down to the bottom cut", "10")
+      .option("ear-clearance", "mm from the front of the ears forward to the posterior cut", "10");
 }
 
 // The constraint set of a model: the given file, else the six sides from its "side_mask".
@@ -145,6 +154,26 @@ SegmentOptions segment_options(const Args& args) {
   o.orientation.anterior = args.get("anterior");
   o.orientation.superior = args.get("superior");
   o.tets.target_edge_length = args.number("edge-length");
+  const auto finite = [&](const std::string& name) {
+    const double x = args.number(name);
+    if (!std::isfinite(x))
+      throw Error("--" + name, "expects a finite number of millimetres, got '" + args.get(name) + "'");
+    return x;
+  };
+  const auto not_negative = [&](const std::string& name) {
+    const double x = finite(name);
+    if (x < 0) throw Error("--" + name, "expects a distance of 0 mm or more, got '" + args.get(name) + "'");
+    return x;
+  };
+  FaceCutOptions& cuts = o.cuts;
+  if (args.has("top-cut")) cuts.top_z = finite("top-cut");
+  if (args.has("bottom-cut")) cuts.bottom_z = finite("bottom-cut");
+  if (args.has("posterior-cut")) cuts.posterior_y = finite("posterior-cut");
+  if (args.has("mid-plane")) cuts.centre_x = finite("mid-plane");
+  cuts.face_height = not_negative("face-height");
+  if (cuts.face_height == 0) throw Error("--face-height", "expects a height above 0 mm");
+  cuts.chin_clearance = not_negative("chin-clearance");
+  cuts.ear_clearance = not_negative("ear-clearance");
   return o;
 }
 
@@ -153,6 +182,9 @@ VolumeMesh load_tet_model(const std::string& path, const SegmentOptions& options
   TerminalProgress progress;  // the segmentation's steps (about 10 s for the bundled CT)
   PatientTetModel model = load_patient_model(path, options, progress.callback());
   progress.finish();
+  if (model.thresholds && model.cuts)
+    std::cerr << "segmentation: " << segmentation_summary(*model.thresholds, *model.cuts)
+              << "\n  (change with --skin, --bone, --top-cut, --bottom-cut, --posterior-cut, --mid-plane)\n";
   if (model.check.reoriented) std::cerr << "note: " << path << ": all tets were negatively oriented; flipped\n";
   return std::move(model.mesh);
 }

@@ -61,7 +61,8 @@ void AngleHistogram::paintEvent(QPaintEvent*) {
   p.drawText(QRect(8, 4 + line, width() - 16, line), Qt::AlignLeft,
              tr("mean |90\u00b0 \u2212 angle|: %1\u00b0 before, %2\u00b0 after;  within 10\u00b0 of 90\u00b0: "
                 "%3% \u2192 %4%")
-                 .arg(before.mean_deviation_from_90, 0, 'f', 1).arg(after.mean_deviation_from_90, 0, 'f', 1)
+                 .arg(before.mean_deviation_from_90, 0, 'f', 1)
+                 .arg(after.mean_deviation_from_90, 0, 'f', 1)
                  .arg(100 * before.fraction_within_10_of_90, 0, 'f', 0)
                  .arg(100 * after.fraction_within_10_of_90, 0, 'f', 0));
 
@@ -69,8 +70,8 @@ void AngleHistogram::paintEvent(QPaintEvent*) {
   const int left = plot.left(), top = plot.top(), right = width() - fm.horizontalAdvance("180\u00b0"),
             bottom = height() - line - 10;
   if (right - left < 60 || bottom - top < 40) return;
-  const double ymax = std::max(1.0, std::max(*std::max_element(pb.begin(), pb.end()),
-                                             *std::max_element(pa.begin(), pa.end())));
+  const double ymax =
+      std::max(1.0, std::max(*std::max_element(pb.begin(), pb.end()), *std::max_element(pa.begin(), pa.end())));
   const double step = niceStep(ymax);
   const double top_value = std::ceil(ymax / step) * step;
   auto y = [&](double v) { return bottom - (bottom - top) * v / top_value; };
@@ -78,8 +79,7 @@ void AngleHistogram::paintEvent(QPaintEvent*) {
   for (double v = 0; v <= top_value + 1e-9; v += step) p.drawLine(QPointF(left, y(v)), QPointF(right, y(v)));
   p.setPen(Qt::black);
   for (double v = 0; v <= top_value + 1e-9; v += step)
-    p.drawText(QRectF(0, y(v) - line / 2.0, left - 4, line), Qt::AlignRight | Qt::AlignVCenter,
-               QString("%1%").arg(v));
+    p.drawText(QRectF(0, y(v) - line / 2.0, left - 4, line), Qt::AlignRight | Qt::AlignVCenter, QString("%1%").arg(v));
 
   const int bins = static_cast<int>(pb.size());
   const double binWidth = double(right - left) / bins;

@@ -1,9 +1,9 @@
 #pragma once
 // The paper's Fig. 6 for the active model: the histogram of the angles between the three pairs of field gradients
 // in every tet, before and after the orthogonality improvement (a good parameterization piles up at 90 degrees).
-#include "ui/session_model.h"
-
 #include <QWidget>
+
+#include "ui/session_model.h"
 
 namespace facehex::gui {
 

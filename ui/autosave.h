@@ -1,9 +1,9 @@
 #pragma once
 // Writes a model's constraint set to a file under QStandardPaths::AppDataLocation after every edit (and undo), so a
 // crash loses no placed constraint; File > Recover loads it back as an ordinary, undoable load.
-#include "ui/session_model.h"
-
 #include <QObject>
+
+#include "ui/session_model.h"
 
 namespace facehex::gui {
 

@@ -1,7 +1,5 @@
 #include "ui/constraint_panel.h"
 
-#include "ui/palette.h"
-
 #include <QAction>
 #include <QComboBox>
 #include <QDoubleSpinBox>
@@ -18,6 +16,8 @@
 #include <QTableWidget>
 #include <QToolButton>
 #include <QVBoxLayout>
+
+#include "ui/palette.h"
 
 namespace facehex::gui {
 namespace {
@@ -40,9 +40,14 @@ QString describe(const Selection& s) {
   if (s.side) return QObject::tr("side %1").arg(kSideNames[*s.side]);
   const PlaneSelection& p = *s.plane;
   return QObject::tr("plane through (%1, %2, %3) normal (%4, %5, %6), band %7 mm, %8")
-      .arg(p.point.x(), 0, 'f', 1).arg(p.point.y(), 0, 'f', 1).arg(p.point.z(), 0, 'f', 1)
-      .arg(p.normal.x(), 0, 'f', 2).arg(p.normal.y(), 0, 'f', 2).arg(p.normal.z(), 0, 'f', 2)
-      .arg(p.band, 0, 'g', 3).arg(QString::fromStdString(p.region));
+      .arg(p.point.x(), 0, 'f', 1)
+      .arg(p.point.y(), 0, 'f', 1)
+      .arg(p.point.z(), 0, 'f', 1)
+      .arg(p.normal.x(), 0, 'f', 2)
+      .arg(p.normal.y(), 0, 'f', 2)
+      .arg(p.normal.z(), 0, 'f', 2)
+      .arg(p.band, 0, 'g', 3)
+      .arg(QString::fromStdString(p.region));
 }
 
 QComboBox* fieldCombo(QWidget* parent) {
@@ -217,7 +222,9 @@ void ConstraintPanel::refreshPlane() {
   const size_t n = session_->planeSelection().size();
   selectionCount_->setText(tr("<b>%L1</b> vertices selected, origin (%2, %3, %4) mm")
                                .arg(n)
-                               .arg(p.origin.x(), 0, 'f', 1).arg(p.origin.y(), 0, 'f', 1).arg(p.origin.z(), 0, 'f', 1));
+                               .arg(p.origin.x(), 0, 'f', 1)
+                               .arg(p.origin.y(), 0, 'f', 1)
+                               .arg(p.origin.z(), 0, 'f', 1));
   add_->setEnabled(n > 0);
 }
 
@@ -283,8 +290,7 @@ void ConstraintPanel::addFromPlane() {
   const Role r = session_->activeRole();
   if (!session_->hasModel(r)) return;
   QString name = name_->text().trimmed();
-  if (name.isEmpty())
-    name = tr("%1 = %2").arg(field_->currentText()).arg(value_->value());
+  if (name.isEmpty()) name = tr("%1 = %2").arg(field_->currentText()).arg(value_->value());
   session_->addPlaneConstraint(r, name, field_->currentIndex(), value_->value());
   name_->clear();
 }

@@ -3,9 +3,9 @@
 // vertices it selects, a form that turns the selection into a constraint (name, field, value), and the editable
 // list (rename, change field or value, show/hide, delete). File operations and undo/redo are the main window's
 // actions, shown here as buttons. Everything goes through the SessionModel.
-#include "ui/session_model.h"
-
 #include <QWidget>
+
+#include "ui/session_model.h"
 
 class QAction;
 class QComboBox;

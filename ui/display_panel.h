@@ -2,9 +2,9 @@
 // What the views show: the field colouring and iso-lines, the cut at the plane, the gradient glyphs before or after
 // the orthogonality improvement, and the hex meshes by quality with the threshold that isolates bad elements.
 // Edits the session's DisplaySettings only.
-#include "ui/session_model.h"
-
 #include <QWidget>
+
+#include "ui/session_model.h"
 
 class QCheckBox;
 class QComboBox;

@@ -10,6 +10,7 @@
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QMimeData>
+#include <QPainter>
 #include <QProgressBar>
 #include <QPushButton>
 #include <QSettings>
@@ -28,6 +29,7 @@
 #include "ui/display_panel.h"
 #include "ui/model_view.h"
 #include "ui/quality_panel.h"
+#include "ui/segmentation_dialog.h"
 #include "ui/transfer_controller.h"
 
 namespace facehex::gui {
@@ -67,6 +69,11 @@ MainWindow::MainWindow(QWidget* parent)
     connect(view(r), &ModelView::cameraOrientationChanged, other, &ModelView::setCameraOrientation);
   }
 
+  segmentationDialog_ = new SegmentationDialog(this);
+  connect(segmentationDialog_, &QDialog::accepted, this, [this] {
+    if (!controller_->openPatient(segmentationCt_, segmentationDialog_->options()))
+      statusBar()->showMessage(tr("Busy: wait for the running job or cancel it"));
+  });
   createActions();
   createMenusAndToolbar();
   createDocks();
@@ -107,6 +114,11 @@ void MainWindow::createActions() {
   openPatient_->setToolTip(
       tr("Open a head CT (MetaImage, NIfTI, NRRD: segmented on opening), a patient tet model "
          "or a closed surface (VTU, VTK, Gmsh, TetGen, ANSYS, STL, OBJ, PLY, VTP)"));
+  resegment_ = action(tr("Segment &again..."), QKeySequence(), [this] {
+    if (session_->hasModel(Role::Patient)) askSegmentation(session_->model(Role::Patient).path);
+  });
+  resegment_->setToolTip(
+      tr("Segment the patient's CT again with other thresholds or cuts (starting from the ones used)"));
   openDicom_ = action(tr("Open &DICOM folder..."), QKeySequence(), &MainWindow::openDicomDialog);
   openDicom_->setToolTip(tr("Open a head CT stored as a folder of DICOM slices (segmented on opening)"));
   openDemo_ = action(tr("Open &demo"), QKeySequence(), [this] { controller_->openDemo(); });
@@ -154,8 +166,8 @@ void MainWindow::createActions() {
       tr("After the mapping, slide vertices along the patient towards the standard's cell "
          "shapes (the CLI's --shape-relaxation; off: the paper's plain mapping)"));
   about_ = action(tr("&About FaceHex"), QKeySequence(), &MainWindow::about);
-  for (QAction* a : {openPatient_, openDicom_, openDemo_, loadConstraints_, mergeConstraints_, saveConstraints_,
-                     export_, computeFields_, transfer_, cancel_, recover_, features_})
+  for (QAction* a : {openPatient_, resegment_, openDicom_, openDemo_, loadConstraints_, mergeConstraints_,
+                     saveConstraints_, export_, computeFields_, transfer_, cancel_, recover_, features_})
     a->setObjectName(a->text().remove('&').remove("...").replace(' ', '_'));
 }
 
@@ -163,6 +175,7 @@ void MainWindow::createMenusAndToolbar() {
   QMenu* file = menuBar()->addMenu(tr("&File"));
   file->addAction(openPatient_);
   file->addAction(openDicom_);
+  file->addAction(resegment_);
   recentMenu_ = file->addMenu(tr("Open &recent"));
   file->addAction(openDemo_);
   QMenu* standards = file->addMenu(tr("Open &standard"));
@@ -256,6 +269,7 @@ void MainWindow::updateActions() {
   const bool active = session_->hasModel(session_->activeRole());
   const bool both = session_->hasModel(Role::Standard) && session_->hasModel(Role::Patient);
   for (QAction* a : {openPatient_, openDicom_, openDemo_, openStandardFile_}) a->setEnabled(!busy);
+  resegment_->setEnabled(!busy && session_->hasModel(Role::Patient) && session_->model(Role::Patient).cuts);
   standardChoice_->setEnabled(!busy);
   for (QAction* a : {loadConstraints_, mergeConstraints_, saveConstraints_}) a->setEnabled(active);
   features_->setEnabled(active && session_->model(session_->activeRole()).domain.side_mask.size() > 0);
@@ -324,7 +338,24 @@ void MainWindow::openDicomDialog() {
 }
 
 void MainWindow::openPatient(const QString& path) {
-  if (!controller_->openPatient(path)) statusBar()->showMessage(tr("Busy: wait for the running job or cancel it"));
+  if (is_ct_input(path.toStdString()))
+    askSegmentation(path);
+  else if (!controller_->openPatient(path))
+    statusBar()->showMessage(tr("Busy: wait for the running job or cancel it"));
+}
+
+void MainWindow::askSegmentation(const QString& ct) {
+  segmentationCt_ = ct;
+  segmentationDialog_->setCt(ct);
+  // Segmenting the loaded patient's CT again: start from what was used. Another CT keeps the dialog's last options.
+  if (session_->hasModel(Role::Patient)) {
+    const LoadedModel& patient = session_->model(Role::Patient);
+    if (patient.path == ct && patient.segmentOptions && patient.thresholds && patient.cuts) {
+      segmentationDialog_->setOptions(*patient.segmentOptions);
+      segmentationDialog_->showFound(*patient.thresholds, *patient.cuts);
+    }
+  }
+  segmentationDialog_->open();
 }
 
 void MainWindow::constraintsDialog(bool merge) {
@@ -354,7 +385,12 @@ void MainWindow::exportDialog() {
 
 QImage MainWindow::snapshot() {
   for (ModelView* v : views_) v->render();
-  return grab().toImage();
+  QImage image = grab().toImage();
+  if (segmentationDialog_->isVisible()) {
+    QPainter painter(&image);
+    painter.drawPixmap(mapFromGlobal(segmentationDialog_->geometry().topLeft()), segmentationDialog_->grab());
+  }
+  return image;
 }
 
 bool MainWindow::saveScreenshot(const QString& path) {

@@ -3,10 +3,10 @@
 // analysis tabs (angle histogram, quality tables), menus and toolbar, and a status bar with the mesh sizes, the
 // progress of the running job and its cancel button. It owns the session, the controller and the autosave, and
 // routes every error to one replaceable reporter (a message box by default) with the core's message unchanged.
-#include "ui/session_model.h"
-
 #include <QMainWindow>
 #include <functional>
+
+#include "ui/session_model.h"
 
 class QComboBox;
 class QLabel;
@@ -19,6 +19,7 @@ namespace facehex::gui {
 class ConstraintAutosave;
 class ConstraintPanel;
 class ModelView;
+class SegmentationDialog;
 class TransferController;
 
 class MainWindow : public QMainWindow {
@@ -37,7 +38,12 @@ class MainWindow : public QMainWindow {
   void setErrorReporter(ErrorReporter reporter) { reportError_ = std::move(reporter); }
   void reportError(const QString& message) { reportError_(message); }
 
-  // The window as an image, 3D views included (rendered first).
+  // Opens a patient as File > Open does: a CT first asks for its segmentation options (segmentationDialog(), not
+  // blocking; Segment starts the job), anything else is opened at once.
+  void openPatient(const QString& path);
+  SegmentationDialog* segmentationDialog() const { return segmentationDialog_; }
+
+  // The window as an image, 3D views included (rendered first), with an open dialog drawn where it is.
   QImage snapshot();
   bool saveScreenshot(const QString& path);
 
@@ -55,7 +61,7 @@ class MainWindow : public QMainWindow {
   void updateStandardChoice();
   void openPatientDialog();
   void openDicomDialog();
-  void openPatient(const QString& path);
+  void askSegmentation(const QString& ct);
   void onStandardChosen(int index);
   void constraintsDialog(bool merge);
   void saveConstraintsDialog();
@@ -71,11 +77,13 @@ class MainWindow : public QMainWindow {
   ConstraintAutosave* autosave_;
   std::array<ModelView*, 2> views_{};
   ConstraintPanel* constraintPanel_ = nullptr;
+  SegmentationDialog* segmentationDialog_ = nullptr;
+  QString segmentationCt_;  // the CT the dialog is asking about
   ErrorReporter reportError_;
 
-  QAction *openPatient_, *openDicom_, *openDemo_, *openStandardFile_, *loadConstraints_, *mergeConstraints_,
-      *saveConstraints_, *recover_, *export_, *screenshot_, *quit_, *undo_, *redo_, *computeFields_, *transfer_,
-      *cancel_, *allowInverted_, *shapeRelaxation_, *features_, *about_;
+  QAction *openPatient_, *resegment_, *openDicom_, *openDemo_, *openStandardFile_, *loadConstraints_,
+      *mergeConstraints_, *saveConstraints_, *recover_, *export_, *screenshot_, *quit_, *undo_, *redo_, *computeFields_,
+      *transfer_, *cancel_, *allowInverted_, *shapeRelaxation_, *features_, *about_;
   QMenu* recentMenu_ = nullptr;
   QComboBox* standardChoice_ = nullptr;
   QLabel* sizes_ = nullptr;

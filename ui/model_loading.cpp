@@ -1,5 +1,8 @@
 #include "ui/model_loading.h"
 
+#include <QFileInfo>
+#include <filesystem>
+
 #include "core/automatic_constraints.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh_check.h"
@@ -9,11 +12,8 @@
 #include "core/side_mask.h"
 #include "core/standard/closed_domain.h"
 #include "core/synthetic_shell.h"
-#include "core/tetgen/tetrahedralize.h"
 #include "core/tet_topology.h"
-
-#include <QFileInfo>
-#include <filesystem>
+#include "core/tetgen/tetrahedralize.h"
 
 namespace facehex::gui {
 namespace fs = std::filesystem;
@@ -62,9 +62,14 @@ QString set_constraints(LoadedModel& m, const std::string& path, const std::map<
 
 }  // namespace
 
-LoadedModel load_patient(const std::string& path, const std::map<std::string, double>& feature_values,
-                         const ProgressCallback& progress, QString& constraints_note) {
-  LoadedModel m = tet_model(load_patient_model(path, SegmentOptions{}, progress).mesh);
+LoadedModel load_patient(const std::string& path, const SegmentOptions& segment_options,
+                         const std::map<std::string, double>& feature_values, const ProgressCallback& progress,
+                         QString& constraints_note) {
+  PatientTetModel patient = load_patient_model(path, segment_options, progress);
+  LoadedModel m = tet_model(std::move(patient.mesh));
+  if (patient.cuts) m.segmentOptions = segment_options;
+  m.thresholds = patient.thresholds;
+  m.cuts = patient.cuts;
   m.path = QString::fromStdString(path);
   m.name = QFileInfo(m.path).fileName();
   fs::path constraints = fs::path(path).replace_extension(".json");
@@ -89,7 +94,7 @@ LoadedModel load_standard(const std::string& name_or_path) {
 LoadedModel demo_patient(const std::map<std::string, double>& feature_values, QString& constraints_note) {
   if (!bundled_patients().empty()) {
     const BundledModel b = default_patient();
-    LoadedModel m = load_patient(b.mesh, feature_values, {}, constraints_note);
+    LoadedModel m = load_patient(b.mesh, SegmentOptions{}, feature_values, {}, constraints_note);
     m.name = QString::fromStdString(b.name);
     return m;
   }

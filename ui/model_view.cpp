@@ -1,15 +1,6 @@
 #include "ui/model_view.h"
 
-#include "core/quality/vtk_grid.h"
-#include "ui/palette.h"
-
-#include <QLabel>
-#include <QStackedWidget>
-#include <QVBoxLayout>
 #include <QVTKOpenGLNativeWidget.h>
-#include <algorithm>
-#include <optional>
-#include <set>
 #include <vtkActor.h>
 #include <vtkArrowSource.h>
 #include <vtkCamera.h>
@@ -38,6 +29,16 @@
 #include <vtkThreshold.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
+
+#include <QLabel>
+#include <QStackedWidget>
+#include <QVBoxLayout>
+#include <algorithm>
+#include <optional>
+#include <set>
+
+#include "core/quality/vtk_grid.h"
+#include "ui/palette.h"
 
 namespace facehex::gui {
 namespace {
@@ -289,10 +290,10 @@ ModelView::ModelView(SessionModel* session, Role role, QWidget* parent)
   glyphMapper->SetColorModeToDirectScalars();
   p.glyphActor->SetMapper(glyphMapper);
 
-  for (vtkProp* prop : {static_cast<vtkProp*>(p.surfaceActor), static_cast<vtkProp*>(p.isoActor),
-                        static_cast<vtkProp*>(p.hexActor), static_cast<vtkProp*>(p.contextActor),
-                        static_cast<vtkProp*>(p.constraintActor), static_cast<vtkProp*>(p.glyphActor),
-                        static_cast<vtkProp*>(p.scalarBar)})
+  for (vtkProp* prop :
+       {static_cast<vtkProp*>(p.surfaceActor), static_cast<vtkProp*>(p.isoActor), static_cast<vtkProp*>(p.hexActor),
+        static_cast<vtkProp*>(p.contextActor), static_cast<vtkProp*>(p.constraintActor),
+        static_cast<vtkProp*>(p.glyphActor), static_cast<vtkProp*>(p.scalarBar)})
     p.renderer->AddViewProp(prop);
   p.overlay->AddActor(p.selectionActor);
 
@@ -307,7 +308,9 @@ ModelView::ModelView(SessionModel* session, Role role, QWidget* parent)
   p.planeWidget->SetCurrentRenderer(p.renderer);
   p.planeWidget->AddObserver(vtkCommand::InteractionEvent, this, &ModelView::onPlaneInteraction);
 
-  connect(session_, &SessionModel::modelChanged, this, [this](Role r) { if (r == role_) onModelChanged(); });
+  connect(session_, &SessionModel::modelChanged, this, [this](Role r) {
+    if (r == role_) onModelChanged();
+  });
   connect(session_, &SessionModel::resultsChanged, this, &ModelView::onResultsChanged);
   connect(session_, &SessionModel::constraintsChanged, this, [this](Role r) {
     if (r != role_) return;
@@ -392,9 +395,9 @@ void ModelView::updateHeader() {
   if (session_->hasModel(role_)) {
     const LoadedModel& m = session_->model(role_);
     const VolumeMesh& mesh = m.mesh;
-    QString cells = mesh.is_tet_mesh() ? tr("%L1 tets").arg(mesh.num_cells())
-                                       : tr("%L1 hexes, %L2 wedges").arg(mesh.count(CellType::Hex))
-                                             .arg(mesh.count(CellType::Wedge));
+    QString cells = mesh.is_tet_mesh()
+                        ? tr("%L1 tets").arg(mesh.num_cells())
+                        : tr("%L1 hexes, %L2 wedges").arg(mesh.count(CellType::Hex)).arg(mesh.count(CellType::Wedge));
     text += QString(" &nbsp;%1 &nbsp;<span style='color:#666'>%2 vertices, %3</span>")
                 .arg(m.name.toHtmlEscaped(), QString("%L1").arg(mesh.num_vertices()), cells);
     const DisplaySettings& d = session_->display();

@@ -3,12 +3,12 @@
 // a field with iso-lines and optionally cut open at the plane; the vertices of the visible constraints; on the active
 // model, the cutting-plane widget and the vertices it selects; gradient glyphs; and the hex mesh coloured by quality
 // with a threshold. Dragging the plane widget moves the session's plane: the view never edits anything else.
-#include "ui/session_model.h"
-
 #include <Eigen/Core>
 #include <QWidget>
 #include <array>
 #include <memory>
+
+#include "ui/session_model.h"
 
 class QLabel;
 class QStackedWidget;

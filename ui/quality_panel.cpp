@@ -43,9 +43,9 @@ QualityPanel::QualityPanel(SessionModel* session, QWidget* parent) : QWidget(par
   bins << tr("mean") << tr("max");
   distortion_ = table(bins, {tr("patient, % of angles")}, this);
   distortion_->setObjectName("distortionTable");
-  quality_ = table({tr("mean shape"), tr("min shape"), tr("mean SJ"), tr("min SJ"), tr("SJ < 0.3"), tr("inverted"),
-                    tr("cells")},
-                   {tr("standard"), tr("patient")}, this);
+  quality_ = table(
+      {tr("mean shape"), tr("min shape"), tr("mean SJ"), tr("min SJ"), tr("SJ < 0.3"), tr("inverted"), tr("cells")},
+      {tr("standard"), tr("patient")}, this);
   quality_->setObjectName("qualityTable");
   quality_->setToolTip(tr("SJ: scaled Jacobian (1 for a perfect cube, \u2264 0 for an inverted cell)"));
   status_ = new QLabel(this);
@@ -66,7 +66,8 @@ void QualityPanel::refresh() {
   const TransferResult* r = session_->transfer();
   status_->setText(r ? tr("Patient hex mesh: %L1 vertices; %L2 placed inside a parametric tet, %L3 by the nearest "
                           "one.")
-                           .arg(r->statistics.vertices).arg(r->statistics.located_inside)
+                           .arg(r->statistics.vertices)
+                           .arg(r->statistics.located_inside)
                            .arg(r->statistics.located_nearest)
                      : tr("Run the transfer to fill these tables."));
   distortion_->clearContents();

@@ -2,9 +2,9 @@
 // The quality tables of the paper for the last transfer: Table 1, the distortion of the dihedral angles of the
 // mapped mesh against the standard in the paper's bins; Table 2, the element quality (mean shape and the rest) of
 // the standard and of the patient hex mesh.
-#include "ui/session_model.h"
-
 #include <QWidget>
+
+#include "ui/session_model.h"
 
 class QLabel;
 class QTableWidget;

@@ -1,20 +1,20 @@
 #include "ui/scripted_states.h"
 
-#include "core/resources.h"
-#include "ui/main_window.h"
-#include "ui/model_view.h"
-#include "ui/transfer_controller.h"
-
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QLineEdit>
 #include <QTabWidget>
 #include <QTableWidget>
 
+#include "core/resources.h"
+#include "ui/main_window.h"
+#include "ui/model_view.h"
+#include "ui/transfer_controller.h"
+
 namespace facehex::gui {
 namespace {
 
-const QStringList kNames = {"loaded", "plane", "fields", "glyphs", "transfer", "quality", "ct"};
+const QStringList kNames = {"loaded", "plane", "fields", "glyphs", "transfer", "quality", "ct", "segmentation"};
 
 // Runs a job and waits for it; a job that could not start or that failed reports through the window.
 bool runAndWait(MainWindow& window, bool started) {
@@ -37,7 +37,8 @@ std::optional<ScriptedState> scriptedStateFromName(const QString& name) {
 }
 
 QString defaultPatient(ScriptedState state) {
-  return state == ScriptedState::Ct ? QString::fromStdString(default_ct()) : QString();
+  return state == ScriptedState::Ct || state == ScriptedState::Segmentation ? QString::fromStdString(default_ct())
+                                                                            : QString();
 }
 
 bool openInputs(MainWindow& window, const QString& patient, const QString& standard) {
@@ -56,8 +57,16 @@ bool driveToState(MainWindow& window, ScriptedState state) {
     case ScriptedState::Loaded:
       break;
     case ScriptedState::Ct:
+    case ScriptedState::Segmentation:
       d.showPlane = false;  // the sides and the feature lines, unobstructed
       window.findChild<QTableWidget*>("constraintTable")->scrollToBottom();  // the features come after the sides
+      if (state == ScriptedState::Segmentation) {
+        if (!session->model(Role::Patient).cuts) {
+          window.reportError(QObject::tr("the segmentation state needs a CT as the patient"));
+          return false;
+        }
+        window.openPatient(session->model(Role::Patient).path);
+      }
       break;
     case ScriptedState::Plane: {
       // A feature line as a user places one: a horizontal plane at the eyebrows, on the skin.

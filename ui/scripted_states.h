@@ -10,12 +10,14 @@ namespace facehex::gui {
 class MainWindow;
 
 // Ct: a freshly opened CT, segmented, with its sides and automatic constraints (opened from the bundled CT when no
-// patient is given, see defaultPatient).
-enum class ScriptedState { Loaded, Plane, Fields, Glyphs, Transfer, Quality, Ct };
+// patient is given, see defaultPatient). Segmentation: that, with File > Segment again's dialog open, showing the
+// thresholds and cuts the segmentation found.
+enum class ScriptedState { Loaded, Plane, Fields, Glyphs, Transfer, Quality, Ct, Segmentation };
 QStringList scriptedStateNames();  // "loaded", "plane", ...
 std::optional<ScriptedState> scriptedStateFromName(const QString& name);
 
-// The patient a state opens when none is given: the bundled CT for Ct, else empty (the bundled demo).
+// The patient a state opens when none is given: the bundled CT for Ct and Segmentation, else empty (the bundled
+// demo).
 QString defaultPatient(ScriptedState state);
 
 // Opens the inputs and waits: the standard (a bundled name or a file; empty: the bundled default) and the patient

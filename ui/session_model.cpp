@@ -178,8 +178,8 @@ void SessionModel::updateConstraintVertices(Role role) {
   problems.assign(m.constraints.set.constraints.size(), {});
   for (size_t i = 0; i < vertices.size(); ++i) {
     try {
-      vertices[i] = select_vertices(m.constraints.set.constraints[i].select, m.domain.V, m.boundary,
-                                    m.domain.side_mask);
+      vertices[i] =
+          select_vertices(m.constraints.set.constraints[i].select, m.domain.V, m.boundary, m.domain.side_mask);
       if (vertices[i].empty()) problems[i] = tr("selects no vertex");
     } catch (const std::exception& e) {
       problems[i] = QString::fromStdString(e.what());

@@ -3,18 +3,19 @@
 // models (standard and patient) with their constraint sets, the cutting plane and the vertices it selects, what to
 // display, and the results of the last parameterization and transfer. Widgets edit it, views render from its
 // signals, the TransferController fills in the results. Every constraint edit goes through the undo stack.
-#include "core/automatic_constraints.h"
-#include "core/constraint_set.h"
-#include "core/mesh.h"
-#include "core/quality/hex_quality.h"
-#include "core/standard_domain.h"
-#include "core/transfer_pipeline.h"
-
 #include <QObject>
 #include <QString>
 #include <array>
 #include <optional>
 #include <vector>
+
+#include "core/automatic_constraints.h"
+#include "core/constraint_set.h"
+#include "core/mesh.h"
+#include "core/quality/hex_quality.h"
+#include "core/segment/soft_tissue.h"
+#include "core/standard_domain.h"
+#include "core/transfer_pipeline.h"
 
 class QUndoStack;
 
@@ -32,7 +33,7 @@ struct ConstraintList {
 
 // A model ready for constraint placement and parameterization (built from a file by the controller).
 struct LoadedModel {
-  VolumeMesh mesh;             // standard: hex-dominant mesh; patient: checked, positively oriented tet model
+  VolumeMesh mesh;  // standard: hex-dominant mesh; patient: checked, positively oriented tet model
   // The tets the fields live on and the constraints select from: the patient's own tets, or the standard's
   // parameterization domain (its first rows are the hex vertices). For the patient hex_vertices is 0.
   StandardDomain domain;
@@ -42,6 +43,11 @@ struct LoadedModel {
   QString name;                // short display name
   QString constraintsPath;     // the file its constraints came from, or empty
   ConstraintList constraints;
+  // A patient segmented from a CT: the options it was segmented with, and the thresholds and cuts it used (found or
+  // given); empty for a mesh file.
+  std::optional<SegmentOptions> segmentOptions;
+  std::optional<TissueThresholds> thresholds;
+  std::optional<FaceCuts> cuts;
 
   // What error messages about this model name: its constraint file, else its mesh file, else its name.
   std::string source() const;
@@ -67,13 +73,13 @@ enum class GlyphMode { Off, Before, After };  // gradients before / after the or
 enum class QualityMeasure { Shape, ScaledJacobian };
 
 struct DisplaySettings {
-  int field = -1;             // -1: plain surface; 0, 1, 2: coloured by u, v, w
+  int field = -1;  // -1: plain surface; 0, 1, 2: coloured by u, v, w
   bool isoLines = true;
-  bool clipAtPlane = false;   // cut the model open at the plane to show the fields inside
+  bool clipAtPlane = false;  // cut the model open at the plane to show the fields inside
   GlyphMode glyphs = GlyphMode::Off;
-  bool showHex = false;       // hex meshes coloured by quality instead of the models
+  bool showHex = false;  // hex meshes coloured by quality instead of the models
   QualityMeasure measure = QualityMeasure::Shape;
-  double threshold = 1.0;     // draw only the cells whose quality is at most this
+  double threshold = 1.0;  // draw only the cells whose quality is at most this
   bool showConstraints = true;
   bool showPlane = true;
   bool operator==(const DisplaySettings& o) const;

@@ -14,6 +14,7 @@
 #include "core/io/parameterization_cache.h"
 #include "core/resources.h"
 #include "core/segment/ct_volume.h"
+#include "core/segment/patient_input.h"
 #include "ui/model_loading.h"
 
 namespace facehex::gui {
@@ -115,7 +116,7 @@ bool TransferController::waitUntilIdle(int timeoutMs) {
   return !busy();
 }
 
-bool TransferController::openPatient(const QString& path) {
+bool TransferController::openPatient(const QString& path, const SegmentOptions& segmentOptions) {
   const std::string p = path.toStdString();
   const bool ct = is_ct_input(p);
   // Without a standard there is nothing to value the features with: the patient opens with its six sides.
@@ -124,12 +125,14 @@ bool TransferController::openPatient(const QString& path) {
                                                    : std::map<std::string, double>();
   const QString file = QFileInfo(path).fileName();
   return start(ct ? tr("Segmenting %1").arg(file) : tr("Opening %1").arg(file),
-               [p, ct, values](const ProgressCallback& progress) -> Apply {
+               [p, ct, values, segmentOptions](const ProgressCallback& progress) -> Apply {
                  auto note = std::make_shared<QString>();
-                 auto m = std::make_shared<LoadedModel>(load_patient(p, values, progress, *note));
+                 auto m = std::make_shared<LoadedModel>(load_patient(p, segmentOptions, values, progress, *note));
                  return [m, note, ct](SessionModel& s) {
-                   const QString text = (ct ? tr("Segmented the CT %1: %2; %3") : tr("Opened the patient %1: %2; %3"))
-                                            .arg(m->name, sizeText(*m), *note);
+                   QString text = (ct ? tr("Segmented the CT %1: %2; %3") : tr("Opened the patient %1: %2; %3"))
+                                      .arg(m->name, sizeText(*m), *note);
+                   if (m->thresholds && m->cuts)
+                     text += "; " + QString::fromStdString(segmentation_summary(*m->thresholds, *m->cuts));
                    s.setModel(Role::Patient, std::move(*m));
                    return text;
                  };

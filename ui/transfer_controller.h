@@ -3,13 +3,13 @@
 // thread so the window stays responsive. Progress comes through the core's ProgressCallback, which also carries the
 // cancel request; results are installed in the SessionModel on the GUI thread, unless the model changed meanwhile.
 // Failures are reported as the facehex::Error text, the same line the CLI prints.
-#include "core/progress.h"
-#include "ui/session_model.h"
-
 #include <QFutureWatcher>
 #include <QObject>
 #include <atomic>
 #include <functional>
+
+#include "core/progress.h"
+#include "ui/session_model.h"
 
 namespace facehex::gui {
 
@@ -27,14 +27,15 @@ class TransferController : public QObject {
   void setOptions(const TransferOptions& options) { options_ = options; }
 
   // Jobs on the worker thread; each returns false (and does nothing) while another job runs.
-  // A patient from a head CT (segmented), a tet model or a closed surface; without a constraint file of its own it
-  // gets the automatic constraints, its features valued as the loaded standard's (model_loading.h).
-  bool openPatient(const QString& path);
+  // A patient from a head CT (segmented with `segmentOptions`), a tet model or a closed surface; without a
+  // constraint file of its own it gets the automatic constraints, its features valued as the loaded standard's
+  // (model_loading.h).
+  bool openPatient(const QString& path, const SegmentOptions& segmentOptions = {});
   bool openStandard(const QString& nameOrPath);  // empty: the bundled default
   // A standard (default: the bundled default) and the bundled sample patient.
   bool openDemo(const QString& standard = {});
-  bool computeFields();   // parameterizes every loaded model with its constraint set
-  bool runTransfer();     // maps the standard onto the patient, then measures the quality
+  bool computeFields();  // parameterizes every loaded model with its constraint set
+  bool runTransfer();    // maps the standard onto the patient, then measures the quality
   void cancel();
   // Spins an event loop until no job runs (the scripted states of --screenshot and the tests); false on timeout.
   bool waitUntilIdle(int timeoutMs = 600000);

@@ -1,6 +1,11 @@
 #include "core/segment/patient_input.h"
 
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
 #include "core/io/mesh_io.h"
+#include "core/segment/ct_volume.h"
 
 namespace facehex {
 
@@ -8,7 +13,11 @@ PatientTetModel load_patient_model(const std::string& path, const SegmentOptions
                                    const ProgressCallback& progress) {
   PatientTetModel model;
   if (is_ct_input(path)) {
-    model.mesh = build_patient_model_from_file(path, options, progress);
+    report_progress(progress, "segmentation: reading the CT", 0.0);
+    PatientModel segmented = build_patient_model(read_ct_volume(path, options.orientation), options, progress);
+    model.mesh = std::move(segmented.mesh);
+    model.thresholds = segmented.thresholds;
+    model.cuts = segmented.cuts;
   } else {
     MeshReadOptions read;
     read.target_edge_length = options.tets.target_edge_length;
@@ -16,6 +25,15 @@ PatientTetModel load_patient_model(const std::string& path, const SegmentOptions
   }
   model.check = check_and_orient_tet_mesh(model.mesh, path);
   return model;
+}
+
+std::string segmentation_summary(const TissueThresholds& thresholds, const FaceCuts& cuts) {
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(1) << "skin threshold " << thresholds.skin << ", bone threshold "
+       << thresholds.bone << " (file units); cuts (mm, segmentation frame): top z " << cuts.top_z << ", bottom z "
+       << cuts.bottom_z << ", posterior y " << cuts.posterior_y << ", mid-plane x " << cuts.centre_x;
+  if (std::isfinite(cuts.jaw_z)) text << ", jaw cut rising to z " << cuts.jaw_z << " at the posterior cut";
+  return text.str();
 }
 
 }  // namespace facehex

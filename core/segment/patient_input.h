@@ -2,23 +2,32 @@
 // The patient tet model from whatever the user has: a head CT (segmented, soft_tissue.h), a tet mesh, or a closed
 // surface (tetrahedralized at options.tets.target_edge_length), checked and positively oriented (mesh_check.h).
 // `facehex run`, `facehex segment` and the desktop application's File > Open all start here.
+#include <optional>
+#include <string>
+
 #include "core/mesh.h"
 #include "core/mesh_check.h"
 #include "core/progress.h"
 #include "core/segment/soft_tissue.h"
-
-#include <string>
 
 namespace facehex {
 
 struct PatientTetModel {
   VolumeMesh mesh;     // positive tets; a segmented CT's has point data "side_mask"
   TetMeshCheck check;  // check.reoriented: the file's tets were all negatively oriented and have been flipped
+  // A segmented CT's thresholds and cut planes as used (found or given), for the user to check and to give back
+  // changed (SegmentOptions::cuts); empty for a mesh file.
+  std::optional<TissueThresholds> thresholds;
+  std::optional<FaceCuts> cuts;
 };
 
 // A CT is recognized by is_ct_input (ct_volume.h). Throws facehex::Error naming the file or the segmentation stage;
 // `progress` hears of the segmentation's steps.
 PatientTetModel load_patient_model(const std::string& path, const SegmentOptions& options = {},
                                    const ProgressCallback& progress = {});
+
+// One line for the user: "skin threshold 563.6, bone threshold 1169.4 (file units); cuts (mm, segmentation frame):
+// top z 133.0, bottom z 3.0, posterior y 102.0, mid-plane x 98.7, jaw cut rising to z 22.0 at the posterior cut".
+std::string segmentation_summary(const TissueThresholds& thresholds, const FaceCuts& cuts);
 
 }  // namespace facehex

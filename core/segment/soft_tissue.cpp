@@ -235,10 +235,4 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   return model;
 }
 
-VolumeMesh build_patient_model_from_file(const std::string& path, const SegmentOptions& options,
-                                         const ProgressCallback& progress) {
-  report_progress(progress, "segmentation: reading the CT", 0.0);
-  return build_patient_model(read_ct_volume(path, options.orientation), options, progress).mesh;
-}
-
 }  // namespace facehex

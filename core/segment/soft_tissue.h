@@ -68,8 +68,4 @@ struct PatientModel {
 PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& options = {},
                                  const ProgressCallback& progress = {});
 
-// read_ct_volume(path, options.orientation) then build_patient_model(...).mesh.
-VolumeMesh build_patient_model_from_file(const std::string& path, const SegmentOptions& options = {},
-                                         const ProgressCallback& progress = {});
-
 }  // namespace facehex

@@ -11,6 +11,7 @@
 #include "core/constraint_set.h"
 #include "core/hex_to_tets.h"
 #include "core/io/mesh_io.h"
+#include "core/resources.h"
 #include "tests/core/test_meshes.h"
 
 namespace {
@@ -90,6 +91,10 @@ TEST_F(Cli, DemoRunsTheWholeChainFromTheBundledCt) {
               report["relaxation"]["moved_from_mapping_mm"]["max"].get<double>(), 1e-9);
   EXPECT_EQ(q["inverted"].get<int>(), 0);
   EXPECT_EQ(q["degenerate"].get<int>(), 0);
+  // The segmentation says where it cut, so that a user can check and give other cuts (docs/segmentation.md).
+  EXPECT_NE(r.output.find("cuts (mm, segmentation frame): top z 133.0, bottom z 3.0, posterior y 102.0"),
+            std::string::npos)
+      << r.output;
   // The standard's parameterization came from its cache.
   const std::string source = report["standard"]["parameterization_source"].get<std::string>();
   EXPECT_NE(source.find("standard.param.vtu"), std::string::npos) << source;
@@ -125,6 +130,27 @@ TEST_F(Cli, BadInputsGiveOneLineErrorsNamingTheFileAndNoOutput) {
     EXPECT_EQ(r.status, 1) << bad << ": " << r.output;
     EXPECT_NE(r.output.find(std::string(bad).substr(0, std::string(bad).find(' '))), std::string::npos) << r.output;
   }
+}
+
+TEST_F(Cli, SegmentTakesTheCutsGivenAndRejectsBadOnes) {
+  const std::string ct = facehex::default_ct();
+  // Automatic: the posterior cut 10 mm in front of the ears (y = 102 on this CT); given: 8 mm further forward.
+  Result r = run("segment " + ct + " --edge-length 4 --posterior-cut 110 --mid-plane 100 -o " + path("cut.vtu"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("posterior y 110.0, mid-plane x 100.0"), std::string::npos) << r.output;
+  const facehex::VolumeMesh model = facehex::read_volume_mesh(path("cut.vtu"));
+  EXPECT_GE(model.V.col(1).minCoeff(), 110.0 - 1e-6);
+  EXPECT_LT(model.V.col(1).minCoeff(), 110.0 + 1.0);  // the lateral ends lie on the plane
+
+  for (const char* bad : {"--ear-clearance -1", "--face-height 0", "--top-cut nan", "--chin-clearance x"}) {
+    r = run("segment " + ct + " " + bad + " -o " + path("bad.vtu"));
+    EXPECT_EQ(r.status, 1) << bad << ": " << r.output;
+    EXPECT_NE(r.output.find(std::string(bad).substr(0, std::string(bad).find(' '))), std::string::npos) << r.output;
+  }
+  r = run("segment " + ct + " --top-cut 40 --bottom-cut 35 -o " + path("bad.vtu"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("top cut (z = 40"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(path("bad.vtu")));
 }
 
 TEST_F(Cli, ConstraintSetErrorsNameTheConstraint) {

@@ -9,6 +9,7 @@
 
 #include <QAction>
 #include <QApplication>
+#include <QCheckBox>
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFile>
@@ -35,6 +36,7 @@
 #include "ui/main_window.h"
 #include "ui/model_view.h"
 #include "ui/scripted_states.h"
+#include "ui/segmentation_dialog.h"
 #include "ui/transfer_controller.h"
 
 using namespace facehex;
@@ -55,6 +57,8 @@ class GuiTest : public QObject {
   void scriptedTransferStatesShowTheModels();
   void cancelStopsTheSegmentation();
   void opensAndSegmentsTheBundledCt();
+  void segmentationDialogRoundTripsItsOptions();
+  void segmentAgainStartsFromWhatWasFoundAndTakesACut();
   void opensModelsFromFiles();
   void computesTheFields();
   void scriptedFieldStatesShowTheModels();
@@ -294,6 +298,95 @@ void GuiTest::opensAndSegmentsTheBundledCt() {
   session()->undoStack()->undo();
   QCOMPARE(constraintCount(), 6 + int(feature_specs().size()));
   checkStates({"ct"});
+}
+
+void GuiTest::segmentationDialogRoundTripsItsOptions() {
+  SegmentationDialog dialog;
+  const SegmentOptions defaults;
+  SegmentOptions o = dialog.options();  // opens with the CLI's defaults: everything automatic
+  QCOMPARE(o.tets.target_edge_length, defaults.tets.target_edge_length);
+  QVERIFY(!o.skin_threshold && !o.bone_threshold && !o.cuts.top_z && !o.cuts.bottom_z && !o.cuts.posterior_y &&
+          !o.cuts.centre_x);
+  QVERIFY(o.orientation.anterior.empty() && o.orientation.superior.empty());
+  QCOMPARE(o.cuts.ear_clearance, defaults.cuts.ear_clearance);
+
+  SegmentOptions given;
+  given.tets.target_edge_length = 3.5;
+  given.skin_threshold = 600;
+  given.cuts.top_z = 120;
+  given.cuts.centre_x = -4.5;
+  given.cuts.ear_clearance = 5;
+  given.orientation.anterior = "-y";
+  dialog.setOptions(given);
+  o = dialog.options();
+  QCOMPARE(o.tets.target_edge_length, 3.5);
+  QCOMPARE(*o.skin_threshold, 600.0);
+  QVERIFY(!o.bone_threshold);
+  QCOMPARE(*o.cuts.top_z, 120.0);
+  QCOMPARE(*o.cuts.centre_x, -4.5);
+  QVERIFY(!o.cuts.bottom_z && !o.cuts.posterior_y);
+  QCOMPARE(o.cuts.ear_clearance, 5.0);
+  QCOMPARE(o.orientation.anterior, std::string("-y"));
+  QVERIFY(o.orientation.superior.empty());
+
+  // Found values fill the automatic boxes only, and stay automatic until unticked.
+  FaceCuts found;
+  found.top_z = 130;
+  found.bottom_z = 4;
+  found.posterior_y = 101;
+  found.centre_x = 98;
+  dialog.showFound({550, 1100}, found);
+  o = dialog.options();
+  QVERIFY(!o.bone_threshold && !o.cuts.posterior_y);
+  QCOMPARE(*o.cuts.top_z, 120.0);  // given, not replaced by the found 130
+  dialog.findChild<QCheckBox*>("segmentPosteriorCutAutomatic")->setChecked(false);
+  QCOMPARE(*dialog.options().cuts.posterior_y, 101.0);
+}
+
+void GuiTest::segmentAgainStartsFromWhatWasFoundAndTakesACut() {
+  // The bundled CT is the patient (opensAndSegmentsTheBundledCt): File > Segment again asks, starting from the
+  // thresholds and cuts the segmentation found; nothing runs until Segment.
+  const LoadedModel& before = session()->model(Role::Patient);
+  QVERIFY(before.cuts && before.thresholds);
+  const FaceCuts found = *before.cuts;
+  const double skin = before.thresholds->skin;
+  const QString ct = before.path;
+  const int cells = before.mesh.num_cells();
+  auto* again = window_->findChild<QAction*>("Segment_again");
+  QVERIFY(again && again->isEnabled());
+  again->trigger();
+  SegmentationDialog* dialog = window_->segmentationDialog();
+  QVERIFY(dialog->isVisible());
+  QVERIFY(!window_->controller()->busy());
+  QCOMPARE(dialog->findChild<QDoubleSpinBox*>("segmentSkin")->value(), std::round(skin * 10) / 10);
+  QCOMPARE(dialog->findChild<QDoubleSpinBox*>("segmentPosteriorCut")->value(), found.posterior_y);
+  checkStates({"segmentation"});  // the window with the dialog, rendered
+
+  // Cancel: nothing happens.
+  const quint64 revision = session()->revision(Role::Patient);
+  dialog->reject();
+  QVERIFY(!window_->controller()->busy());
+  QCOMPARE(session()->revision(Role::Patient), revision);
+
+  // A posterior cut 8 mm further forward, on a coarser mesh, as a user sets it in the dialog.
+  window_->openPatient(ct);
+  QVERIFY(dialog->isVisible());
+  dialog->findChild<QCheckBox*>("segmentPosteriorCutAutomatic")->setChecked(false);
+  dialog->findChild<QDoubleSpinBox*>("segmentPosteriorCut")->setValue(found.posterior_y + 8);
+  dialog->findChild<QDoubleSpinBox*>("segmentEdgeLength")->setValue(4);
+  QSignalSpy finished(window_->controller(), &TransferController::finished);
+  dialog->findChild<QPushButton*>("segmentButton")->click();
+  QVERIFY(window_->controller()->busy());
+  QVERIFY(window_->controller()->waitUntilIdle());
+  QVERIFY2(error_.isEmpty(), qPrintable(takeError()));
+  const LoadedModel& after = session()->model(Role::Patient);
+  QCOMPARE(after.cuts->posterior_y, found.posterior_y + 8);
+  QCOMPARE(after.cuts->top_z, found.top_z);  // still automatic, found again
+  QVERIFY(after.mesh.V.col(1).minCoeff() >= found.posterior_y + 8 - 1e-6);
+  QVERIFY(after.mesh.num_cells() < cells);
+  QCOMPARE(finished.count(), 1);
+  const QString status = finished.first().first().toString();
+  QVERIFY2(status.contains(QString("posterior y %1").arg(found.posterior_y + 8, 0, 'f', 1)), qPrintable(status));
 }
 
 void GuiTest::opensModelsFromFiles() {

@@ -1,13 +1,15 @@
 #include "core/segment/patient_input.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <string>
-#include <unistd.h>
 
+#include "core/error.h"
 #include "core/io/mesh_io.h"
 #include "core/segment/ct_volume.h"
+#include "tests/core/segment/phantom.h"
 
 namespace facehex {
 namespace {
@@ -23,9 +25,9 @@ TEST(PatientInput, CtVolumesAreTheImageFormatsAndFolders) {
 
 TEST(PatientInput, AMeshFileIsReadCheckedAndOriented) {
   // Two tets sharing a face, both negatively oriented: flipped, and said so.
-  VolumeMesh m = VolumeMesh::from_tets(
-      (Eigen::MatrixXd(5, 3) << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, -1).finished(),
-      (Eigen::MatrixXi(2, 4) << 0, 2, 1, 3, 0, 1, 2, 4).finished());
+  VolumeMesh m =
+      VolumeMesh::from_tets((Eigen::MatrixXd(5, 3) << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, -1).finished(),
+                            (Eigen::MatrixXi(2, 4) << 0, 2, 1, 3, 0, 1, 2, 4).finished());
   const fs::path path = fs::temp_directory_path() / ("facehex-patient-input-" + std::to_string(::getpid()) + ".vtu");
   write_volume_mesh(path.string(), m);
   const PatientTetModel p = load_patient_model(path.string());
@@ -33,6 +35,48 @@ TEST(PatientInput, AMeshFileIsReadCheckedAndOriented) {
   EXPECT_TRUE(p.check.reoriented);
   EXPECT_EQ(p.mesh.num_cells(), 2);
   EXPECT_NEAR(p.check.volume, 2.0 / 6.0, 1e-12);
+}
+
+TEST(PatientInput, ACtIsSegmentedAndItsThresholdsAndCutsAreReturned) {
+  const CtVolume ct = testing::ellipsoid_phantom();
+  const fs::path path = fs::temp_directory_path() / ("facehex-patient-input-" + std::to_string(::getpid()) + ".mha");
+  write_ct_volume(path.string(), ct);
+  const SegmentOptions options = testing::phantom_options(ct);
+  const PatientTetModel p = load_patient_model(path.string(), options);
+  fs::remove(path);
+  ASSERT_TRUE(p.thresholds && p.cuts);
+  EXPECT_NEAR(p.thresholds->skin, 500, 150);  // between air (0) and soft tissue (1000)
+  EXPECT_GT(p.thresholds->bone, 1000);
+  EXPECT_EQ(p.cuts->top_z, *options.cuts.top_z);  // given cuts are used as given
+  EXPECT_EQ(p.cuts->bottom_z, *options.cuts.bottom_z);
+  EXPECT_EQ(p.cuts->posterior_y, *options.cuts.posterior_y);
+  EXPECT_EQ(p.cuts->centre_x, *options.cuts.centre_x);
+  const Eigen::Vector3d lo = p.mesh.V.colwise().minCoeff(), hi = p.mesh.V.colwise().maxCoeff();
+  EXPECT_LE(hi.z(), p.cuts->top_z + 1e-6);
+  EXPECT_GE(lo.z(), p.cuts->bottom_z - 1e-6);
+  EXPECT_GE(lo.y(), p.cuts->posterior_y - 1e-6);  // the model lies in front of the posterior cut
+  EXPECT_GT(p.mesh.num_cells(), 1000);
+}
+
+TEST(PatientInput, AMeshFileHasNoSegmentation) {
+  const fs::path path = fs::temp_directory_path() / ("facehex-patient-input-m-" + std::to_string(::getpid()) + ".vtu");
+  write_volume_mesh(path.string(),
+                    VolumeMesh::from_tets((Eigen::MatrixXd(4, 3) << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1).finished(),
+                                          (Eigen::MatrixXi(1, 4) << 0, 1, 2, 3).finished()));
+  const PatientTetModel p = load_patient_model(path.string());
+  fs::remove(path);
+  EXPECT_FALSE(p.thresholds);
+  EXPECT_FALSE(p.cuts);
+}
+
+TEST(PatientInput, AMissingCtIsReportedByName) {
+  try {
+    load_patient_model("/no/such/ct.mhd");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("/no/such/ct.mhd"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("no such file"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "core/segment/ct_volume.h"
+#include "core/segment/soft_tissue.h"
 
 namespace facehex::testing {
 
@@ -41,6 +42,19 @@ inline CtVolume ellipsoid_phantom(double spacing = 2.0, double thickness = 10.0,
 inline Eigen::Vector3d phantom_centre(const CtVolume& ct) {
   const GridGeometry& g = ct.intensity.geometry;
   return g.origin + 0.5 * Eigen::Vector3d(g.dims[0] - 1, g.dims[1] - 1, g.dims[2] - 1).cwiseProduct(g.spacing);
+}
+
+// Options that segment the phantom quickly, with its cuts given (it has no face for the automatic ones).
+inline SegmentOptions phantom_options(const CtVolume& ct) {
+  const Eigen::Vector3d c = phantom_centre(ct);
+  SegmentOptions o;
+  o.working_spacing = 1.5;
+  o.tets.target_edge_length = 3.0;
+  o.cuts.top_z = c.z() + 35;
+  o.cuts.bottom_z = c.z() - 35;
+  o.cuts.posterior_y = c.y();
+  o.cuts.centre_x = c.x();
+  return o;
 }
 
 }  // namespace facehex::testing

@@ -81,21 +81,9 @@ void expect_valid_patient(const PatientModel& m) {
   }
 }
 
-SegmentOptions phantom_options(const CtVolume& ct) {
-  const Eigen::Vector3d c = testing::phantom_centre(ct);
-  SegmentOptions o;
-  o.working_spacing = 1.5;
-  o.tets.target_edge_length = 3.0;
-  o.cuts.top_z = c.z() + 35;
-  o.cuts.bottom_z = c.z() - 35;
-  o.cuts.posterior_y = c.y();
-  o.cuts.centre_x = c.x();
-  return o;
-}
-
 TEST(SoftTissue, PhantomGivesOneShellWithSixSides) {
   const CtVolume ct = testing::ellipsoid_phantom();
-  const PatientModel m = build_patient_model(ct, phantom_options(ct));
+  const PatientModel m = build_patient_model(ct, testing::phantom_options(ct));
   EXPECT_NEAR(m.thresholds.skin, 500, 150);
   EXPECT_GT(m.thresholds.bone, 1000);
   EXPECT_LT(m.thresholds.bone, 2000);
@@ -138,7 +126,7 @@ TEST(SoftTissue, ReportsItsStepsAndCanBeCancelled) {
     stages.push_back(stage);
     return stage != "segmentation: the surface";
   };
-  EXPECT_THROW(build_patient_model(ct, phantom_options(ct), cancel_at_surface), Cancelled);
+  EXPECT_THROW(build_patient_model(ct, testing::phantom_options(ct), cancel_at_surface), Cancelled);
   ASSERT_GE(stages.size(), 3u);
   EXPECT_EQ(stages.front(), "segmentation: thresholds");
   EXPECT_EQ(stages.back(), "segmentation: the surface");
@@ -146,7 +134,7 @@ TEST(SoftTissue, ReportsItsStepsAndCanBeCancelled) {
 
 TEST(SoftTissue, RejectsThresholdsInTheWrongOrder) {
   const CtVolume ct = testing::ellipsoid_phantom();
-  SegmentOptions o = phantom_options(ct);
+  SegmentOptions o = testing::phantom_options(ct);
   o.skin_threshold = 1500;
   o.bone_threshold = 500;
   expect_error([&] { build_patient_model(ct, o); }, "thresholds", "must be below");
@@ -155,14 +143,10 @@ TEST(SoftTissue, RejectsThresholdsInTheWrongOrder) {
 TEST(SoftTissue, RejectsAVolumeWithoutSkin) {
   CtVolume ct = testing::ellipsoid_phantom();
   for (float& v : ct.intensity.data) v = std::min(v, 100.0f);  // air only
-  SegmentOptions o = phantom_options(ct);
+  SegmentOptions o = testing::phantom_options(ct);
   o.skin_threshold = 500;
   o.bone_threshold = 1150;
   expect_error([&] { build_patient_model(ct, o); }, "segment", "skin threshold");
-}
-
-TEST(SoftTissue, RejectsAMissingFile) {
-  expect_error([] { build_patient_model_from_file("/no/such/ct.mhd"); }, "/no/such/ct.mhd", "no such file");
 }
 
 }  // namespace

@@ -1,0 +1,165 @@
+#include "ui/segmentation_dialog.h"
+
+#include <QCheckBox>
+#include <QComboBox>
+#include <QDialogButtonBox>
+#include <QDoubleSpinBox>
+#include <QFileInfo>
+#include <QFormLayout>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QPushButton>
+#include <QVBoxLayout>
+
+namespace facehex::gui {
+namespace {
+
+const QStringList kAxes = {"+x", "-x", "+y", "-y", "+z", "-z"};
+
+QDoubleSpinBox* spinBox(double lo, double hi, const QString& suffix, const QString& name, QWidget* parent) {
+  auto* box = new QDoubleSpinBox(parent);
+  box->setObjectName(name);
+  box->setRange(lo, hi);
+  box->setDecimals(1);
+  box->setSuffix(suffix);
+  return box;
+}
+
+QComboBox* axisChoice(const QString& name, const QString& fallback, QWidget* parent) {
+  auto* box = new QComboBox(parent);
+  box->setObjectName(name);
+  box->addItem(QObject::tr("a DICOM series' own, else voxel axis %1").arg(fallback), QString());
+  for (const QString& axis : kAxes) box->addItem(QObject::tr("voxel axis %1").arg(axis), axis);
+  return box;
+}
+
+void selectAxis(QComboBox* box, const std::string& axis) {
+  box->setCurrentIndex(std::max(0, box->findData(QString::fromStdString(axis))));
+}
+
+}  // namespace
+
+void SegmentationDialog::OptionalNumber::set(const std::optional<double>& given) {
+  automatic->setChecked(!given);
+  if (given) value->setValue(*given);
+}
+
+std::optional<double> SegmentationDialog::OptionalNumber::get() const {
+  if (automatic->isChecked()) return std::nullopt;
+  return value->value();
+}
+
+SegmentationDialog::SegmentationDialog(QWidget* parent) : QDialog(parent) {
+  setObjectName("segmentationDialog");
+  setWindowTitle(tr("Segment the CT"));
+  auto* layout = new QVBoxLayout(this);
+  heading_ = new QLabel(this);
+  heading_->setWordWrap(true);
+  layout->addWidget(heading_);
+
+  auto* form = new QFormLayout;
+  edgeLength_ = spinBox(0.5, 20, tr(" mm"), "segmentEdgeLength", this);
+  edgeLength_->setToolTip(tr("Target mean edge length of the tets (the paper: about 2 mm). Coarser is faster."));
+  form->addRow(tr("Tet edge length"), edgeLength_);
+  anterior_ = axisChoice("segmentAnterior", "+y", this);
+  superior_ = axisChoice("segmentSuperior", "+z", this);
+  form->addRow(tr("Face looks along"), anterior_);
+  form->addRow(tr("Top of the head along"), superior_);
+
+  const auto addNumber = [&](Number n, const QString& label, double lo, double hi, const QString& suffix,
+                             const QString& name, const QString& tip) {
+    OptionalNumber& number = numbers_[n];
+    number.automatic = new QCheckBox(tr("automatic"), this);
+    number.automatic->setObjectName(name + "Automatic");
+    number.value = spinBox(lo, hi, suffix, name, this);
+    number.value->setToolTip(tip);
+    number.automatic->setToolTip(tip);
+    connect(number.automatic, &QCheckBox::toggled, number.value, &QWidget::setDisabled);
+    number.set(std::nullopt);
+    number.value->setDisabled(true);
+    auto* row = new QHBoxLayout;
+    row->addWidget(number.automatic);
+    row->addWidget(number.value, 1);
+    form->addRow(label, row);
+  };
+  const QString units = tr("in the file's intensity units (Hounsfield units when the file says so)");
+  addNumber(Skin, tr("Skin threshold"), -1e5, 1e5, QString(), "segmentSkin",
+            tr("Body above this intensity; automatic: from the histogram. ") + units);
+  addNumber(Bone, tr("Bone threshold"), -1e5, 1e5, QString(), "segmentBone",
+            tr("Bone above this intensity; automatic: from the histogram. ") + units);
+  const QString frame =
+      tr("Millimetres in the segmentation frame: the file's coordinates, axes swapped or negated so "
+         "the face looks to +y and the top of the head is +z.");
+  addNumber(TopCut, tr("Top cut z"), -1e4, 1e4, tr(" mm"), "segmentTopCut",
+            tr("Automatic: the face height above the bottom cut, within the CT. ") + frame);
+  addNumber(BottomCut, tr("Bottom cut z"), -1e4, 1e4, tr(" mm"), "segmentBottomCut",
+            tr("Automatic: the chin clearance below the chin's bone. ") + frame);
+  addNumber(PosteriorCut, tr("Posterior cut y"), -1e4, 1e4, tr(" mm"), "segmentPosteriorCut",
+            tr("Automatic: the ear clearance in front of the ears. ") + frame);
+  addNumber(MidPlane, tr("Mid-plane x"), -1e4, 1e4, tr(" mm"), "segmentMidPlane",
+            tr("Divides the posterior cut into the u0 and u1 ends; automatic: the head's mean x. ") + frame);
+  faceHeight_ = spinBox(20, 400, tr(" mm"), "segmentFaceHeight", this);
+  chinClearance_ = spinBox(0, 100, tr(" mm"), "segmentChinClearance", this);
+  earClearance_ = spinBox(0, 100, tr(" mm"), "segmentEarClearance", this);
+  form->addRow(tr("Face height (automatic top cut)"), faceHeight_);
+  form->addRow(tr("Chin clearance (automatic bottom cut)"), chinClearance_);
+  form->addRow(tr("Ear clearance (automatic posterior cut)"), earClearance_);
+  layout->addLayout(form);
+
+  auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, this);
+  buttons->button(QDialogButtonBox::Ok)->setText(tr("Segment"));
+  buttons->button(QDialogButtonBox::Ok)->setObjectName("segmentButton");
+  connect(buttons, &QDialogButtonBox::accepted, this, &QDialog::accept);
+  connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::reject);
+  layout->addWidget(buttons);
+  setOptions(SegmentOptions{});
+  setCt(QString());
+}
+
+void SegmentationDialog::setCt(const QString& path) {
+  heading_->setText(path.isEmpty() ? tr("Segment a head CT into the facial soft-tissue model.")
+                                   : tr("Segment <b>%1</b> into the facial soft-tissue model (docs/segmentation.md).")
+                                         .arg(QFileInfo(path).fileName().toHtmlEscaped()));
+  heading_->setToolTip(path);
+}
+
+void SegmentationDialog::setOptions(const SegmentOptions& o) {
+  edgeLength_->setValue(o.tets.target_edge_length);
+  selectAxis(anterior_, o.orientation.anterior);
+  selectAxis(superior_, o.orientation.superior);
+  numbers_[Skin].set(o.skin_threshold);
+  numbers_[Bone].set(o.bone_threshold);
+  numbers_[TopCut].set(o.cuts.top_z);
+  numbers_[BottomCut].set(o.cuts.bottom_z);
+  numbers_[PosteriorCut].set(o.cuts.posterior_y);
+  numbers_[MidPlane].set(o.cuts.centre_x);
+  faceHeight_->setValue(o.cuts.face_height);
+  chinClearance_->setValue(o.cuts.chin_clearance);
+  earClearance_->setValue(o.cuts.ear_clearance);
+}
+
+SegmentOptions SegmentationDialog::options() const {
+  SegmentOptions o;
+  o.tets.target_edge_length = edgeLength_->value();
+  o.orientation.anterior = anterior_->currentData().toString().toStdString();
+  o.orientation.superior = superior_->currentData().toString().toStdString();
+  o.skin_threshold = numbers_[Skin].get();
+  o.bone_threshold = numbers_[Bone].get();
+  o.cuts.top_z = numbers_[TopCut].get();
+  o.cuts.bottom_z = numbers_[BottomCut].get();
+  o.cuts.posterior_y = numbers_[PosteriorCut].get();
+  o.cuts.centre_x = numbers_[MidPlane].get();
+  o.cuts.face_height = faceHeight_->value();
+  o.cuts.chin_clearance = chinClearance_->value();
+  o.cuts.ear_clearance = earClearance_->value();
+  return o;
+}
+
+void SegmentationDialog::showFound(const TissueThresholds& thresholds, const FaceCuts& cuts) {
+  const std::array<double, kNumbers> found = {thresholds.skin, thresholds.bone,  cuts.top_z,
+                                              cuts.bottom_z,   cuts.posterior_y, cuts.centre_x};
+  for (int n = 0; n < kNumbers; ++n)
+    if (numbers_[n].automatic->isChecked()) numbers_[n].value->setValue(found[n]);
+}
+
+}  // namespace facehex::gui

@@ -1,0 +1,47 @@
+#pragma once
+// The options of a CT's segmentation (core/segment/soft_tissue.h), asked before a CT is segmented: tet edge length,
+// the voxel axes the face and the top of the head point along, the skin and bone thresholds, and the four cut
+// planes. Thresholds and cuts are "automatic" (found in the CT) unless unticked; after a segmentation the dialog can
+// show the values that were found, so unticking one starts from it (the loop: segment, look, move a cut, segment
+// again). The same options as `facehex segment`, with the same defaults.
+#include <QDialog>
+#include <array>
+
+#include "core/segment/soft_tissue.h"
+
+class QCheckBox;
+class QComboBox;
+class QDoubleSpinBox;
+class QLabel;
+
+namespace facehex::gui {
+
+class SegmentationDialog : public QDialog {
+  Q_OBJECT
+
+ public:
+  explicit SegmentationDialog(QWidget* parent = nullptr);
+
+  void setCt(const QString& path);  // names the CT in the dialog's heading
+  void setOptions(const SegmentOptions& options);
+  SegmentOptions options() const;
+  // The values a segmentation of this CT found: shown in the boxes that are still automatic.
+  void showFound(const TissueThresholds& thresholds, const FaceCuts& cuts);
+
+ private:
+  // A number that is either automatic (box disabled, showing the found value if any) or given.
+  struct OptionalNumber {
+    QCheckBox* automatic = nullptr;
+    QDoubleSpinBox* value = nullptr;
+    void set(const std::optional<double>& given);
+    std::optional<double> get() const;
+  };
+  enum Number { Skin, Bone, TopCut, BottomCut, PosteriorCut, MidPlane, kNumbers };
+
+  QLabel* heading_;
+  QDoubleSpinBox *edgeLength_, *faceHeight_, *chinClearance_, *earClearance_;
+  QComboBox *anterior_, *superior_;
+  std::array<OptionalNumber, kNumbers> numbers_;
+};
+
+}  // namespace facehex::gui
