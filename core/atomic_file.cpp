@@ -1,7 +1,5 @@
 #include "core/atomic_file.h"
 
-#include "core/error.h"
-
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -9,6 +7,8 @@
 #include <cstring>
 #include <filesystem>
 #include <random>
+
+#include "core/error.h"
 
 namespace facehex {
 

@@ -3,12 +3,12 @@
 // 3.2) and the feature constraints at the model's facial landmarks (paper 3.4, face_landmarks.h), valued as the
 // standard's features of the same names so that the patient's nose lands where the standard's is. `facehex run` and
 // `facehex constraints` use it, and the desktop application gives it to a patient when it opens.
-#include "core/constraint_set.h"
-#include "core/face_landmarks.h"
-
 #include <Eigen/Core>
 #include <map>
 #include <string>
+
+#include "core/constraint_set.h"
+#include "core/face_landmarks.h"
 
 namespace facehex {
 

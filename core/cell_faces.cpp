@@ -12,9 +12,12 @@ const std::vector<LocalFace>& cell_faces(CellType type) {
   static const std::vector<LocalFace> hex = {{4, {0, 3, 2, 1}}, {4, {4, 5, 6, 7}}, {4, {0, 1, 5, 4}},
                                              {4, {1, 2, 6, 5}}, {4, {2, 3, 7, 6}}, {4, {3, 0, 4, 7}}};
   switch (type) {
-    case CellType::Tet: return tet;
-    case CellType::Wedge: return wedge;
-    case CellType::Hex: return hex;
+    case CellType::Tet:
+      return tet;
+    case CellType::Wedge:
+      return wedge;
+    case CellType::Hex:
+      return hex;
   }
   return hex;
 }

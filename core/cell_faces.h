@@ -1,11 +1,11 @@
 #pragma once
 // Faces of VTK cells (node order of mesh.h) and face adjacency of volume meshes.
 // Faces are listed with right-hand normals pointing OUT of a positively oriented cell.
-#include "core/mesh.h"
-
 #include <Eigen/Core>
 #include <array>
 #include <vector>
+
+#include "core/mesh.h"
 
 namespace facehex {
 

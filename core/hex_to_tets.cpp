@@ -1,10 +1,10 @@
 #include "core/hex_to_tets.h"
 
-#include "core/cell_faces.h"
-
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <vector>
+
+#include "core/cell_faces.h"
 
 namespace facehex {
 namespace {

@@ -1,8 +1,8 @@
 #include "core/hex_transfer.h"
 
-#include "core/stopwatch.h"
-
 #include <Eigen/Dense>
+
+#include "core/stopwatch.h"
 
 namespace facehex {
 

@@ -6,11 +6,11 @@
 // Boundary exactness: a standard vertex with a coordinate exactly 0 or 1 (it lies on a shape-end side) is placed on
 // the patient's side with the same value: barycentric weights of patient tet vertices off that side are zeroed (they
 // are zero up to round-off anyway), so it lands exactly on a boundary triangle of the patient model.
+#include <Eigen/Core>
+
 #include "core/mesh.h"
 #include "core/param_locator.h"
 #include "core/progress.h"
-
-#include <Eigen/Core>
 
 namespace facehex {
 

@@ -1,8 +1,8 @@
 #include "core/material_frame.h"
 
 #include <Eigen/Geometry>
-#include <algorithm>
 #include <Eigen/QR>
+#include <algorithm>
 #include <cmath>
 
 namespace facehex {

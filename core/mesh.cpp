@@ -7,9 +7,12 @@ namespace facehex {
 
 const char* cell_type_name(CellType t) {
   switch (t) {
-    case CellType::Tet: return "tet";
-    case CellType::Wedge: return "wedge";
-    case CellType::Hex: return "hex";
+    case CellType::Tet:
+      return "tet";
+    case CellType::Wedge:
+      return "wedge";
+    case CellType::Hex:
+      return "hex";
   }
   return "unknown";
 }

@@ -14,7 +14,6 @@
 //                          (0,1,2,3) points TOWARDS (4,5,6,7).
 //    Unused trailing node slots of C hold -1.
 #include <Eigen/Core>
-
 #include <map>
 #include <string>
 #include <vector>
@@ -31,9 +30,9 @@ using CellData = std::map<std::string, Eigen::MatrixXd>;   // each array #C x k
 
 // A tetrahedral or hex-dominant (hex + wedge) volume mesh with attached data arrays.
 struct VolumeMesh {
-  Eigen::MatrixXd V;             // #V x 3
-  Eigen::MatrixXi C;             // #C x 8, VTK node order, unused slots -1
-  std::vector<CellType> types;   // #C
+  Eigen::MatrixXd V;            // #V x 3
+  Eigen::MatrixXi C;            // #C x 8, VTK node order, unused slots -1
+  std::vector<CellType> types;  // #C
   PointData point_data;
   CellData cell_data;
 

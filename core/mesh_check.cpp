@@ -28,8 +28,9 @@ TetMeshCheck check_and_orient_tet_mesh(VolumeMesh& mesh, const std::string& sour
   }
   const BoundaryFaces boundary = boundary_faces(T);
   if (boundary.nonmanifold_faces > 0)
-    throw Error(source, std::to_string(boundary.nonmanifold_faces) + " faces are shared by three or more tets "
-                        "(non-manifold mesh)");
+    throw Error(source, std::to_string(boundary.nonmanifold_faces) +
+                            " faces are shared by three or more tets "
+                            "(non-manifold mesh)");
   Eigen::VectorXi component;
   const int components = tet_components(T, component);
   if (components > 1)

@@ -4,16 +4,16 @@
 // a face shared by three or more tets (non-manifold), several connected components.
 // A model whose tets are ALL negatively oriented (another file convention) is repaired by swapping two nodes of
 // every tet; the return value says so.
-#include "core/mesh.h"
-
 #include <string>
+
+#include "core/mesh.h"
 
 namespace facehex {
 
 struct TetMeshCheck {
   bool reoriented = false;  // all tets were negative and have been flipped
   int boundary_faces = 0;
-  double volume = 0;        // mm^3
+  double volume = 0;  // mm^3
 };
 
 TetMeshCheck check_and_orient_tet_mesh(VolumeMesh& mesh, const std::string& source);

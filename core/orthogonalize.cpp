@@ -35,8 +35,8 @@ Eigen::MatrixXd gradient_angles(const GradientFields& g) {
     for (int p = 0; p < 3; ++p) {
       const Eigen::Vector3d a = g[pairs[p][0]].row(i), b = g[pairs[p][1]].row(i);
       const double na = a.norm(), nb = b.norm();
-      angles(i, p) = (na == 0 || nb == 0) ? std::nan("")
-                                          : std::acos(std::clamp(a.dot(b) / (na * nb), -1.0, 1.0)) * 180.0 / M_PI;
+      angles(i, p) =
+          (na == 0 || nb == 0) ? std::nan("") : std::acos(std::clamp(a.dot(b) / (na * nb), -1.0, 1.0)) * 180.0 / M_PI;
     }
   return angles;
 }

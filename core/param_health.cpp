@@ -5,7 +5,8 @@
 
 namespace facehex {
 
-ParamHealth parameterization_health(const Eigen::MatrixXi& T, const Eigen::MatrixXd& uvw, const Eigen::MatrixXi& fixed) {
+ParamHealth parameterization_health(const Eigen::MatrixXi& T, const Eigen::MatrixXd& uvw,
+                                    const Eigen::MatrixXi& fixed) {
   ParamHealth h;
   h.tets = static_cast<int>(T.rows());
   Eigen::VectorXd vol(T.rows());

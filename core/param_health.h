@@ -9,12 +9,12 @@ namespace facehex {
 
 struct ParamHealth {
   int tets = 0;
-  int orientation = 0;         // +1 or -1: the sign of the majority of the parametric volumes
-  int inverted = 0;            // parametric volume of the opposite sign
-  int degenerate = 0;          // |parametric volume| below 1e-12 of the mean (all corners on one plane/line)
-  int flat_by_constraint = 0;  // degenerate because all four corners are pinned to one value of a field
-  int outside_cube = 0;        // vertices with a coordinate outside [0, 1] by more than 1e-9
-  std::vector<int> inverted_tets;    // ids of the first inverted tets (at most 100)
+  int orientation = 0;             // +1 or -1: the sign of the majority of the parametric volumes
+  int inverted = 0;                // parametric volume of the opposite sign
+  int degenerate = 0;              // |parametric volume| below 1e-12 of the mean (all corners on one plane/line)
+  int flat_by_constraint = 0;      // degenerate because all four corners are pinned to one value of a field
+  int outside_cube = 0;            // vertices with a coordinate outside [0, 1] by more than 1e-9
+  std::vector<int> inverted_tets;  // ids of the first inverted tets (at most 100)
   bool ok() const { return inverted == 0 && degenerate == flat_by_constraint; }
 };
 

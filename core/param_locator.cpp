@@ -1,10 +1,10 @@
 #include "core/param_locator.h"
 
-#include "core/tet_topology.h"
-
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+
+#include "core/tet_topology.h"
 
 namespace facehex {
 
@@ -51,7 +51,8 @@ ParamLocator::ParamLocator(const Eigen::MatrixXd& P, const Eigen::MatrixXi& T)
     if (!usable_[t]) continue;
     for (int k = box_lo[t].z(); k <= box_hi[t].z(); ++k)
       for (int j = box_lo[t].y(); j <= box_hi[t].y(); ++j)
-        for (int i = box_lo[t].x(); i <= box_hi[t].x(); ++i) cell_tets_[fill[cell_index(i, j, k)]++] = static_cast<int>(t);
+        for (int i = box_lo[t].x(); i <= box_hi[t].x(); ++i)
+          cell_tets_[fill[cell_index(i, j, k)]++] = static_cast<int>(t);
   }
 }
 

@@ -1,11 +1,11 @@
 #include "core/resources.h"
 
-#include "core/error.h"
-
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+
+#include "core/error.h"
 
 namespace facehex {
 namespace fs = std::filesystem;
@@ -45,7 +45,8 @@ BundledModel find_standard(const std::string& name_or_path) {
   for (const auto& s : bundled_standards())
     if (s.name == name_or_path) return s;
   const fs::path p(name_or_path);
-  if (!fs::exists(p)) throw Error(name_or_path, "no bundled standard of that name and no such file (see 'facehex standards')");
+  if (!fs::exists(p))
+    throw Error(name_or_path, "no bundled standard of that name and no such file (see 'facehex standards')");
   fs::path constraints = p;
   constraints.replace_extension(".json");
   if (!fs::exists(constraints)) constraints = p.parent_path() / "constraints.json";
@@ -54,7 +55,8 @@ BundledModel find_standard(const std::string& name_or_path) {
 
 BundledModel default_standard() {
   const auto all = bundled_standards();
-  const auto it = std::find_if(all.begin(), all.end(), [](const BundledModel& m) { return m.name == "artisynth-refface"; });
+  const auto it =
+      std::find_if(all.begin(), all.end(), [](const BundledModel& m) { return m.name == "artisynth-refface"; });
   if (it != all.end()) return *it;
   if (all.empty()) throw Error(resource_dir(), "no bundled standard found (resources/standards/*/standard.vtu)");
   return all.front();

@@ -1,13 +1,13 @@
 #include "core/shell_sides.h"
 
-#include "core/cell_faces.h"
-#include "core/side_mask.h"
-#include "core/sides.h"
-
 #include <Eigen/Geometry>
 #include <cmath>
 #include <map>
 #include <vector>
+
+#include "core/cell_faces.h"
+#include "core/side_mask.h"
+#include "core/sides.h"
 
 namespace facehex {
 namespace {

@@ -13,26 +13,26 @@
 //    lateral ends (u0 / u1 by the sign of (x - center).lateral). Smaller strips are walls of openings: left free.
 //  - a vertex on two opposite sides of one field (where skin and bone sides touch at the rim of an opening) is left
 //    free for that field.
-#include "core/mesh.h"
-
 #include <Eigen/Core>
 #include <array>
+
+#include "core/mesh.h"
 
 namespace facehex {
 
 struct ShellFrame {
-  Eigen::Vector3d center = Eigen::Vector3d::Zero();   // a point behind the face, inside the head
-  Eigen::Vector3d lateral = Eigen::Vector3d::UnitX(); // from the u0 end towards the u1 end
-  Eigen::Vector3d up = Eigen::Vector3d::UnitZ();      // towards the top cut
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();    // a point behind the face, inside the head
+  Eigen::Vector3d lateral = Eigen::Vector3d::UnitX();  // from the u0 end towards the u1 end
+  Eigen::Vector3d up = Eigen::Vector3d::UnitZ();       // towards the top cut
   int max_layers = 8;
 };
 
 struct ShellSides {
-  Eigen::VectorXi side_mask;               // #V, bits as in sides.h
-  std::array<int, 6> faces_per_side{};     // boundary faces labelled with each side
-  int opening_faces = 0;                   // faces on the walls of openings (no side)
-  int layers = 0;                          // element layers through the thickness (the chord length)
-  int conflicting_vertices = 0;            // on both opposite sides of a field: left free for that field
+  Eigen::VectorXi side_mask;            // #V, bits as in sides.h
+  std::array<int, 6> faces_per_side{};  // boundary faces labelled with each side
+  int opening_faces = 0;                // faces on the walls of openings (no side)
+  int layers = 0;                       // element layers through the thickness (the chord length)
+  int conflicting_vertices = 0;         // on both opposite sides of a field: left free for that field
 };
 
 ShellSides label_shell_sides(const VolumeMesh& mesh, const ShellFrame& frame);

@@ -2,10 +2,10 @@
 // The tet domain on which a standard hex mesh is parameterized. Its first #Vs vertices are the hex mesh's vertices,
 // in order, so every hex vertex carries its field values directly (paper 3.2); further vertices (if any) are added
 // by domain builders such as closed_domain() (core/standard/closed_domain.h).
-#include "core/mesh.h"
-
 #include <Eigen/Core>
 #include <string>
+
+#include "core/mesh.h"
 
 namespace facehex {
 
@@ -14,8 +14,8 @@ struct StandardDomain {
   Eigen::MatrixXi T;          // #T x 4
   Eigen::VectorXi side_mask;  // #V (sides.h bits), or empty
   int hex_vertices = 0;
-  int non_positive_tets = 0;  // tets with volume <= 0 (badly shaped hex cells split into tets)
-  std::string description;    // how it was built, for reports
+  int non_positive_tets = 0;        // tets with volume <= 0 (badly shaped hex cells split into tets)
+  std::string description;          // how it was built, for reports
   int relaxed_corner_vertices = 0;  // side labels dropped at shell corners (side_mask.h relax_corner_quads)
 };
 

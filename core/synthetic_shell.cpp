@@ -1,13 +1,13 @@
 #include "core/synthetic_shell.h"
 
-#include "core/sides.h"
-
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <tuple>
 #include <vector>
+
+#include "core/sides.h"
 
 namespace facehex {
 namespace {
@@ -24,8 +24,9 @@ struct Builder {
     const double t = -o.t_max + 2 * o.t_max * i / nt, z = o.z_min + (o.z_max - o.z_min) * j / nz;
     const double r = static_cast<double>(k) / nr;
     const double zc = 0.55 * (o.z_min + o.z_max);
-    const double bump = r * o.nose_height * std::exp(-(t * t * o.inner_a * o.inner_a + (z - zc) * (z - zc)) /
-                                                       (o.nose_width * o.nose_width));
+    const double bump =
+        r * o.nose_height *
+        std::exp(-(t * t * o.inner_a * o.inner_a + (z - zc) * (z - zc)) / (o.nose_width * o.nose_width));
     const double a = o.inner_a + r * o.thickness, b = o.inner_b + r * o.thickness + bump;
     return {a * std::sin(t), b * std::cos(t), z};
   }
@@ -64,7 +65,12 @@ struct Builder {
 
 SurfaceMesh synthetic_shell_surface(const SyntheticShellOptions& o) {
   const double mean_radius = 0.5 * (o.inner_a + o.inner_b) + o.thickness / 2;
-  Builder b{o, {}, {}, {}, {}, std::max(2, static_cast<int>(std::ceil(2 * o.t_max * mean_radius / o.edge_length))),
+  Builder b{o,
+            {},
+            {},
+            {},
+            {},
+            std::max(2, static_cast<int>(std::ceil(2 * o.t_max * mean_radius / o.edge_length))),
             std::max(2, static_cast<int>(std::ceil((o.z_max - o.z_min) / o.edge_length))),
             std::max(1, static_cast<int>(std::ceil(o.thickness / o.edge_length)))};
   // Axis 0 = t (i), 1 = z (j), 2 = r (k). Orientation flags chosen so every normal points out of the shell.

@@ -9,12 +9,12 @@
 namespace facehex {
 
 struct SyntheticShellOptions {
-  double inner_a = 60, inner_b = 70;  // mm, semi-axes of the inner surface (x, y)
-  double thickness = 12;              // mm
-  double t_max = 1.9;                 // rad, half the angular extent
-  double z_min = -120, z_max = 0;     // mm
+  double inner_a = 60, inner_b = 70;         // mm, semi-axes of the inner surface (x, y)
+  double thickness = 12;                     // mm
+  double t_max = 1.9;                        // rad, half the angular extent
+  double z_min = -120, z_max = 0;            // mm
   double nose_height = 15, nose_width = 12;  // mm
-  double edge_length = 4;             // mm, triangle size of the surface
+  double edge_length = 4;                    // mm, triangle size of the surface
 };
 
 // A closed, outward-oriented triangle surface with SurfaceMesh::labels = side + 1 (Side of sides.h).

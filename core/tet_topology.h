@@ -9,9 +9,9 @@ namespace facehex {
 // the tet they belong to (out of the mesh, for positively oriented tets), and for each the tet it belongs to.
 // Faces used by more than two tets are reported through nonmanifold_faces (count), not returned.
 struct BoundaryFaces {
-  Eigen::MatrixXi F;           // #B x 3
-  Eigen::VectorXi tet;         // #B
-  int nonmanifold_faces = 0;   // faces shared by 3 or more tets
+  Eigen::MatrixXi F;          // #B x 3
+  Eigen::VectorXi tet;        // #B
+  int nonmanifold_faces = 0;  // faces shared by 3 or more tets
 };
 BoundaryFaces boundary_faces(const Eigen::MatrixXi& T);
 

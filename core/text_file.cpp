@@ -1,10 +1,10 @@
 #include "core/text_file.h"
 
-#include "core/atomic_file.h"
-#include "core/error.h"
-
 #include <fstream>
 #include <sstream>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
 
 namespace facehex {
 

@@ -1,14 +1,14 @@
 #include "core/hex_to_tets.h"
 
-#include "core/tet_laplacian.h"
-#include "core/tet_topology.h"
-#include "test_meshes.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <numeric>
 #include <random>
+
+#include "core/tet_laplacian.h"
+#include "core/tet_topology.h"
+#include "test_meshes.h"
 
 namespace facehex {
 namespace {

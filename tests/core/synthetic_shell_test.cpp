@@ -1,12 +1,12 @@
 #include "core/synthetic_shell.h"
 
-#include "core/sides.h"
-
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <map>
 #include <set>
+
+#include "core/sides.h"
 
 namespace facehex {
 namespace {
@@ -24,9 +24,12 @@ TEST(SyntheticShell, IsAClosedOutwardSurfaceWithAllSixSides) {
   // Outward: the enclosed volume (divergence theorem) is positive and close to the shell's analytic volume.
   double volume = 0;
   for (int f = 0; f < s.F.rows(); ++f)
-    volume += Eigen::Vector3d(s.V.row(s.F(f, 0))).dot(Eigen::Vector3d(s.V.row(s.F(f, 1))).cross(Eigen::Vector3d(s.V.row(s.F(f, 2))))) / 6;
+    volume += Eigen::Vector3d(s.V.row(s.F(f, 0)))
+                  .dot(Eigen::Vector3d(s.V.row(s.F(f, 1))).cross(Eigen::Vector3d(s.V.row(s.F(f, 2))))) /
+              6;
   const SyntheticShellOptions o;
-  const double ring = 0.5 * 2 * o.t_max * ((o.inner_a + o.thickness) * (o.inner_b + o.thickness) - o.inner_a * o.inner_b);
+  const double ring =
+      0.5 * 2 * o.t_max * ((o.inner_a + o.thickness) * (o.inner_b + o.thickness) - o.inner_a * o.inner_b);
   EXPECT_GT(volume, 0.9 * ring * (o.z_max - o.z_min));  // plus the nose bump
   EXPECT_LT(volume, 1.3 * ring * (o.z_max - o.z_min));
   const std::set<int> labels(s.labels.data(), s.labels.data() + s.labels.size());
