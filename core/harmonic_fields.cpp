@@ -2,11 +2,38 @@
 
 #include <exception>
 #include <set>
+#include <vector>
 
 #include "core/error.h"
 #include "core/stopwatch.h"
 
 namespace facehex {
+namespace {
+
+// Runs job(0), ..., job(count - 1), concurrently (one per thread) when `concurrent`, and rethrows the first failure.
+// Not one parallel loop with an if clause: CHOLMOD's supernodal routines are 4x slower when called inside even an
+// inactive OpenMP region.
+template <class Job>
+void run_jobs(int count, bool concurrent, const Job& job) {
+  std::vector<std::exception_ptr> failure(static_cast<size_t>(count));
+  const auto guarded = [&](int i) {
+    try {
+      job(i);
+    } catch (...) {
+      failure[static_cast<size_t>(i)] = std::current_exception();
+    }
+  };
+  if (concurrent) {
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int i = 0; i < count; ++i) guarded(i);
+  } else {
+    for (int i = 0; i < count; ++i) guarded(i);
+  }
+  for (const std::exception_ptr& e : failure)
+    if (e) std::rethrow_exception(e);
+}
+
+}  // namespace
 
 HarmonicFields::HarmonicFields(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T,
                                const ResolvedConstraints& constraints, const HarmonicFieldsOptions& options,
@@ -25,31 +52,16 @@ HarmonicFields::HarmonicFields(const Eigen::MatrixXd& V, const Eigen::MatrixXi& 
   report_progress(progress, "ordering the Laplacian for factorization", 0.0);
   double factor_flops = 0;
   const auto elimination_order = std::make_shared<const std::vector<int>>(fill_reducing_order(K_, &factor_flops));
-  // Small (simplicial) factorizations run concurrently, one per thread. Supernodal ones run one after the other:
-  // concurrently they compete for memory bandwidth and BLAS threads (22.5 s instead of 12.6 s at 1M tets,
-  // docs/benchmarks.md). With the shared order, the results do not depend on which thread factors what.
-  const bool concurrent = factor_flops < kSupernodalAboveFlops;
-  std::array<std::exception_ptr, 3> failure;
-  auto factor = [&](int f) {
-    try {
-      if (!concurrent)
-        report_progress(progress, std::string("factoring the ") + kFieldNames[f] + " system", (f + 1) / 4.0);
-      solvers_[f] = std::make_unique<HarmonicSolver>(
-          K_, constraints.fields[f], HarmonicSolver::Options{kFieldNames[f], elimination_order, factor_flops});
-    } catch (...) {
-      failure[f] = std::current_exception();
-    }
-  };
-  // Not one parallel loop with an if clause: CHOLMOD's supernodal factorization is 4x slower when called inside even
-  // an inactive OpenMP region.
-  if (concurrent) {
-#pragma omp parallel for schedule(dynamic, 1)
-    for (int f = 0; f < 3; ++f) factor(f);
-  } else {
-    for (int f = 0; f < 3; ++f) factor(f);
-  }
-  for (const std::exception_ptr& e : failure)
-    if (e) std::rethrow_exception(e);
+  // Small (simplicial) factorizations and their solves run concurrently, one per thread. Supernodal ones run one
+  // after the other: concurrently they compete for memory bandwidth and BLAS threads (22.5 s instead of 12.6 s at 1M
+  // tets, docs/benchmarks.md). With the shared order, the results do not depend on which thread factors what.
+  concurrent_ = factor_flops < kSupernodalAboveFlops;
+  run_jobs(3, concurrent_, [&](int f) {
+    if (!concurrent_)
+      report_progress(progress, std::string("factoring the ") + kFieldNames[f] + " system", (f + 1) / 4.0);
+    solvers_[f] = std::make_unique<HarmonicSolver>(
+        K_, constraints.fields[f], HarmonicSolver::Options{kFieldNames[f], elimination_order, factor_flops});
+  });
   setup_seconds_["factorization"] = clock.lap();
 }
 
@@ -57,6 +69,7 @@ HarmonicFields::~HarmonicFields() = default;
 
 GradientFields HarmonicFields::gradients_of(const Eigen::MatrixXd& uvw) const {
   GradientFields g;
+#pragma omp parallel for
   for (int f = 0; f < 3; ++f) g[f] = tet_gradients(G_, uvw.col(f));
   return g;
 }
@@ -67,7 +80,7 @@ HarmonicFieldsResult HarmonicFields::compute(const ProgressCallback& progress) c
   Stopwatch clock;
   const Eigen::Index n = K_.rows();
   r.uvw_initial.resize(n, 3);
-  for (int f = 0; f < 3; ++f) r.uvw_initial.col(f) = solvers_[f]->solve_laplace();
+  run_jobs(3, concurrent_, [&](int f) { r.uvw_initial.col(f) = solvers_[f]->solve_laplace(); });
   r.seconds["harmonic_solves"] = clock.lap();
   r.gradients_initial = gradients_of(r.uvw_initial);
   r.angles_initial = angle_statistics(gradient_angles(r.gradients_initial));
@@ -82,11 +95,12 @@ HarmonicFieldsResult HarmonicFields::compute(const ProgressCallback& progress) c
     report_progress(progress, "orthogonality improvement", static_cast<double>(it) / options_.orthogonality_iterations);
     const GradientFields targets = orthogonal_targets(r.gradients, options_.order);
     // The basic field's target is its own gradient: its Poisson solve would return it unchanged, so it is skipped.
-    for (int f : {options_.order[1], options_.order[2]}) {
+    run_jobs(2, concurrent_, [&](int k) {
+      const int f = options_.order[static_cast<size_t>(k) + 1];
       const Eigen::VectorXd g = Eigen::Map<const Eigen::VectorXd>(
           Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>(targets[f]).data(), 3 * targets[f].rows());
       r.uvw.col(f) = solvers_[f]->solve(G_.transpose() * mass.cwiseProduct(g));
-    }
+    });
     r.gradients = gradients_of(r.uvw);
     r.iteration_seconds.push_back(iteration_clock.lap());
   }

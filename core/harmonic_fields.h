@@ -53,6 +53,7 @@ class HarmonicFields {
   GradientMatrix G_;
   Eigen::VectorXd volumes_;
   std::array<std::unique_ptr<HarmonicSolver>, 3> solvers_;
+  bool concurrent_ = false;  // small (simplicial) factorizations: factored and solved one per thread
   std::map<std::string, double> setup_seconds_;
 };
 

@@ -10,6 +10,7 @@ GradientFields orthogonal_targets(const GradientFields& gradients, const std::ar
   const auto [b, s, t] = order;
   GradientFields out = gradients;
   const Eigen::Index n = gradients[0].rows();
+#pragma omp parallel for schedule(static)
   for (Eigen::Index i = 0; i < n; ++i) {
     const Eigen::Vector3d gb = gradients[b].row(i), gs = gradients[s].row(i), gt = gradients[t].row(i);
     const double nb = gb.norm();
