@@ -26,13 +26,14 @@ TetMeshCheck check_and_orient_tet_mesh(VolumeMesh& mesh, const std::string& sour
     mesh.C.leftCols(4) = T;
     check.reoriented = true;
   }
-  const BoundaryFaces boundary = boundary_faces(T);
+  const TetFaceAdjacency adjacency = tet_face_adjacency(T);
+  const BoundaryFaces& boundary = adjacency.boundary;
   if (boundary.nonmanifold_faces > 0)
     throw Error(source, std::to_string(boundary.nonmanifold_faces) +
                             " faces are shared by three or more tets "
                             "(non-manifold mesh)");
   Eigen::VectorXi component;
-  const int components = tet_components(T, component);
+  const int components = tet_components(adjacency.neighbors, component);
   if (components > 1)
     throw Error(source, "the model has " + std::to_string(components) +
                             " separate parts; keep one connected solid (the parameterization maps one block)");

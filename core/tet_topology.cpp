@@ -67,46 +67,42 @@ void for_each_face_group(const std::vector<FaceRecord>& faces, Visit visit) {
 
 }  // namespace
 
-BoundaryFaces boundary_faces(const Eigen::MatrixXi& T) {
+TetFaceAdjacency tet_face_adjacency(const Eigen::MatrixXi& T) {
   const auto faces = sorted_faces(T);
+  TetFaceAdjacency out;
+  out.neighbors = Eigen::MatrixXi::Constant(T.rows(), 4, -1);
   std::vector<std::array<int, 4>> found;  // three vertices + owner tet
-  BoundaryFaces out;
   for_each_face_group(faces, [&](size_t first, size_t last) {
-    if (last - first == 1) {
+    if (last - first == 2) {
+      const FaceRecord &a = faces[first], &b = faces[first + 1];
+      out.neighbors(a.tet, a.local) = b.tet;
+      out.neighbors(b.tet, b.local) = a.tet;
+    } else if (last - first == 1) {
       const FaceRecord& f = faces[first];
       const int* o = opposite_face_nodes(f.local);
       found.push_back({T(f.tet, o[0]), T(f.tet, o[1]), T(f.tet, o[2]), f.tet});
-    } else if (last - first > 2) {
-      ++out.nonmanifold_faces;
+    } else {
+      ++out.boundary.nonmanifold_faces;
     }
   });
-  out.F.resize(static_cast<Eigen::Index>(found.size()), 3);
-  out.tet.resize(static_cast<Eigen::Index>(found.size()));
+  out.boundary.F.resize(static_cast<Eigen::Index>(found.size()), 3);
+  out.boundary.tet.resize(static_cast<Eigen::Index>(found.size()));
   for (size_t i = 0; i < found.size(); ++i) {
-    for (int k = 0; k < 3; ++k) out.F(static_cast<Eigen::Index>(i), k) = found[i][k];
-    out.tet(static_cast<Eigen::Index>(i)) = found[i][3];
+    for (int k = 0; k < 3; ++k) out.boundary.F(static_cast<Eigen::Index>(i), k) = found[i][k];
+    out.boundary.tet(static_cast<Eigen::Index>(i)) = found[i][3];
   }
   return out;
 }
 
-Eigen::MatrixXi tet_face_neighbors(const Eigen::MatrixXi& T) {
-  Eigen::MatrixXi N = Eigen::MatrixXi::Constant(T.rows(), 4, -1);
-  const auto faces = sorted_faces(T);
-  for_each_face_group(faces, [&](size_t first, size_t last) {
-    if (last - first != 2) return;
-    const FaceRecord &a = faces[first], &b = faces[first + 1];
-    N(a.tet, a.local) = b.tet;
-    N(b.tet, b.local) = a.tet;
-  });
-  return N;
-}
+BoundaryFaces boundary_faces(const Eigen::MatrixXi& T) { return tet_face_adjacency(T).boundary; }
 
-int tet_components(const Eigen::MatrixXi& T, Eigen::VectorXi& component) {
-  const Eigen::MatrixXi N = tet_face_neighbors(T);
-  component = Eigen::VectorXi::Constant(T.rows(), -1);
+Eigen::MatrixXi tet_face_neighbors(const Eigen::MatrixXi& T) { return tet_face_adjacency(T).neighbors; }
+
+int tet_components(const Eigen::MatrixXi& N, Eigen::VectorXi& component) {
+  component = Eigen::VectorXi::Constant(N.rows(), -1);
   int count = 0;
   std::vector<int> stack;
-  for (int seed = 0; seed < T.rows(); ++seed) {
+  for (int seed = 0; seed < N.rows(); ++seed) {
     if (component(seed) != -1) continue;
     component(seed) = count;
     stack.push_back(seed);

@@ -50,7 +50,7 @@ TEST(HexToTets, ConformingSplitOfRenumberedHexGrids) {
       EXPECT_TRUE(on_box_face) << "seed " << seed << " face " << f;
     }
     Eigen::VectorXi component;
-    EXPECT_EQ(tet_components(aux.T, component), 1);
+    EXPECT_EQ(tet_components(tet_face_neighbors(aux.T), component), 1);
   }
 }
 
