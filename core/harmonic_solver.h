@@ -25,10 +25,12 @@ struct DirichletConditions {
 // order (each block's is a little less).
 std::vector<int> fill_reducing_order(const SparseMatrix& K, double* factor_flops = nullptr);
 
-// Factorizations predicted to take fewer floating-point operations than this are done simplicial, the others
-// supernodal (dense BLAS kernels on supernodes). Measured crossover on the benchmark shells (2 cores, OpenBLAS):
-// simplicial 31 ms against 62 ms at 1e8 flops, 0.78 s against 0.25 s at 1.7e9 (docs/benchmarks.md).
-constexpr double kSupernodalAboveFlops = 4e8;
+// Factorizations predicted to take fewer floating-point operations than this are done simplicial (HarmonicFields
+// factors the three fields' concurrently, one per core), the others supernodal (dense BLAS kernels on supernodes,
+// one field after the other on BLAS threads). Measured on the bundled CT meshed finer and finer (2 cores, OpenBLAS;
+// the three factorizations): 5.2e8 flops (89k tets) 0.25 s concurrent simplicial against 0.43 s sequential
+// supernodal; 1.9e9 (159k) 1.07 against 1.17 s; 3.3e9 (316k) 2.21 against 2.05 s (docs/benchmarks.md).
+constexpr double kSupernodalAboveFlops = 2e9;
 
 class HarmonicSolver {
  public:
