@@ -213,8 +213,7 @@ RawMesh run_tetgen(tetgenio& in, const TetrahedralizeOptions& options) {
 
   std::int32_t message[2] = {-1, 0};
   if (buffer.size() >= sizeof message) std::memcpy(message, buffer.data(), sizeof message);
-  if (message[0] == kSelfIntersecting)
-    throw Error("tetgen", "the surface intersects itself (" + std::to_string(message[1]) + " intersecting triangles)");
+  if (message[0] == kSelfIntersecting) throw SelfIntersectingSurface(message[1]);
   if (message[0] == kFailed) throw Error("tetgen", tetgen_failure(message[1]));
   RawMesh mesh;
   size_t at = sizeof message;

@@ -1,27 +1,35 @@
 #pragma once
 // The one wrapper around TetGen 1.5 (libtet, linked as a library).
-#include "core/mesh.h"
-
 #include <Eigen/Core>
+
+#include "core/error.h"
+#include "core/mesh.h"
 
 namespace facehex {
 
 struct TetrahedralizeOptions {
-  double target_edge_length = 2.0;  // mm; gives TetGen's maximum tet volume (that of a regular tet of this edge)
+  double target_edge_length = 2.0;     // mm; gives TetGen's maximum tet volume (that of a regular tet of this edge)
   double max_radius_edge_ratio = 1.5;  // TetGen -q quality bound
   double min_dihedral_deg = 10.0;      // TetGen -q/… second bound
   bool preserve_surface = false;       // TetGen -Y: no Steiner points on the boundary
 };
 
 struct TetrahedralizeResult {
-  VolumeMesh mesh;               // positively oriented tets (see mesh.h)
-  Eigen::MatrixXi boundary_faces;  // #B x 3 boundary triangles of the tet mesh, outward oriented
-  Eigen::VectorXi boundary_labels; // #B label of the input face each boundary triangle lies on (0 if unlabelled)
+  VolumeMesh mesh;                  // positively oriented tets (see mesh.h)
+  Eigen::MatrixXi boundary_faces;   // #B x 3 boundary triangles of the tet mesh, outward oriented
+  Eigen::VectorXi boundary_labels;  // #B label of the input face each boundary triangle lies on (0 if unlabelled)
+};
+
+// The surface given to TetGen crosses itself (TetGen's -d check found intersecting triangles).
+class SelfIntersectingSurface : public Error {
+ public:
+  explicit SelfIntersectingSurface(int triangles)
+      : Error("tetgen", "the surface intersects itself (" + std::to_string(triangles) + " intersecting triangles)") {}
 };
 
 // Tetrahedralizes a closed, manifold, outward-oriented triangle surface. Face labels of the surface (if any,
 // values >= 1) are carried to the boundary triangles of the result. Throws facehex::Error("tetgen", ...) when the
-// surface is not closed, self-intersects, or TetGen fails.
+// surface is not closed or TetGen fails, SelfIntersectingSurface when it intersects itself.
 TetrahedralizeResult tetrahedralize(const SurfaceMesh& surface, const TetrahedralizeOptions& options = {});
 
 // As tetrahedralize(), for a surface whose labels are Side + 1 per face (0: on no side, sides.h): also sets the

@@ -189,6 +189,7 @@ TEST(Tetrahedralize, RejectsASelfIntersectingSurface) {
   s.F.topRows(12) = a.F;
   s.F.bottomRows(12) = a.F.array() + 8;
   expect_tetgen_error(s, "intersects itself");
+  EXPECT_THROW(tetrahedralize(s), SelfIntersectingSurface);  // its own type: the segmentation remeshes and retries
 }
 
 TEST(Tetrahedralize, RejectsBadLabelCount) {
