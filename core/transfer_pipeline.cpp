@@ -224,29 +224,33 @@ void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::
       }
       take(untangle(run.patient_hex, placement, pass));
     }
-    // Last resort, in up to five passes: the vertices of the cells still unusable, and of the cells within 1 to 5
+    // Last resort, in up to eight passes: the vertices of the cells still unusable, and of the cells within 1 to 8
     // rings around them, move in space; side vertices only if they belong to an unusable cell, and along their side
     // (to first order: they may leave it by a little, reported as side_vertex_distance). From the third pass on, the
     // free vertices off the sides are first spread out (a collapsed cluster, which one-vertex-at-a-time steps cannot
-    // open). In the fifth, all vertices within 5 rings, side vertices too, move freely (where the standard's side
+    // open). From the fifth, all vertices within the rings, side vertices too, move freely (where the standard's side
     // meets a patient side far away, as the inner wall of the standard's nostrils the patient's bone), since a valid
     // element matters more than an exact boundary there. Side vertices are never spread: spreading them too moved 5 %
-    // of them by millimetres on a longer face (p95 2.5 mm instead of 0.4 mm), for no fewer inverted cells.
+    // of them by millimetres on a longer face (p95 2.5 mm instead of 0.4 mm), for no fewer inverted cells. Each
+    // spread starts the untangling from another configuration, so a pass can end with more folds than the one before
+    // (the bundled CT meshed at 3 mm: 4, 4, 1, 2, 1, 2, 0 folds after passes 1 to 7); the best state is kept.
     auto on_side = [&](int v) {
       return pinned_to_side(run, uvw, v, 0) || pinned_to_side(run, uvw, v, 1) || pinned_to_side(run, uvw, v, 2);
     };
-    constexpr int kLastResortPasses = 5;
+    constexpr int kLastResortPasses = 8, kFirstFreePass = 5;
+    Eigen::MatrixXd best_V = run.patient_hex.V;
+    UntangleReport best = run.untangle;
     for (int rings = 1; rings <= kLastResortPasses && remaining() > 0; ++rings) {
-      const bool final_pass = rings == kLastResortPasses;
+      const bool free_pass = rings >= kFirstFreePass;
       std::vector<char> in_cell(standard.num_vertices(), 0);  // vertices of the unusable cells
       for (int c : check_corner_jacobians(run.patient_hex).unusable())
         for (int i = 0; i < node_count(standard.types[c]); ++i) in_cell[standard.C(c, i)] = 1;
       const std::vector<char> free = within_cell_rings(run.patient_hex, in_cell, rings);
-      // Side vertices move only if they belong to an unusable cell, except in the final pass.
+      // Side vertices move only if they belong to an unusable cell, except in the free passes.
       std::vector<char> fixed(standard.num_vertices());
       int released = 0;
       for (int v = 0; v < standard.num_vertices(); ++v) {
-        fixed[v] = !free[v] || (!final_pass && on_side(v) && !in_cell[v]);
+        fixed[v] = !free[v] || (!free_pass && on_side(v) && !in_cell[v]);
         released += !fixed[v] && on_side(v);
       }
       run.untangle.released_side_vertices = std::max(run.untangle.released_side_vertices, released);
@@ -256,9 +260,20 @@ void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::
         spread_free_vertices(run.patient_hex, kept);
       }
       VertexPlacement last =
-          final_pass ? spatial_placement(run.patient_hex.V, fixed) : sliding_placement(run, patient_map, uvw, fixed);
+          free_pass ? spatial_placement(run.patient_hex.V, fixed) : sliding_placement(run, patient_map, uvw, fixed);
       pass.max_sweeps = 2 * options.untangle_options.max_sweeps;  // few vertices: cheap, and a long way may remain
       take(untangle(run.patient_hex, last, pass));
+      if (remaining() < best.inverted_after + best.degenerate_after) {
+        best_V = run.patient_hex.V;
+        best = run.untangle;
+      }
+    }
+    if (remaining() > best.inverted_after + best.degenerate_after) {
+      run.patient_hex.V = best_V;
+      run.untangle.inverted_after = best.inverted_after;
+      run.untangle.degenerate_after = best.degenerate_after;
+      run.untangle.bad_after = best.bad_after;
+      run.untangle.min_scaled_jacobian_after = best.min_scaled_jacobian_after;
     }
     // Polish: cells still below their bound (a cell next to a fold can come out of the untangling nearly flat, valid
     // but useless to a solver) get one more pass in space, their vertices that are on no side and no feature free.
