@@ -80,7 +80,10 @@ MainWindow::MainWindow(QWidget* parent)
   createStatusBar();
 
   connect(controller_, &TransferController::failed, this, [this](const QString& m) { reportError(m); });
-  connect(controller_, &TransferController::finished, this, [this](const QString& m) { statusBar()->showMessage(m); });
+  connect(controller_, &TransferController::finished, this, [this](const QString& m) {
+    statusBar()->showMessage(m);
+    statusBar()->setToolTip(m);  // the whole line, when the bar cuts it (a segmentation lists its thresholds and cuts)
+  });
   connect(controller_, &TransferController::busyChanged, this, &MainWindow::updateActions);
   connect(controller_, &TransferController::progress, this, [this](const QString& stage, double f) {
     progress_->setValue(static_cast<int>(1000 * f));

@@ -16,6 +16,7 @@
 #include <QLineEdit>
 #include <QPushButton>
 #include <QSignalSpy>
+#include <QStatusBar>
 #include <QStandardPaths>
 #include <QSurfaceFormat>
 #include <QTemporaryDir>
@@ -387,6 +388,7 @@ void GuiTest::segmentAgainStartsFromWhatWasFoundAndTakesACut() {
   QCOMPARE(finished.count(), 1);
   const QString status = finished.first().first().toString();
   QVERIFY2(status.contains(QString("posterior y %1").arg(found.posterior_y + 8, 0, 'f', 1)), qPrintable(status));
+  QCOMPARE(window_->statusBar()->toolTip(), status);  // the whole line, which the status bar cuts
 }
 
 void GuiTest::opensModelsFromFiles() {
