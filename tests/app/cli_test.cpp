@@ -12,6 +12,7 @@
 #include "core/hex_to_tets.h"
 #include "core/io/mesh_io.h"
 #include "core/resources.h"
+#include "core/segment/ct_volume.h"
 #include "tests/core/test_meshes.h"
 
 namespace {
@@ -173,6 +174,37 @@ TEST_F(Cli, TheBundledCtMeshedAt3mmEndsWithNoInvertedCell) {
   EXPECT_EQ(report["untangle"]["inverted_after"].get<int>(), 0);
   EXPECT_EQ(report["patient_hex"]["quality"]["inverted"].get<int>(), 0);
   EXPECT_EQ(report["patient_hex"]["quality"]["degenerate"].get<int>(), 0);
+}
+
+// The bundled CT stored with other voxel axes (the face towards the file's -z, the top of the head towards +y), read
+// with --anterior -z --superior +y: the same model, moved (the flipped axis starts elsewhere).
+TEST_F(Cli, ACtStoredWithOtherAxesGivesTheSameModel) {
+  const facehex::CtVolume ct = facehex::read_ct_volume(facehex::default_ct());
+  const facehex::GridGeometry& g = ct.intensity.geometry;
+  facehex::CtVolume turned = ct;
+  facehex::GridGeometry& t = turned.intensity.geometry;
+  t.dims = {g.dims[0], g.dims[2], g.dims[1]};
+  t.spacing = Eigen::Vector3d(g.spacing.x(), g.spacing.z(), g.spacing.y());
+  t.origin.setZero();
+  for (int k = 0; k < g.dims[2]; ++k)
+    for (int j = 0; j < g.dims[1]; ++j)
+      for (int i = 0; i < g.dims[0]; ++i) turned.intensity(i, k, g.dims[1] - 1 - j) = ct.intensity(i, j, k);
+  facehex::write_ct_volume(path("turned.mha"), turned);
+  const Result a = run("segment " + facehex::default_ct() + " --edge-length 4 -o " + path("a.vtu"));
+  const Result b =
+      run("segment " + path("turned.mha") + " --anterior -z --superior +y --edge-length 4 -o " + path("b.vtu"));
+  ASSERT_EQ(a.status, 0) << a.output;
+  ASSERT_EQ(b.status, 0) << b.output;
+  const facehex::VolumeMesh ma = facehex::read_volume_mesh(path("a.vtu")),
+                            mb = facehex::read_volume_mesh(path("b.vtu"));
+  EXPECT_NEAR(mb.num_vertices(), ma.num_vertices(), 0.01 * ma.num_vertices());
+  const Eigen::RowVector3d extent_a = ma.V.colwise().maxCoeff() - ma.V.colwise().minCoeff(),
+                           extent_b = mb.V.colwise().maxCoeff() - mb.V.colwise().minCoeff();
+  EXPECT_LT((extent_a - extent_b).cwiseAbs().maxCoeff(), 1.0) << extent_a << " / " << extent_b;
+  // The same x and z; y shifted by the flipped axis' length (the file's z extent).
+  EXPECT_NEAR(mb.V.col(0).minCoeff(), ma.V.col(0).minCoeff(), 1.0);
+  EXPECT_NEAR(mb.V.col(2).minCoeff(), ma.V.col(2).minCoeff(), 1.0);
+  EXPECT_NEAR(mb.V.col(1).minCoeff(), ma.V.col(1).minCoeff() - (g.dims[1] - 1) * g.spacing.y(), 1.0);
 }
 
 TEST_F(Cli, ConstraintSetErrorsNameTheConstraint) {
