@@ -182,8 +182,8 @@ VolumeMesh load_tet_model(const std::string& path, const SegmentOptions& options
   TerminalProgress progress;  // the segmentation's steps (about 10 s for the bundled CT)
   PatientTetModel model = load_patient_model(path, options, progress.callback());
   progress.finish();
-  if (model.thresholds && model.cuts)
-    std::cerr << "segmentation: " << segmentation_summary(*model.thresholds, *model.cuts)
+  if (model.segmentation)
+    std::cerr << "segmentation: " << segmentation_summary(*model.segmentation)
               << "\n  (change with --skin, --bone, --top-cut, --bottom-cut, --posterior-cut, --mid-plane)\n";
   if (model.check.reoriented) std::cerr << "note: " << path << ": all tets were negatively oriented; flipped\n";
   return std::move(model.mesh);

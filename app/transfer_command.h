@@ -40,7 +40,9 @@ HarmonicFieldsOptions field_options(const Args& args);
 // (the paper's: its cells split into tets).
 StandardDomain standard_domain(const VolumeMesh& hex, const std::string& kind);
 
-// The segmentation options of add_transfer_options (--edge-length, --skin, --bone, --anterior, --superior).
+// The segmentation options of add_transfer_options (--edge-length, --skin, --bone, --anterior, --superior, the cut
+// planes and their automatic distances). Throws facehex::Error naming the option for a non-finite cut, a negative
+// distance or a zero face height.
 SegmentOptions segment_options(const Args& args);
 
 // The patient model of a CT (segmented, its steps shown on the terminal), tet mesh or closed surface

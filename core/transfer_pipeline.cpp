@@ -199,12 +199,17 @@ void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::
         pass.reference_scaled_jacobian(c) = scaled_jacobian(standard.types[c], cell_nodes(standard, c));
     }
     run.untangle = untangle(run.patient_hex, placement, pass);
-    auto remaining = [&] { return run.untangle.inverted_after + run.untangle.degenerate_after; };
+    auto unusable_after = [](const UntangleReport& r) { return r.inverted_after + r.degenerate_after; };
+    auto remaining = [&] { return unusable_after(run.untangle); };
+    // The counts that describe the mesh after a pass (run.patient_hex as it then is).
+    auto set_state = [&](const UntangleReport& state) {
+      run.untangle.inverted_after = state.inverted_after;
+      run.untangle.degenerate_after = state.degenerate_after;
+      run.untangle.bad_after = state.bad_after;
+      run.untangle.min_scaled_jacobian_after = state.min_scaled_jacobian_after;
+    };
     auto take = [&](const UntangleReport& again) {
-      run.untangle.inverted_after = again.inverted_after;
-      run.untangle.degenerate_after = again.degenerate_after;
-      run.untangle.bad_after = again.bad_after;
-      run.untangle.min_scaled_jacobian_after = again.min_scaled_jacobian_after;
+      set_state(again);
       run.untangle.free_vertices = std::max(run.untangle.free_vertices, again.free_vertices);
       run.untangle.sweeps += again.sweeps;
     };
@@ -263,17 +268,14 @@ void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::
           free_pass ? spatial_placement(run.patient_hex.V, fixed) : sliding_placement(run, patient_map, uvw, fixed);
       pass.max_sweeps = 2 * options.untangle_options.max_sweeps;  // few vertices: cheap, and a long way may remain
       take(untangle(run.patient_hex, last, pass));
-      if (remaining() < best.inverted_after + best.degenerate_after) {
+      if (remaining() < unusable_after(best)) {
         best_V = run.patient_hex.V;
         best = run.untangle;
       }
     }
-    if (remaining() > best.inverted_after + best.degenerate_after) {
+    if (remaining() > unusable_after(best)) {
       run.patient_hex.V = best_V;
-      run.untangle.inverted_after = best.inverted_after;
-      run.untangle.degenerate_after = best.degenerate_after;
-      run.untangle.bad_after = best.bad_after;
-      run.untangle.min_scaled_jacobian_after = best.min_scaled_jacobian_after;
+      set_state(best);
     }
     // Polish: cells still below their bound (a cell next to a fold can come out of the untangling nearly flat, valid
     // but useless to a solver) get one more pass in space, their vertices that are on no side and no feature free.

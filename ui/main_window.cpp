@@ -272,7 +272,7 @@ void MainWindow::updateActions() {
   const bool active = session_->hasModel(session_->activeRole());
   const bool both = session_->hasModel(Role::Standard) && session_->hasModel(Role::Patient);
   for (QAction* a : {openPatient_, openDicom_, openDemo_, openStandardFile_}) a->setEnabled(!busy);
-  resegment_->setEnabled(!busy && session_->hasModel(Role::Patient) && session_->model(Role::Patient).cuts);
+  resegment_->setEnabled(!busy && session_->hasModel(Role::Patient) && session_->model(Role::Patient).segmentation);
   standardChoice_->setEnabled(!busy);
   for (QAction* a : {loadConstraints_, mergeConstraints_, saveConstraints_}) a->setEnabled(active);
   features_->setEnabled(active && session_->model(session_->activeRole()).domain.side_mask.size() > 0);
@@ -353,9 +353,9 @@ void MainWindow::askSegmentation(const QString& ct) {
   // Segmenting the loaded patient's CT again: start from what was used. Another CT keeps the dialog's last options.
   if (session_->hasModel(Role::Patient)) {
     const LoadedModel& patient = session_->model(Role::Patient);
-    if (patient.path == ct && patient.segmentOptions && patient.thresholds && patient.cuts) {
-      segmentationDialog_->setOptions(*patient.segmentOptions);
-      segmentationDialog_->showFound(*patient.thresholds, *patient.cuts);
+    if (patient.path == ct && patient.segmentation) {
+      segmentationDialog_->setOptions(patient.segmentation->options);
+      segmentationDialog_->showFound(patient.segmentation->thresholds, patient.segmentation->cuts);
     }
   }
   segmentationDialog_->open();

@@ -67,9 +67,7 @@ LoadedModel load_patient(const std::string& path, const SegmentOptions& segment_
                          QString& constraints_note) {
   PatientTetModel patient = load_patient_model(path, segment_options, progress);
   LoadedModel m = tet_model(std::move(patient.mesh));
-  if (patient.cuts) m.segmentOptions = segment_options;
-  m.thresholds = patient.thresholds;
-  m.cuts = patient.cuts;
+  m.segmentation = patient.segmentation;
   m.path = QString::fromStdString(path);
   m.name = QFileInfo(m.path).fileName();
   fs::path constraints = fs::path(path).replace_extension(".json");

@@ -61,7 +61,7 @@ bool driveToState(MainWindow& window, ScriptedState state) {
       d.showPlane = false;  // the sides and the feature lines, unobstructed
       window.findChild<QTableWidget*>("constraintTable")->scrollToBottom();  // the features come after the sides
       if (state == ScriptedState::Segmentation) {
-        if (!session->model(Role::Patient).cuts) {
+        if (!session->model(Role::Patient).segmentation) {
           window.reportError(QObject::tr("the segmentation state needs a CT as the patient"));
           return false;
         }

@@ -13,7 +13,7 @@
 #include "core/constraint_set.h"
 #include "core/mesh.h"
 #include "core/quality/hex_quality.h"
-#include "core/segment/soft_tissue.h"
+#include "core/segment/patient_input.h"
 #include "core/standard_domain.h"
 #include "core/transfer_pipeline.h"
 
@@ -45,9 +45,7 @@ struct LoadedModel {
   ConstraintList constraints;
   // A patient segmented from a CT: the options it was segmented with, and the thresholds and cuts it used (found or
   // given); empty for a mesh file.
-  std::optional<SegmentOptions> segmentOptions;
-  std::optional<TissueThresholds> thresholds;
-  std::optional<FaceCuts> cuts;
+  std::optional<CtSegmentation> segmentation;
 
   // What error messages about this model name: its constraint file, else its mesh file, else its name.
   std::string source() const;

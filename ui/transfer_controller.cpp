@@ -131,8 +131,7 @@ bool TransferController::openPatient(const QString& path, const SegmentOptions& 
                  return [m, note, ct](SessionModel& s) {
                    QString text = (ct ? tr("Segmented the CT %1: %2; %3") : tr("Opened the patient %1: %2; %3"))
                                       .arg(m->name, sizeText(*m), *note);
-                   if (m->thresholds && m->cuts)
-                     text += "; " + QString::fromStdString(segmentation_summary(*m->thresholds, *m->cuts));
+                   if (m->segmentation) text += "; " + QString::fromStdString(segmentation_summary(*m->segmentation));
                    s.setModel(Role::Patient, std::move(*m));
                    return text;
                  };

@@ -16,8 +16,7 @@ PatientTetModel load_patient_model(const std::string& path, const SegmentOptions
     report_progress(progress, "segmentation: reading the CT", 0.0);
     PatientModel segmented = build_patient_model(read_ct_volume(path, options.orientation), options, progress);
     model.mesh = std::move(segmented.mesh);
-    model.thresholds = segmented.thresholds;
-    model.cuts = segmented.cuts;
+    model.segmentation = CtSegmentation{options, segmented.thresholds, segmented.cuts};
   } else {
     MeshReadOptions read;
     read.target_edge_length = options.tets.target_edge_length;
@@ -27,7 +26,9 @@ PatientTetModel load_patient_model(const std::string& path, const SegmentOptions
   return model;
 }
 
-std::string segmentation_summary(const TissueThresholds& thresholds, const FaceCuts& cuts) {
+std::string segmentation_summary(const CtSegmentation& segmentation) {
+  const TissueThresholds& thresholds = segmentation.thresholds;
+  const FaceCuts& cuts = segmentation.cuts;
   std::ostringstream text;
   text << std::fixed << std::setprecision(1) << "skin threshold " << thresholds.skin << ", bone threshold "
        << thresholds.bone << " (file units); cuts (mm, segmentation frame): top z " << cuts.top_z << ", bottom z "

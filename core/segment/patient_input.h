@@ -12,13 +12,18 @@
 
 namespace facehex {
 
+// How a CT was segmented: the options given, and the thresholds and cut planes used (found or given), for the user
+// to check and to give back changed (SegmentOptions::cuts).
+struct CtSegmentation {
+  SegmentOptions options;
+  TissueThresholds thresholds;
+  FaceCuts cuts;
+};
+
 struct PatientTetModel {
   VolumeMesh mesh;     // positive tets; a segmented CT's has point data "side_mask"
   TetMeshCheck check;  // check.reoriented: the file's tets were all negatively oriented and have been flipped
-  // A segmented CT's thresholds and cut planes as used (found or given), for the user to check and to give back
-  // changed (SegmentOptions::cuts); empty for a mesh file.
-  std::optional<TissueThresholds> thresholds;
-  std::optional<FaceCuts> cuts;
+  std::optional<CtSegmentation> segmentation;  // empty for a mesh file
 };
 
 // A CT is recognized by is_ct_input (ct_volume.h). Throws facehex::Error naming the file or the segmentation stage;
@@ -28,6 +33,6 @@ PatientTetModel load_patient_model(const std::string& path, const SegmentOptions
 
 // One line for the user: "skin threshold 563.6, bone threshold 1169.4 (file units); cuts (mm, segmentation frame):
 // top z 133.0, bottom z 3.0, posterior y 102.0, mid-plane x 98.7, jaw cut rising to z 22.0 at the posterior cut".
-std::string segmentation_summary(const TissueThresholds& thresholds, const FaceCuts& cuts);
+std::string segmentation_summary(const CtSegmentation& segmentation);
 
 }  // namespace facehex

@@ -16,8 +16,8 @@
 #include <QLineEdit>
 #include <QPushButton>
 #include <QSignalSpy>
-#include <QStatusBar>
 #include <QStandardPaths>
+#include <QStatusBar>
 #include <QSurfaceFormat>
 #include <QTemporaryDir>
 #include <QTest>
@@ -348,9 +348,9 @@ void GuiTest::segmentAgainStartsFromWhatWasFoundAndTakesACut() {
   // The bundled CT is the patient (opensAndSegmentsTheBundledCt): File > Segment again asks, starting from the
   // thresholds and cuts the segmentation found; nothing runs until Segment.
   const LoadedModel& before = session()->model(Role::Patient);
-  QVERIFY(before.cuts && before.thresholds);
-  const FaceCuts found = *before.cuts;
-  const double skin = before.thresholds->skin;
+  QVERIFY(before.segmentation);
+  const FaceCuts found = before.segmentation->cuts;
+  const double skin = before.segmentation->thresholds.skin;
   const QString ct = before.path;
   const int cells = before.mesh.num_cells();
   auto* again = window_->findChild<QAction*>("Segment_again");
@@ -381,8 +381,8 @@ void GuiTest::segmentAgainStartsFromWhatWasFoundAndTakesACut() {
   QVERIFY(window_->controller()->waitUntilIdle());
   QVERIFY2(error_.isEmpty(), qPrintable(takeError()));
   const LoadedModel& after = session()->model(Role::Patient);
-  QCOMPARE(after.cuts->posterior_y, found.posterior_y + 8);
-  QCOMPARE(after.cuts->top_z, found.top_z);  // still automatic, found again
+  QCOMPARE(after.segmentation->cuts.posterior_y, found.posterior_y + 8);
+  QCOMPARE(after.segmentation->cuts.top_z, found.top_z);  // still automatic, found again
   QVERIFY(after.mesh.V.col(1).minCoeff() >= found.posterior_y + 8 - 1e-6);
   QVERIFY(after.mesh.num_cells() < cells);
   QCOMPARE(finished.count(), 1);

@@ -44,17 +44,20 @@ TEST(PatientInput, ACtIsSegmentedAndItsThresholdsAndCutsAreReturned) {
   const SegmentOptions options = testing::phantom_options(ct);
   const PatientTetModel p = load_patient_model(path.string(), options);
   fs::remove(path);
-  ASSERT_TRUE(p.thresholds && p.cuts);
-  EXPECT_NEAR(p.thresholds->skin, 500, 150);  // between air (0) and soft tissue (1000)
-  EXPECT_GT(p.thresholds->bone, 1000);
-  EXPECT_EQ(p.cuts->top_z, *options.cuts.top_z);  // given cuts are used as given
-  EXPECT_EQ(p.cuts->bottom_z, *options.cuts.bottom_z);
-  EXPECT_EQ(p.cuts->posterior_y, *options.cuts.posterior_y);
-  EXPECT_EQ(p.cuts->centre_x, *options.cuts.centre_x);
+  ASSERT_TRUE(p.segmentation);
+  const TissueThresholds& thresholds = p.segmentation->thresholds;
+  const FaceCuts& cuts = p.segmentation->cuts;
+  EXPECT_NEAR(thresholds.skin, 500, 150);  // between air (0) and soft tissue (1000)
+  EXPECT_GT(thresholds.bone, 1000);
+  EXPECT_EQ(p.segmentation->options.tets.target_edge_length, options.tets.target_edge_length);  // as given
+  EXPECT_EQ(cuts.top_z, *options.cuts.top_z);  // given cuts are used as given
+  EXPECT_EQ(cuts.bottom_z, *options.cuts.bottom_z);
+  EXPECT_EQ(cuts.posterior_y, *options.cuts.posterior_y);
+  EXPECT_EQ(cuts.centre_x, *options.cuts.centre_x);
   const Eigen::Vector3d lo = p.mesh.V.colwise().minCoeff(), hi = p.mesh.V.colwise().maxCoeff();
-  EXPECT_LE(hi.z(), p.cuts->top_z + 1e-6);
-  EXPECT_GE(lo.z(), p.cuts->bottom_z - 1e-6);
-  EXPECT_GE(lo.y(), p.cuts->posterior_y - 1e-6);  // the model lies in front of the posterior cut
+  EXPECT_LE(hi.z(), cuts.top_z + 1e-6);
+  EXPECT_GE(lo.z(), cuts.bottom_z - 1e-6);
+  EXPECT_GE(lo.y(), cuts.posterior_y - 1e-6);  // the model lies in front of the posterior cut
   EXPECT_GT(p.mesh.num_cells(), 1000);
 }
 
@@ -65,8 +68,7 @@ TEST(PatientInput, AMeshFileHasNoSegmentation) {
                                           (Eigen::MatrixXi(1, 4) << 0, 1, 2, 3).finished()));
   const PatientTetModel p = load_patient_model(path.string());
   fs::remove(path);
-  EXPECT_FALSE(p.thresholds);
-  EXPECT_FALSE(p.cuts);
+  EXPECT_FALSE(p.segmentation);
 }
 
 TEST(PatientInput, AMissingCtIsReportedByName) {
