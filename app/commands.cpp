@@ -599,7 +599,11 @@ int cmd_template(const Argv& argv) {
       .option("layers", "hex layers from bone to skin", "3")
       .option("cell-size", "cell length along the face (mm); 0: mean tissue thickness / layers", "0")
       .option("min-scaled-jacobian", "cells below this are improved by the untangler", "0.35")
-      .option("edge-length", "target edge length (mm) when the reference is a closed surface or a CT", "2");
+      .option("edge-length", "target edge length (mm) when the reference is a closed surface or a CT", "2")
+      .flag(
+          "keep-sharp-corners",
+          "keep every side vertex on the reference's surfaces, even where a sharp corner of the reference (a thin fin "
+          "of tissue between a cut and the bone) leaves cells below --min-scaled-jacobian");
   add_field_options(args);
   add_segment_options(args);
   if (!args.parse(argv)) return 0;
@@ -624,6 +628,7 @@ int cmd_template(const Argv& argv) {
   TemplateOptions options;
   options.layers = args.integer("layers");
   options.cell_size = args.number("cell-size");
+  options.cut_sharp_corners = !args.has("keep-sharp-corners");
   TransferOptions transfer;
   transfer.fields = field_options(args);
   transfer.untangle_options.min_scaled_jacobian = args.number("min-scaled-jacobian");
@@ -632,6 +637,11 @@ int cmd_template(const Argv& argv) {
   progress.finish();
 
   const MeshQualityReport quality = quality_report(t.mesh, nullptr);
+  const DistanceSummary off_surface = side_vertex_distances(t.mesh.V, t.mesh, reference.V, reference.tets());
+  std::ostringstream fit;
+  fit << "side vertices off the reference's surface: p95 " << fmt("%.2g", off_surface.p95) << " mm, max "
+      << fmt("%.2g", off_surface.max) << " mm"
+      << (options.cut_sharp_corners ? " (sharp corners cut, --keep-sharp-corners keeps them)" : "") << "\n";
   VolumeMesh standard = t.mesh;
   attach_quality(standard);
   write_volume_mesh((out_dir / "standard.vtu").string(), standard);
@@ -646,7 +656,7 @@ int cmd_template(const Argv& argv) {
                             [](std::string a, const std::string& b) { return a + " " + b; })
          << "\n\n`constraints.json`: the six sides and the reference's feature lines as rows of the grid.\n\n"
          << "```\n"
-         << quality_text(quality) << "```\n";
+         << quality_text(quality) << fit.str() << "```\n";
   write_text_file((out_dir / "README.md").string(), readme.str());
   folder.keep();
   std::cout << "grid " << t.grid.cells(0) << " x " << t.grid.cells(1) << " x " << t.grid.cells(2) << " = "
@@ -654,7 +664,7 @@ int cmd_template(const Argv& argv) {
             << t.grid.mean_thickness << " mm)\n"
             << "repair: " << t.run.untangle.bad_before << " cells below the bound before, " << t.run.untangle.bad_after
             << " after\n"
-            << quality_text(quality) << "wrote " << out_dir.string()
+            << quality_text(quality) << fit.str() << "wrote " << out_dir.string()
             << "/: standard.vtu, constraints.json, README.md\n";
   const QualitySummary& q = quality.summary;
   return q.inverted + q.degenerate == 0 ? 0 : 3;

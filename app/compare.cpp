@@ -53,12 +53,6 @@ double total_seconds(const std::map<std::string, double>& seconds) {
   return total;
 }
 
-std::string fmt(const char* format, double x) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, x);
-  return buf;
-}
-
 struct PatientInput {
   std::string name, path, constraints;  // constraints: a file, or empty for the automatic ones
 };

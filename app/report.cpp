@@ -7,15 +7,16 @@
 #include "core/tet_topology.h"
 
 namespace facehex::cli {
-namespace {
-
-using nlohmann::json;
 
 std::string fmt(const char* format, double x) {
   char buf[64];
   std::snprintf(buf, sizeof buf, format, x);
   return buf;
 }
+
+namespace {
+
+using nlohmann::json;
 
 json angles_json(const AngleStatistics& a) {
   return {{"mean_deviation_from_90_deg", a.mean_deviation_from_90},

@@ -12,6 +12,9 @@
 
 namespace facehex::cli {
 
+// printf-style formatting of one number, for reports.
+std::string fmt(const char* format, double x);
+
 struct MeshQualityReport {
   QualitySummary summary;
   bool has_distortion = false;

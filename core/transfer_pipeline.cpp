@@ -177,12 +177,13 @@ void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::
   // With the relaxation, the repair keeps the standard's shapes too (the same energy), else it aims at ideal cells.
   UntangleOptions shape = options.untangle_options;
   if (options.shape_relaxation) {
-    shape.target = &standard;
+    shape.target = options.relax_towards_ideal_cells ? nullptr : &standard;
     shape.target_towards_ideal = options.relaxation_towards_ideal;
     UntangleOptions relax = shape;
     relax.whole_mesh = true;
     relax.over_relaxation = 1.5;
     relax.keep_above = 0.05;
+    relax.corner_power = 1;  // the relaxation evens out all cells; a higher power is for a repair's worst cells
     run.relaxation = untangle(run.patient_hex, placement, relax);
     run.seconds["shape_relaxation"] = clock.lap();
   }
@@ -278,11 +279,13 @@ void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::
       set_state(best);
     }
     // Polish: cells still below their bound (a cell next to a fold can come out of the untangling nearly flat, valid
-    // but useless to a solver) get one more pass in space, their vertices that are on no side and no feature free.
+    // but useless to a solver) get one more pass in space, their vertices that are on no side and no feature free
+    // (all of them with options.polish_moves_sides).
     // Nothing is inverted now, so the energy's regularization is off and its barrier against flat corners whole.
     if (run.untangle.bad_after > 0) {
       std::vector<char> fixed(standard.num_vertices());
-      for (int v = 0; v < standard.num_vertices(); ++v) fixed[v] = run.standard.fixed.row(v).any();
+      for (int v = 0; v < standard.num_vertices(); ++v)
+        fixed[v] = !options.polish_moves_sides && run.standard.fixed.row(v).any();
       VertexPlacement polish = spatial_placement(run.patient_hex.V, fixed);
       UntangleOptions last = pass;
       last.rings = 1;

@@ -57,6 +57,13 @@ struct TransferOptions {
   // keeps the standard's angles best (11.0 deg mean change) but leaves a mean shape 8 % below the standard's; 0.5
   // gives 11.3 deg and a mean shape 1 % below it; 1 gives 12.0 deg and 5 % above it.
   double relaxation_towards_ideal = 0.5;
+  // The relaxation (and the repair after it) aims at the ideal cells instead of the standard's: for a template grid,
+  // whose cells in parameter space are no shape to keep.
+  bool relax_towards_ideal_cells = false;
+  // The repair's last polish of the cells still below their bound moves side and feature vertices too, in space, off
+  // the patient's surfaces: for a template, which may cut a corner of its reference where no cell there can reach the
+  // bound (template_mesh.h).
+  bool polish_moves_sides = false;
 };
 
 struct TransferRun {

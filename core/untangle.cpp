@@ -56,6 +56,7 @@ Eigen::Matrix3d target_corner_inverse(const Eigen::Matrix3d& W, const Eigen::Mat
 
 struct Energy {
   double delta2 = 0;  // delta^2, dimensionless
+  double power = 1;   // UntangleOptions::corner_power
 
   // eta = h(sigma^)^(-2/3) of one corner (the inverse mean ratio |S|^2 / (3 det(S)^(2/3)) when delta = 0) and,
   // optionally, its gradient with respect to the corner matrix A.
@@ -78,8 +79,9 @@ struct Energy {
       const Eigen::Matrix3d dsigma = cof / s3 - sigma * S / s2;
       const Eigen::Matrix3d dS = -(2.0 / 3.0) * eta / h * dh * dsigma;
       *dA = dS * Winv.transpose();
+      if (power != 1) *dA *= power * std::pow(eta, power - 1);
     }
-    return eta;
+    return power == 1 ? eta : std::pow(eta, power);
   }
 };
 
@@ -222,6 +224,7 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
   };
 
   Energy energy;
+  energy.power = options.corner_power;
   auto vertex_energy = [&](int v, Eigen::Vector3d* gradient) {
     double e = 0;
     if (gradient) gradient->setZero();

@@ -69,6 +69,11 @@ struct UntangleOptions {
   // relaxation uses 0.05: while folds remain, the energy's regularization weakens its barrier against flat corners,
   // and a cell far from any fold once came out of it at a scaled Jacobian of 1e-5.
   double keep_above = 0;
+  // The energy sums eta^corner_power over the corners: above 1 the worst corners weigh more (towards maximizing the
+  // minimum quality, which the sum of eta only does loosely). The template's repair uses 8 (template_mesh.h); the
+  // transfer's repair keeps 1: on the bundled patient 8 raised the cells below 0.3 from 3.0 to 5.0 % and the mean
+  // dihedral change from 11.0 to 12.3 deg.
+  double corner_power = 1;
 };
 
 struct UntangleReport {

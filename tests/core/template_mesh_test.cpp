@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "core/corner_jacobian.h"
 #include "core/error.h"
 #include "core/hex_to_tets.h"
@@ -45,11 +48,46 @@ TemplateResult box_template(const TemplateOptions& options) {
   return build_template(reference_box(), reference_constraints(), "box", options, TransferOptions{});
 }
 
-TEST(TemplateMesh, GridOnABoxIsTheLinearMapOfItsLines) {
+// The grid as laid out, without the relaxation.
+TemplateOptions layout_options() {
   TemplateOptions options;
   options.layers = 2;
   options.cell_size = 5;
-  const TemplateResult t = box_template(options);
+  options.relax = false;
+  return options;
+}
+
+// The reference box sheared so that its bottom (v0) meets its bone side (w0, y = 0) at 15 degrees: z += y cot 15.
+const double kCot15 = 1 / std::tan(15 * std::acos(-1.0) / 180);
+VolumeMesh sheared_box() {
+  VolumeMesh sheared = reference_box();
+  sheared.V.col(2) += kCot15 * sheared.V.col(1);
+  return sheared;
+}
+
+// The largest distance of a side vertex of a template of the sheared box to the nearest of the box's six planes.
+double sides_off_sheared_box(const VolumeMesh& hex) {
+  const Eigen::MatrixXd& mask = hex.point_data.at(kSideMaskArray);
+  const double s = std::sqrt(1 + kCot15 * kCot15);
+  double worst = 0;
+  for (int v = 0; v < hex.num_vertices(); ++v) {
+    if (mask(v) == 0) continue;
+    const Eigen::RowVector3d x = hex.V.row(v);
+    const double d[6] = {
+        x(0), kWidth - x(0), x(1), kDepth - x(1), (x(2) - kCot15 * x(1)) / s, (kHeight + kCot15 * x(1) - x(2)) / s};
+    worst = std::max(worst, std::abs(*std::min_element(d, d + 6)));
+  }
+  return worst;
+}
+
+double mean_scaled_jacobian(const VolumeMesh& hex) {
+  double sum = 0;
+  for (int c = 0; c < hex.num_cells(); ++c) sum += scaled_jacobian(hex.types[c], cell_nodes(hex, c));
+  return sum / hex.num_cells();
+}
+
+TEST(TemplateMesh, GridOnABoxIsTheLinearMapOfItsLines) {
+  const TemplateResult t = box_template(layout_options());
   // Equal arc length = equal parameter steps on a box; the feature values are lines.
   EXPECT_EQ(t.grid.cells(0), 8);  // 40 mm / 5
   EXPECT_EQ(t.grid.cells(1), 6);  // 9 mm -> 2 cells, 21 mm -> 4 cells
@@ -88,10 +126,7 @@ TEST(TemplateMesh, GridOnABoxIsTheLinearMapOfItsLines) {
 }
 
 TEST(TemplateMesh, FeatureRowsAreRestrictedAsTheReferenceSelection) {
-  TemplateOptions options;
-  options.layers = 2;
-  options.cell_size = 5;
-  const TemplateResult t = box_template(options);
+  const TemplateResult t = box_template(layout_options());
   ASSERT_EQ(t.constraints.constraints.size(), 8u);  // six sides + two features
   const Constraint& mid = t.constraints.constraints[6];
   EXPECT_EQ(mid.name, "mid-sagittal line");
@@ -106,6 +141,47 @@ TEST(TemplateMesh, FeatureRowsAreRestrictedAsTheReferenceSelection) {
   }
   // On the skin (y = 10): x in {10, ..., 30}; on the bone (y = 0): x in {15, 20, 25}; the middle layer is inside.
   EXPECT_EQ(nose.select.ids.size(), 8u);
+}
+
+// On the sheared box the harmonic parameterization is not linear, so the grid as laid out has uneven cells. The
+// relaxation slides them towards ideal cells: the mean scaled Jacobian rises, every side vertex stays on its face of
+// the box and the mid-sagittal row on its plane.
+TEST(TemplateMesh, RelaxationEvensOutCellsAndKeepsSidesAndFeatures) {
+  ConstraintSet set = reference_constraints();
+  set.constraints.pop_back();  // the mid-sagittal plane only: x is not sheared
+  TemplateOptions options = layout_options();
+  options.cut_sharp_corners = false;
+  const TemplateResult laid_out = build_template(sheared_box(), set, "sheared box", options, TransferOptions{});
+  options.relax = true;
+  const TemplateResult t = build_template(sheared_box(), set, "sheared box", options, TransferOptions{});
+  EXPECT_GT(t.run.relaxation.sweeps, 0);
+  EXPECT_GT(mean_scaled_jacobian(t.mesh), mean_scaled_jacobian(laid_out.mesh) + 0.01);
+  EXPECT_TRUE(check_corner_jacobians(t.mesh).unusable().empty());
+  EXPECT_LT(sides_off_sheared_box(t.mesh), 1e-6);
+  ASSERT_EQ(t.constraints.constraints.size(), 7u);
+  for (int v : t.constraints.constraints[6].select.ids) EXPECT_NEAR(t.mesh.V(v, 0), kWidth / 2, 1e-6);
+}
+
+// The sheared box's bottom meets its bone side at 15 degrees: the cells along that edge have the angle at a corner
+// (scaled Jacobian about sin 15 deg = 0.26) as long as their side vertices stay on the two sides. By default the
+// template cuts the corner and every cell reaches the bound; with cut_sharp_corners off, every side vertex stays on
+// the reference's surface and the corner cells stay below it.
+TEST(TemplateMesh, CutsASharpCornerOnlyWhenAllowed) {
+  TransferOptions transfer;
+  transfer.untangle_options.min_scaled_jacobian = 0.35;
+  TemplateOptions options;
+  options.layers = 2;
+  options.cell_size = 5;
+  TemplateOptions keep = options;
+  keep.cut_sharp_corners = false;
+  const TemplateResult kept = build_template(sheared_box(), side_constraints(), "sheared box", keep, transfer);
+  EXPECT_LT(sides_off_sheared_box(kept.mesh), 1e-6);
+  EXPECT_LT(kept.run.untangle.min_scaled_jacobian_after, 0.3);
+  const TemplateResult cut = build_template(sheared_box(), side_constraints(), "sheared box", options, transfer);
+  EXPECT_TRUE(check_corner_jacobians(cut.mesh).unusable().empty());
+  EXPECT_GE(cut.run.untangle.min_scaled_jacobian_after, 0.3);
+  EXPECT_GT(sides_off_sheared_box(cut.mesh), 0.1);  // the corner was cut
+  EXPECT_LT(sides_off_sheared_box(cut.mesh), kDepth);
 }
 
 TEST(TemplateMesh, MirroredGridHexesArePositiveInTheirEmbedding) {
