@@ -5,6 +5,7 @@
 #include <cassert>
 #include <cmath>
 #include <iterator>
+#include <limits>
 
 namespace facehex {
 
@@ -130,31 +131,56 @@ CornerValues corner_determinants(CellType type, const CellNodes& X) {
   return d;
 }
 
-double min_corner_determinant(CellType type, const CellNodes& X) {
-  double lowest = corner_determinants(type, X).head(node_count(type)).minCoeff();
-  for (const SampleWeights& W : interior_sample_weights(type))
-    lowest = std::min(lowest, (X.transpose() * W).determinant());
-  return lowest;
+namespace {
+
+// det(A) / (|a_1| |a_2| |a_3|), in [-1, 1]; 0 for a zero-length edge.
+double unit_determinant(const Eigen::Matrix3d& A, double det) {
+  const double lengths = A.col(0).norm() * A.col(1).norm() * A.col(2).norm();
+  return lengths > 0 ? det / lengths : 0.0;
 }
 
-double scaled_jacobian(CellType type, const CellNodes& X) {
-  double lowest = 1;  // det(A) / lengths lies in [-1, 1] (Hadamard)
+}  // namespace
+
+CellJacobians cell_jacobians(CellType type, const CellNodes& X) {
+  CellJacobians j{std::numeric_limits<double>::infinity(), 1};  // det(A) / lengths lies in [-1, 1] (Hadamard)
   for (int k = 0; k < node_count(type); ++k) {
     const Eigen::Matrix3d A = corner_jacobian(type, X, k);
-    const double lengths = A.col(0).norm() * A.col(1).norm() * A.col(2).norm();
-    lowest = std::min(lowest, lengths > 0 ? A.determinant() / lengths : 0.0);
+    const double det = A.determinant();
+    j.min_determinant = std::min(j.min_determinant, det);
+    j.scaled_jacobian = std::min(j.scaled_jacobian, unit_determinant(A, det));
+  }
+  const std::vector<SampleWeights>& samples = interior_sample_weights(type);
+  for (size_t s = 0; s < samples.size(); ++s) {
+    const Eigen::Matrix3d J = X.transpose() * samples[s];
+    const double det = J.determinant();
+    j.min_determinant = std::min(j.min_determinant, det);
+    // A hex's centre (its first sample) counts in the scaled Jacobian too, as Verdict's.
+    if (s == 0 && type == CellType::Hex) j.scaled_jacobian = std::min(j.scaled_jacobian, unit_determinant(J, det));
+  }
+  j.scaled_jacobian *= scaled_jacobian_factor(type);
+  return j;
+}
+
+double min_corner_determinant(CellType type, const CellNodes& X) { return cell_jacobians(type, X).min_determinant; }
+
+double scaled_jacobian(CellType type, const CellNodes& X) {
+  double lowest = 1;
+  for (int k = 0; k < node_count(type); ++k) {
+    const Eigen::Matrix3d A = corner_jacobian(type, X, k);
+    lowest = std::min(lowest, unit_determinant(A, A.determinant()));
   }
   if (type == CellType::Hex) {
     const Eigen::Matrix3d A = hex_center_jacobian(X);
-    const double lengths = A.col(0).norm() * A.col(1).norm() * A.col(2).norm();
-    lowest = std::min(lowest, lengths > 0 ? A.determinant() / lengths : 0.0);
+    lowest = std::min(lowest, unit_determinant(A, A.determinant()));
   }
   return scaled_jacobian_factor(type) * lowest;
 }
 
-bool is_unusable(CellType type, const CellNodes& X) {
-  return min_corner_determinant(type, X) <= 0 || scaled_jacobian(type, X) < kDegenerateScaledJacobian;
+bool is_unusable(const CellJacobians& j) {
+  return j.min_determinant <= 0 || j.scaled_jacobian < kDegenerateScaledJacobian;
 }
+
+bool is_unusable(CellType type, const CellNodes& X) { return is_unusable(cell_jacobians(type, X)); }
 
 CornerJacobianCheck check_corner_jacobians(const VolumeMesh& mesh) {
   CornerJacobianCheck check;

@@ -62,6 +62,13 @@ CornerValues corner_determinants(CellType type, const CellNodes& X);
 // The smallest Jacobian determinant over the corners (det A_k) and the interior samples (det J_s).
 double min_corner_determinant(CellType type, const CellNodes& X);
 
+// min_corner_determinant and scaled_jacobian (below) of one cell in one pass: they share the corner matrices.
+struct CellJacobians {
+  double min_determinant = 0;
+  double scaled_jacobian = 0;
+};
+CellJacobians cell_jacobians(CellType type, const CellNodes& X);
+
 // Scaled Jacobian: s * min over corners of det(A_k) / (|a_1| |a_2| |a_3|), a_i the columns of A_k, in [-1, 1].
 // The factor s makes the ideal element score exactly 1:
 //   hex   s = 1        (any box; a corner with three orthogonal edges gives 1),
@@ -75,6 +82,7 @@ double scaled_jacobian(CellType type, const CellNodes& X);
 constexpr double kDegenerateScaledJacobian = 1e-6;
 
 // Inverted or degenerate.
+bool is_unusable(const CellJacobians& j);
 bool is_unusable(CellType type, const CellNodes& X);
 
 // Corner Jacobian check of a whole mesh.

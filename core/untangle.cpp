@@ -228,9 +228,14 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
   auto vertex_energy = [&](int v, Eigen::Vector3d* gradient) {
     double e = 0;
     if (gradient) gradient->setZero();
+    int gathered = -1;  // corners_of[v] lists each cell's corners together: gather its nodes once
+    CellNodes X;
     for (const Corner& corner : corners_of[v]) {
       const CellType type = mesh.types[corner.cell];
-      const CellNodes X = cell_nodes(mesh, corner.cell);
+      if (corner.cell != gathered) {
+        X = cell_nodes(mesh, corner.cell);
+        gathered = corner.cell;
+      }
       Eigen::Matrix3d A, dA;
       const Eigen::Matrix3d Winv = corner_matrix(corner, X, A);
       e += energy.corner(A, Winv, gradient ? &dA : nullptr);
@@ -321,21 +326,25 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
         (llt.info() == Eigen::Success && Hp.allFinite()) ? Eigen::Vector3d(-(M * llt.solve(g))) : Eigen::Vector3d(-g);
     const double reach = (J * step).norm();
     if (reach > 0.5 * edge) step *= 0.5 * edge / reach;  // no jumps across several cells
-    // A step never makes a cell around v unusable that was not before: the count of unusable cells only falls.
-    auto unusable_around = [&] {
-      int n = 0;
-      for (int c : cells_of[v]) n += unusable(c);
-      return n;
-    };
-    const int unusable_before = unusable_around();
-    // Cells around v at or above options.keep_above: none may drop below it.
-    std::vector<int> good_before;
-    if (options.keep_above > 0)
-      for (int c : cells_of[v])
-        if (scaled(c) >= options.keep_above) good_before.push_back(c);
-    auto kept_good = [&] {
-      return std::all_of(good_before.begin(), good_before.end(),
-                         [&](int c) { return scaled(c) >= options.keep_above; });
+    // A step never makes a cell around v unusable that was not before (the count of unusable cells only falls), and
+    // no cell at or above options.keep_above drops below it.
+    int unusable_before = 0;
+    std::vector<char> good_before(cells_of[v].size(), 0);
+    for (size_t i = 0; i < cells_of[v].size(); ++i) {
+      const int c = cells_of[v][i];
+      const CellJacobians j = cell_jacobians(mesh.types[c], cell_nodes(mesh, c));
+      unusable_before += is_unusable(j);
+      good_before[i] = options.keep_above > 0 && j.scaled_jacobian >= options.keep_above;
+    }
+    auto still_valid = [&] {
+      int unusable_now = 0;
+      for (size_t i = 0; i < cells_of[v].size(); ++i) {
+        const int c = cells_of[v][i];
+        const CellJacobians j = cell_jacobians(mesh.types[c], cell_nodes(mesh, c));
+        unusable_now += is_unusable(j);
+        if (unusable_now > unusable_before || (good_before[i] && j.scaled_jacobian < options.keep_above)) return false;
+      }
+      return true;
     };
     bool improved = false;
     double t = options.over_relaxation;
@@ -345,8 +354,7 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
       const Eigen::Vector3d p = p0 + t * step;
       if (!placement.place(v, p, x, unused)) continue;
       mesh.V.row(v) = x.transpose();
-      improved = vertex_energy(v, nullptr) < e0 + 1e-4 * t * g.dot(step) && unusable_around() <= unusable_before &&
-                 kept_good();
+      improved = vertex_energy(v, nullptr) < e0 + 1e-4 * t * g.dot(step) && still_valid();
       if (improved) placement.p.row(v) = p.transpose();
     }
     if (!improved) mesh.V.row(v) = x0;

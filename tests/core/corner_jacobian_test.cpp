@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include "test_meshes.h"
 
@@ -155,6 +157,27 @@ TEST(CornerJacobian, AFlatCellIsDegenerateNotInverted) {
   EXPECT_LT(scaled_jacobian(CellType::Hex, cell_nodes(mesh, 1)), kDegenerateScaledJacobian);
   EXPECT_TRUE(is_unusable(CellType::Hex, cell_nodes(mesh, 1)));
   EXPECT_FALSE(is_unusable(CellType::Hex, cell_nodes(mesh, 0)));
+}
+
+// cell_jacobians (one pass) gives exactly what scaled_jacobian and the corner and sample determinants give apart, on
+// cells pushed about at random until some are inverted, for every cell type.
+TEST(CornerJacobian, OnePassGivesTheSeparateMeasures) {
+  std::srand(7);
+  int inverted = 0;
+  for (CellType type : {CellType::Tet, CellType::Wedge, CellType::Hex})
+    for (int trial = 0; trial < 200; ++trial) {
+      CellNodes X = ideal_cell(type);
+      X.topRows(node_count(type)) += 0.45 * Eigen::MatrixXd::Random(node_count(type), 3);
+      const CellJacobians j = cell_jacobians(type, X);
+      EXPECT_EQ(j.scaled_jacobian, scaled_jacobian(type, X));
+      double lowest = corner_determinants(type, X).head(node_count(type)).minCoeff();
+      for (const SampleWeights& W : interior_sample_weights(type))
+        lowest = std::min(lowest, (X.transpose() * W).determinant());
+      EXPECT_EQ(j.min_determinant, lowest);
+      EXPECT_EQ(is_unusable(j), lowest <= 0 || j.scaled_jacobian < kDegenerateScaledJacobian);
+      inverted += lowest <= 0;
+    }
+  EXPECT_GT(inverted, 10);  // the inverted branch was exercised
 }
 
 }  // namespace
