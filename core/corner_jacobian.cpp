@@ -163,18 +163,7 @@ CellJacobians cell_jacobians(CellType type, const CellNodes& X) {
 
 double min_corner_determinant(CellType type, const CellNodes& X) { return cell_jacobians(type, X).min_determinant; }
 
-double scaled_jacobian(CellType type, const CellNodes& X) {
-  double lowest = 1;
-  for (int k = 0; k < node_count(type); ++k) {
-    const Eigen::Matrix3d A = corner_jacobian(type, X, k);
-    lowest = std::min(lowest, unit_determinant(A, A.determinant()));
-  }
-  if (type == CellType::Hex) {
-    const Eigen::Matrix3d A = hex_center_jacobian(X);
-    lowest = std::min(lowest, unit_determinant(A, A.determinant()));
-  }
-  return scaled_jacobian_factor(type) * lowest;
-}
+double scaled_jacobian(CellType type, const CellNodes& X) { return cell_jacobians(type, X).scaled_jacobian; }
 
 bool is_unusable(const CellJacobians& j) {
   return j.min_determinant <= 0 || j.scaled_jacobian < kDegenerateScaledJacobian;
