@@ -641,7 +641,9 @@ int cmd_template(const Argv& argv) {
   std::ostringstream fit;
   fit << "side vertices off the reference's surface: p95 " << fmt("%.2g", off_surface.p95) << " mm, max "
       << fmt("%.2g", off_surface.max) << " mm"
-      << (options.cut_sharp_corners ? " (sharp corners cut, --keep-sharp-corners keeps them)" : "") << "\n";
+      << (options.cut_sharp_corners ? " (where the repair cut a sharp corner; --keep-sharp-corners keeps them on it)"
+                                    : "")
+      << "\n";
   VolumeMesh standard = t.mesh;
   attach_quality(standard);
   write_volume_mesh((out_dir / "standard.vtu").string(), standard);
