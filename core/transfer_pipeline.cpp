@@ -12,10 +12,10 @@
 namespace facehex {
 namespace {
 
-// Maps a sub-stage's progress into [lo, hi] of the whole run.
-ProgressCallback sub_progress(const ProgressCallback& progress, double lo, double hi) {
+// Maps a sub-stage's progress into [lo, hi] of the whole run, under its own name or `stage` if given.
+ProgressCallback sub_progress(const ProgressCallback& progress, double lo, double hi, const std::string& stage = "") {
   if (!progress) return {};
-  return [=](const std::string& stage, double f) { return progress(stage, lo + (hi - lo) * f); };
+  return [=](const std::string& s, double f) { return progress(stage.empty() ? s : stage, lo + (hi - lo) * f); };
 }
 
 std::string health_problem(const ParamHealth& h) {
@@ -145,13 +145,13 @@ TransferRun run_transfer(const VolumeMesh& standard, const StandardDomain& domai
     run.standard_parameterization_source = "given";
   } else {
     run.standard = parameterize_model(domain.V, domain.T, domain.side_mask, standard_constraints, standard_source,
-                                      options.fields, sub_progress(progress, 0.0, 0.3));
+                                      options.fields, sub_progress(progress, 0.0, 0.2));
   }
   run.seconds["standard_parameterization"] = clock.lap();
   run.patient = parameterize_model(patient.V, patient.tets(), side_mask_of(patient), patient_constraints,
-                                   patient_source, options.fields, sub_progress(progress, 0.3, 0.85));
+                                   patient_source, options.fields, sub_progress(progress, 0.2, 0.6));
   run.seconds["patient_parameterization"] = clock.lap();
-  map_parameterized(run, standard, patient_source, options, sub_progress(progress, 0.85, 1.0));
+  map_parameterized(run, standard, patient_source, options, sub_progress(progress, 0.6, 1.0));
   return run;
 }
 
@@ -168,8 +168,8 @@ void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::
                 "sides of its constraint set");
   const PatientMap patient_map(run.patient.V, run.patient.T, run.patient.fields.uvw);
   run.seconds["locator_build"] = clock.lap();
-  run.patient_hex =
-      transfer_hex_mesh(standard, hex_vertex_uvw(run, standard.num_vertices()), patient_map, &run.transfer, progress);
+  run.patient_hex = transfer_hex_mesh(standard, hex_vertex_uvw(run, standard.num_vertices()), patient_map,
+                                      &run.transfer, sub_progress(progress, 0.0, 0.05));
   run.seconds["mapping"] = clock.lap();
   run.mapped_hex = run.patient_hex;
   // One placement for both steps: its parameters follow the vertices' moves.
@@ -184,6 +184,7 @@ void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::
     relax.over_relaxation = 1.5;
     relax.keep_above = 0.05;
     relax.corner_power = 1;  // the relaxation evens out all cells; a higher power is for a repair's worst cells
+    relax.progress = sub_progress(progress, 0.05, 0.8, "shape relaxation");
     run.relaxation = untangle(run.patient_hex, placement, relax);
     run.seconds["shape_relaxation"] = clock.lap();
   }
@@ -193,13 +194,21 @@ void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::
     // sides) of the vertices of the cells still unusable: where the patient's anatomy squeezes a feature (a flat
     // nose), a valid element matters more than an exact feature line.
     const Eigen::MatrixXd uvw = hex_vertex_uvw(run, standard.num_vertices());
+    // Progress by passes (at most 1 + 3 + 8 + 1 of them; most runs need a few).
+    const ProgressCallback repair_progress =
+        sub_progress(progress, options.shape_relaxation ? 0.8 : 0.05, 1.0, "repairing folded cells");
+    int passes = 0;
+    auto repair_pass = [&](VertexPlacement& moves, const UntangleOptions& o) {
+      report_progress(repair_progress, "", std::min(1.0, passes++ / 13.0));
+      return untangle(run.patient_hex, moves, o);
+    };
     UntangleOptions pass = shape;
     if (pass.reference_scaled_jacobian.size() == 0) {
       pass.reference_scaled_jacobian.resize(standard.num_cells());
       for (int c = 0; c < standard.num_cells(); ++c)
         pass.reference_scaled_jacobian(c) = scaled_jacobian(standard.types[c], cell_nodes(standard, c));
     }
-    run.untangle = untangle(run.patient_hex, placement, pass);
+    run.untangle = repair_pass(placement, pass);
     auto unusable_after = [](const UntangleReport& r) { return r.inverted_after + r.degenerate_after; };
     auto remaining = [&] { return unusable_after(run.untangle); };
     // The counts that describe the mesh after a pass (run.patient_hex as it then is).
@@ -228,7 +237,7 @@ void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::
             ++run.untangle.released_feature_vertices;
           }
       }
-      take(untangle(run.patient_hex, placement, pass));
+      take(repair_pass(placement, pass));
     }
     // Last resort, in up to eight passes: the vertices of the cells still unusable, and of the cells within 1 to 8
     // rings around them, move in space; side vertices only if they belong to an unusable cell, and along their side
@@ -268,7 +277,7 @@ void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::
       VertexPlacement last =
           free_pass ? spatial_placement(run.patient_hex.V, fixed) : sliding_placement(run, patient_map, uvw, fixed);
       pass.max_sweeps = 2 * options.untangle_options.max_sweeps;  // few vertices: cheap, and a long way may remain
-      take(untangle(run.patient_hex, last, pass));
+      take(repair_pass(last, pass));
       if (remaining() < unusable_after(best)) {
         best_V = run.patient_hex.V;
         best = run.untangle;
@@ -290,8 +299,9 @@ void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::
       UntangleOptions last = pass;
       last.rings = 1;
       last.seed_unusable_only = false;
-      take(untangle(run.patient_hex, polish, last));
+      take(repair_pass(polish, last));
     }
+    report_progress(repair_progress, "", 1.0);
     run.seconds["untangle"] = clock.lap();
   }
 }

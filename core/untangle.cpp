@@ -260,17 +260,54 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
   // against the corners' own sigma, so a vertex that did not move is still at its local optimum.
   std::vector<char> active(nv, 0), next_active(nv, 0);
   for (int v : free_vertices) active[v] = 1;
-  // delta from the worst normalized corner determinant (Escobar et al.: delta^2 = eps (eps - sigma_min)).
-  auto update_delta = [&] {
-    double sigma_min = std::numeric_limits<double>::infinity();
+  // Each corner touching a free vertex once, and each cell around one once: the per-sweep checks below run over these
+  // (a corner touches up to four free vertices, a cell up to eight).
+  std::vector<Corner> touched_corners;
+  std::vector<int> touched_cells;
+  {
+    std::vector<char> corner_seen(static_cast<size_t>(nc) * slots, 0), cell_seen(nc, 0);
     for (int v : free_vertices)
       for (const Corner& corner : corners_of[v]) {
-        Eigen::Matrix3d A;
-        const Eigen::Matrix3d Winv = corner_matrix(corner, cell_nodes(mesh, corner.cell), A);
-        const double sigma = normalized_determinant(A * Winv);
-        sigma_min = std::min(sigma_min, sigma);
-        if (sigma < kNearlyInverted) active[v] = 1;
+        char& seen = corner_seen[static_cast<size_t>(corner.cell) * slots + corner.k];
+        if (!seen) touched_corners.push_back(corner);
+        seen = 1;
+        if (!cell_seen[corner.cell]) touched_cells.push_back(corner.cell);
+        cell_seen[corner.cell] = 1;
       }
+  }
+  // The state of each cell around a free vertex, kept current by the steps (a step changes only the cells around its
+  // vertex, and the vertices stepped at the same time share no cell).
+  struct CellState {
+    bool unusable = false;
+    double scaled_jacobian = 0;
+  };
+  std::vector<CellState> cell_state(nc);
+  for (int c : touched_cells) {
+    const CellJacobians j = cell_jacobians(mesh.types[c], cell_nodes(mesh, c));
+    cell_state[c] = {is_unusable(j), j.scaled_jacobian};
+  }
+  // delta from the worst normalized corner determinant (Escobar et al.: delta^2 = eps (eps - sigma_min)).
+  std::vector<double> sigma(touched_corners.size());
+  auto update_delta = [&] {
+    const int n = static_cast<int>(touched_corners.size());
+    double sigma_min = std::numeric_limits<double>::infinity();
+#pragma omp parallel for reduction(min : sigma_min)
+    for (int i = 0; i < n; ++i) {
+      Eigen::Matrix3d A;
+      const Eigen::Matrix3d Winv = corner_matrix(touched_corners[i], cell_nodes(mesh, touched_corners[i].cell), A);
+      sigma[i] = normalized_determinant(A * Winv);
+      sigma_min = std::min(sigma_min, sigma[i]);
+    }
+    for (int i = 0; i < n; ++i) {
+      if (!(sigma[i] < kNearlyInverted)) continue;
+      const Corner& corner = touched_corners[i];
+      const CellType type = mesh.types[corner.cell];
+      if (corner.k >= kSample) {
+        for (int local = 0; local < node_count(type); ++local) active[mesh.C(corner.cell, local)] = 1;
+      } else {
+        for (int local : corner_nodes(type, corner.k)) active[mesh.C(corner.cell, local)] = 1;
+      }
+    }
     constexpr double eps = 1e-3;
     energy.delta2 = sigma_min < eps ? eps * (eps - sigma_min) : 0.0;
   };
@@ -329,20 +366,18 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
     // A step never makes a cell around v unusable that was not before (the count of unusable cells only falls), and
     // no cell at or above options.keep_above drops below it.
     int unusable_before = 0;
-    std::vector<char> good_before(cells_of[v].size(), 0);
-    for (size_t i = 0; i < cells_of[v].size(); ++i) {
-      const int c = cells_of[v][i];
-      const CellJacobians j = cell_jacobians(mesh.types[c], cell_nodes(mesh, c));
-      unusable_before += is_unusable(j);
-      good_before[i] = options.keep_above > 0 && j.scaled_jacobian >= options.keep_above;
-    }
+    for (int c : cells_of[v]) unusable_before += cell_state[c].unusable;
+    thread_local std::vector<CellState> trial;
+    trial.resize(cells_of[v].size());
     auto still_valid = [&] {
       int unusable_now = 0;
       for (size_t i = 0; i < cells_of[v].size(); ++i) {
         const int c = cells_of[v][i];
         const CellJacobians j = cell_jacobians(mesh.types[c], cell_nodes(mesh, c));
-        unusable_now += is_unusable(j);
-        if (unusable_now > unusable_before || (good_before[i] && j.scaled_jacobian < options.keep_above)) return false;
+        trial[i] = {is_unusable(j), j.scaled_jacobian};
+        unusable_now += trial[i].unusable;
+        const bool was_good = options.keep_above > 0 && cell_state[c].scaled_jacobian >= options.keep_above;
+        if (unusable_now > unusable_before || (was_good && j.scaled_jacobian < options.keep_above)) return false;
       }
       return true;
     };
@@ -355,7 +390,9 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
       if (!placement.place(v, p, x, unused)) continue;
       mesh.V.row(v) = x.transpose();
       improved = vertex_energy(v, nullptr) < e0 + 1e-4 * t * g.dot(step) && still_valid();
-      if (improved) placement.p.row(v) = p.transpose();
+      if (!improved) continue;
+      placement.p.row(v) = p.transpose();
+      for (size_t i = 0; i < cells_of[v].size(); ++i) cell_state[cells_of[v][i]] = trial[i];
     }
     if (!improved) mesh.V.row(v) = x0;
     const double moved_v = (mesh.V.row(v) - x0).norm();
@@ -408,8 +445,8 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
     }
     active.swap(next_active);
     int unusable_left = 0;
-    for (int v : free_vertices)
-      for (int c : cells_of[v]) unusable_left += unusable(c);
+    for (int c : touched_cells) unusable_left += cell_state[c].unusable;
+    report_progress(options.progress, "untangling", (report.sweeps + 1.0) / options.max_sweeps);
     // Done when nothing is unusable and the smoothing has settled (or had a fair number of sweeps).
     if (unusable_left == 0 && (visited == 0 || moved < 1e-3 * size || report.sweeps >= 30)) break;
   }

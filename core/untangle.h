@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "core/mesh.h"
+#include "core/progress.h"
 
 namespace facehex {
 
@@ -74,6 +75,9 @@ struct UntangleOptions {
   // transfer's repair keeps 1: on the bundled patient 8 raised the cells below 0.3 from 3.0 to 5.0 % and the mean
   // dihedral change from 11.0 to 12.3 deg.
   double corner_power = 1;
+  // Called after each sweep with stage "untangling" and the fraction of max_sweeps done; returning false cancels
+  // (Cancelled is thrown between sweeps).
+  ProgressCallback progress;
 };
 
 struct UntangleReport {

@@ -1,10 +1,14 @@
 // The public entry points of mesh_io.h: pick the format from the file name and hand over to its reader or writer.
 #include "core/io/mesh_io.h"
 
+#include <algorithm>
+#include <filesystem>
+#include <functional>
+
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/io/abaqus_io.h"
 #include "core/io/ansys_io.h"
-#include "core/atomic_file.h"
 #include "core/io/fe_sets.h"
 #include "core/io/febio_io.h"
 #include "core/io/gmsh_io.h"
@@ -12,9 +16,6 @@
 #include "core/io/tetgen_io.h"
 #include "core/io/vtk_mesh_io.h"
 #include "core/tetgen/tetrahedralize.h"
-
-#include <algorithm>
-#include <filesystem>
 
 namespace facehex {
 
@@ -91,12 +92,13 @@ VolumeMesh read_volume_mesh(const std::string& path, const MeshReadOptions& opti
 
 void write_volume_mesh(const std::string& path, const VolumeMesh& mesh, const MeshWriteOptions& options) {
   const std::string ext = io::lower_extension(path);
-  void (*write)(const std::string&, const VolumeMesh&) = ext == ".vtu"   ? io::write_vtu
-                                                         : ext == ".vtk" ? io::write_legacy_vtk
-                                                         : ext == ".msh" ? io::write_gmsh
-                                                         : ext == ".inp" ? io::write_abaqus
-                                                         : ext == ".feb" ? io::write_febio
-                                                                         : nullptr;
+  const std::set<std::string>& single = options.single_precision_arrays;
+  std::function<void(const std::string&, const VolumeMesh&)> write;
+  if (ext == ".vtu") write = [&](const std::string& f, const VolumeMesh& m) { io::write_vtu(f, m, single); };
+  if (ext == ".vtk") write = [&](const std::string& f, const VolumeMesh& m) { io::write_legacy_vtk(f, m, single); };
+  if (ext == ".msh") write = io::write_gmsh;
+  if (ext == ".inp") write = io::write_abaqus;
+  if (ext == ".feb") write = io::write_febio;
   if (!write) {
     throw Error(path,
                 "cannot write volume meshes as '" + ext + "' (writable: " + join(writable_volume_extensions()) + ")");

@@ -13,10 +13,11 @@
 // Every failure is a facehex::Error whose message names the file and the problem (unknown extension, missing file,
 // truncated or malformed content, out-of-range node ids, unsupported cell types). Writers never leave a partial
 // file (see core/atomic_file.h).
-#include "core/mesh.h"
-
+#include <set>
 #include <string>
 #include <vector>
+
+#include "core/mesh.h"
 
 namespace facehex {
 
@@ -30,6 +31,9 @@ struct MeshWriteOptions {
   // The FE formats (.inp, .feb) refuse meshes with inverted elements (corner_jacobian.h), which no solver accepts,
   // unless this is set; the other formats write any valid mesh so that bad results can be inspected.
   bool allow_inverted = false;
+  // Point or cell arrays written as 32-bit floats to .vtu and .vtk (the other formats write no arrays): data for
+  // display only, such as per-tet gradients, which are most of a parameterized model's file as doubles.
+  std::set<std::string> single_precision_arrays;
 };
 
 void write_volume_mesh(const std::string& path, const VolumeMesh& mesh, const MeshWriteOptions& options = {});

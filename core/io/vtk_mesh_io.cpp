@@ -69,7 +69,7 @@ VolumeMesh from_grid(const std::string& path, vtkUnstructuredGrid* grid) {
   return mesh;
 }
 
-vtkSmartPointer<vtkUnstructuredGrid> to_grid(const VolumeMesh& mesh) {
+vtkSmartPointer<vtkUnstructuredGrid> to_grid(const VolumeMesh& mesh, const std::set<std::string>& single_precision) {
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();  // full precision in the file
   points->SetNumberOfPoints(mesh.num_vertices());
@@ -85,8 +85,8 @@ vtkSmartPointer<vtkUnstructuredGrid> to_grid(const VolumeMesh& mesh) {
     for (int k = 0; k < node_count(mesh.types[c]); ++k) ids[k] = mesh.C(c, k);
     grid->InsertNextCell(vtk_type, node_count(mesh.types[c]), ids);
   }
-  matrices_to_vtk_arrays(mesh.point_data, grid->GetPointData());
-  matrices_to_vtk_arrays(mesh.cell_data, grid->GetCellData());
+  matrices_to_vtk_arrays(mesh.point_data, grid->GetPointData(), single_precision);
+  matrices_to_vtk_arrays(mesh.cell_data, grid->GetCellData(), single_precision);
   return grid;
 }
 
@@ -112,23 +112,23 @@ VolumeMesh read_legacy_vtk(const std::string& path) {
   return from_grid(path, reader->GetOutput());
 }
 
-void write_vtu(const std::string& file, const VolumeMesh& mesh) {
+void write_vtu(const std::string& file, const VolumeMesh& mesh, const std::set<std::string>& single_precision) {
   vtkNew<vtkXMLUnstructuredGridWriter> writer;
-  writer->SetInputData(to_grid(mesh));
+  writer->SetInputData(to_grid(mesh, single_precision));
   writer->SetFileName(file.c_str());
   writer->SetDataModeToAppended();
   writer->EncodeAppendedDataOff();  // raw binary: smaller, and nothing is lost
   writer->SetCompressorTypeToZLib();
-  // zlib's fastest level: the fields and gradients are doubles that compress by about a fifth at any level; on the
-  // bundled patient model (90 MB) level 1 writes in 2.1 s instead of 2.7 s for a file 0.5 % larger.
+  // zlib's fastest level: fields as doubles compress by about a fifth at any level; on the bundled patient model
+  // (90 MB when its gradients were doubles too) level 1 wrote in 2.1 s instead of 2.7 s for a file 0.5 % larger.
   writer->SetCompressionLevel(1);
   writer->SetHeaderTypeToUInt64();  // no 4 GB limit per array
   run_vtk(file, "writing VTK XML", writer, [&] { return writer->Write(); });
 }
 
-void write_legacy_vtk(const std::string& file, const VolumeMesh& mesh) {
+void write_legacy_vtk(const std::string& file, const VolumeMesh& mesh, const std::set<std::string>& single_precision) {
   vtkNew<vtkUnstructuredGridWriter> writer;
-  writer->SetInputData(to_grid(mesh));
+  writer->SetInputData(to_grid(mesh, single_precision));
   writer->SetFileName(file.c_str());
   writer->SetFileTypeToBinary();
   run_vtk(file, "writing legacy VTK", writer, [&] { return writer->Write(); });

@@ -1,6 +1,7 @@
 #pragma once
 // VTK unstructured grids (.vtu XML, .vtk legacy) <-> VolumeMesh. Internal to core/io: use mesh_io.h.
 // Writers write to `file` as given (mesh_io.cpp wraps them in write_atomically and validates the mesh first).
+#include <set>
 #include <string>
 
 #include "core/mesh.h"
@@ -9,7 +10,10 @@ namespace facehex::io {
 
 VolumeMesh read_vtu(const std::string& path);
 VolumeMesh read_legacy_vtk(const std::string& path);
-void write_vtu(const std::string& file, const VolumeMesh& mesh);         // binary, appended, zlib-compressed
-void write_legacy_vtk(const std::string& file, const VolumeMesh& mesh);  // binary (exact doubles)
+// Arrays are written as doubles, those named in `single_precision` as 32-bit floats.
+void write_vtu(const std::string& file, const VolumeMesh& mesh,
+               const std::set<std::string>& single_precision = {});  // binary, appended, zlib-compressed
+void write_legacy_vtk(const std::string& file, const VolumeMesh& mesh,
+                      const std::set<std::string>& single_precision = {});  // binary
 
 }  // namespace facehex::io

@@ -1,12 +1,8 @@
 #include "core/io/vtk_util.h"
 
-#include "core/error.h"
-
 #include <vtkAlgorithm.h>
-#include <vtkCellArray.h>
-#include <vtkIdList.h>
-#include <vtkPolyData.h>
 #include <vtkCallbackCommand.h>
+#include <vtkCellArray.h>
 #include <vtkCommand.h>
 #include <vtkDataArray.h>
 #include <vtkDataSetAttributes.h>
@@ -14,14 +10,19 @@
 #include <vtkErrorCode.h>
 #include <vtkExecutive.h>
 #include <vtkFieldData.h>
+#include <vtkFloatArray.h>
+#include <vtkIdList.h>
 #include <vtkLogger.h>
 #include <vtkNew.h>
 #include <vtkOutputWindow.h>
+#include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
 
 #include <cstring>
 #include <mutex>
 #include <sstream>
+
+#include "core/error.h"
 
 namespace facehex::io {
 
@@ -150,9 +151,14 @@ void vtk_arrays_to_matrices(const std::string& path, vtkFieldData* data, int row
   }
 }
 
-void matrices_to_vtk_arrays(const std::map<std::string, Eigen::MatrixXd>& arrays, vtkDataSetAttributes* out) {
+void matrices_to_vtk_arrays(const std::map<std::string, Eigen::MatrixXd>& arrays, vtkDataSetAttributes* out,
+                            const std::set<std::string>& single_precision) {
   for (const auto& [name, m] : arrays) {
-    vtkNew<vtkDoubleArray> array;
+    vtkSmartPointer<vtkDataArray> array;
+    if (single_precision.count(name))
+      array = vtkSmartPointer<vtkFloatArray>::New();
+    else
+      array = vtkSmartPointer<vtkDoubleArray>::New();
     array->SetName(name.c_str());
     array->SetNumberOfComponents(static_cast<int>(m.cols()));
     array->SetNumberOfTuples(m.rows());

@@ -6,9 +6,9 @@
 // pipeline call of core/io therefore goes through run_vtk(), which silences that output, collects the messages and
 // turns any error into a facehex::Error naming the file.
 #include <Eigen/Core>
-
 #include <functional>
 #include <map>
+#include <set>
 #include <string>
 
 #include "core/mesh.h"
@@ -30,8 +30,10 @@ void run_vtk(const std::string& path, const std::string& what, vtkAlgorithm* alg
 // arrays (strings) are skipped. Throws unless every array has `rows` tuples.
 void vtk_arrays_to_matrices(const std::string& path, vtkFieldData* data, int rows,
                             std::map<std::string, Eigen::MatrixXd>* out);
-// Each matrix as a double array with as many components as columns.
-void matrices_to_vtk_arrays(const std::map<std::string, Eigen::MatrixXd>& arrays, vtkDataSetAttributes* out);
+// Each matrix as an array with as many components as columns: doubles, or 32-bit floats if its name is in
+// `single_precision`.
+void matrices_to_vtk_arrays(const std::map<std::string, Eigen::MatrixXd>& arrays, vtkDataSetAttributes* out,
+                            const std::set<std::string>& single_precision = {});
 
 // The points and triangles of a polydata (polygons must all be triangles: throws facehex::Error(subject, ...)
 // otherwise). Labels are left empty.

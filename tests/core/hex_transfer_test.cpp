@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "core/error.h"
@@ -83,6 +84,45 @@ TEST(HexTransfer, BoxOntoStretchedBoxIsTheAffineMap) {
       if (standard.V(v, d) == 0.0) {
         EXPECT_EQ(run.patient_hex.V(v, d), 0.0);
       }
+}
+
+// The run's progress rises from 0 to 1 through the parameterization, the mapping, the shape relaxation (per sweep) and
+// the repair, and a cancel during the relaxation stops the run.
+TEST(HexTransfer, ReportsEveryStageInOrderAndCancelsInTheRelaxation) {
+  VolumeMesh standard = test::hex_box(4, 3, 5, 40, 10, 50);
+  VolumeMesh target_hex = test::hex_box(8, 5, 9, 40, 10, 50);
+  target_hex.V.col(1) += 0.002 * target_hex.V.col(0).cwiseProduct(target_hex.V.col(0));  // bent: not affine
+  VolumeMesh patient = VolumeMesh::from_tets(target_hex.V, split_into_tets(target_hex).T);
+  patient.point_data = target_hex.point_data;
+  std::vector<std::pair<std::string, double>> reports;
+  const ProgressCallback record = [&](const std::string& stage, double f) {
+    reports.emplace_back(stage, f);
+    return true;
+  };
+  const TransferRun run = run_transfer(standard, auxiliary_domain(standard), side_constraints(), "standard", patient,
+                                       side_constraints(), "patient", default_options(), record);
+  ASSERT_FALSE(reports.empty());
+  for (size_t i = 1; i < reports.size(); ++i)
+    EXPECT_GE(reports[i].second, reports[i - 1].second) << reports[i].first << " after " << reports[i - 1].first;
+  EXPECT_DOUBLE_EQ(reports.back().second, 1.0);
+  auto first_of = [&](const std::string& stage) {
+    return std::find_if(reports.begin(), reports.end(), [&](const auto& r) { return r.first == stage; });
+  };
+  const auto mapping = first_of("mapping vertices"), relaxation = first_of("shape relaxation"),
+             repair = first_of("repairing folded cells");
+  ASSERT_NE(relaxation, reports.end());
+  ASSERT_NE(repair, reports.end());
+  EXPECT_LT(mapping, relaxation);
+  EXPECT_LT(relaxation, repair);
+  EXPECT_EQ(std::count_if(reports.begin(), reports.end(), [](const auto& r) { return r.first == "shape relaxation"; }),
+            std::min(run.relaxation.sweeps + 1, default_options().untangle_options.max_sweeps));  // one per sweep
+
+  const ProgressCallback cancel_in_relaxation = [](const std::string& stage, double) {
+    return stage != "shape relaxation";
+  };
+  EXPECT_THROW(run_transfer(standard, auxiliary_domain(standard), side_constraints(), "standard", patient,
+                            side_constraints(), "patient", default_options(), cancel_in_relaxation),
+               Cancelled);
 }
 
 }  // namespace

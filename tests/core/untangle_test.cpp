@@ -161,6 +161,39 @@ TEST(ShapeRelaxation, ReturnsAPerturbedMeshToItsTargetShape) {
   EXPECT_GT((ideal.V - target.V).cwiseAbs().maxCoeff(), 0.1);
 }
 
+TEST(ShapeRelaxation, ReportsEachSweepAndCanBeCancelledBetweenSweeps) {
+  VolumeMesh target = test::hex_box(4, 4, 4, 4, 4, 4);
+  VolumeMesh m = target;
+  test::jitter_interior(m, 0.2, 11);
+  UntangleOptions relax;
+  relax.target = &target;
+  relax.whole_mesh = true;
+  relax.max_sweeps = 40;
+  std::vector<double> fractions;
+  relax.progress = [&](const std::string& stage, double f) {
+    EXPECT_EQ(stage, "untangling");
+    fractions.push_back(f);
+    return true;
+  };
+  VolumeMesh moved = m;
+  VertexPlacement placement = spatial_placement(moved.V, boundary_fixed(moved));
+  const UntangleReport r = untangle(moved, placement, relax);
+  ASSERT_EQ(static_cast<int>(fractions.size()), std::min(r.sweeps + 1, relax.max_sweeps));
+  EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+  EXPECT_DOUBLE_EQ(fractions.front(), 1.0 / relax.max_sweeps);
+  EXPECT_LE(fractions.back(), 1.0);
+
+  // Cancelled after the third sweep: the exception comes out, the mesh is whole (a sweep is never cut short).
+  int calls = 0;
+  relax.progress = [&](const std::string&, double) { return ++calls < 3; };
+  VolumeMesh cancelled = m;
+  VertexPlacement cancelled_placement = spatial_placement(cancelled.V, boundary_fixed(cancelled));
+  EXPECT_THROW(untangle(cancelled, cancelled_placement, relax), Cancelled);
+  EXPECT_EQ(calls, 3);
+  EXPECT_TRUE(check_corner_jacobians(cancelled).inverted.empty());
+  EXPECT_GT((cancelled.V - m.V).cwiseAbs().maxCoeff(), 0) << "three sweeps moved nothing";
+}
+
 // A mesh that already has its target's shape does not move, whatever the pull towards ideal cells (which acts only
 // in proportion to a corner's distortion): mapping a standard onto itself stays the identity.
 TEST(ShapeRelaxation, LeavesAMeshWithTheTargetShapeInPlace) {

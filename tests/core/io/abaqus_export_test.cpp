@@ -114,7 +114,9 @@ TEST(AbaqusExport, CoordinatesFitCalculixFieldsAndReadBackExactlyWhenTheyCan) {
   VolumeMesh m = test::hex_wedge_slab();
   m.V.row(0) << -1e-9 / 3, 77.755425599999995, -1.0 / 3.0;
   const std::string path = dir.file("slab.inp");
-  write_volume_mesh(path, m, MeshWriteOptions{true});
+  MeshWriteOptions options;
+  options.allow_inverted = true;
+  write_volume_mesh(path, m, options);
   const std::string text = test::read_file(path);
   EXPECT_NE(text.find("\n1, -3.3333333333333e-10, 77.7554256, -0.3333333333333333\n"), std::string::npos)
       << text.substr(0, 300);

@@ -53,6 +53,28 @@ TEST_P(VtkRoundTrip, VtkFormatsKeepGeometryAndAllDataArrays) {
   EXPECT_EQ(dir.entries(), std::vector<std::string>{"mesh" + GetParam()}) << "temporary file left behind";
 }
 
+TEST_P(VtkRoundTrip, SinglePrecisionArraysComeBackRoundedToFloatOthersExact) {
+  TempDir dir;
+  VolumeMesh mesh = test::sample_mesh();
+  Eigen::MatrixXd gradients(mesh.num_cells(), 3);
+  for (Eigen::Index i = 0; i < gradients.size(); ++i) gradients(i) = 1.0 / 3.0 + 1e-9 * static_cast<double>(i);
+  mesh.cell_data["grad_u"] = gradients;
+  const std::string path = dir.file("mesh" + GetParam());
+  MeshWriteOptions options;
+  options.single_precision_arrays = {"grad_u"};
+  write_volume_mesh(path, mesh, options);
+  VolumeMesh back = read_volume_mesh(path);
+  expect_same_geometry(mesh, back);
+  ASSERT_TRUE(back.cell_data.count("grad_u"));
+  const Eigen::MatrixXd as_float = gradients.cast<float>().cast<double>();
+  EXPECT_EQ(back.cell_data.at("grad_u"), as_float);
+  EXPECT_NE(back.cell_data.at("grad_u"), gradients) << "the array was written as doubles";
+  back.cell_data.erase("grad_u");
+  mesh.cell_data.erase("grad_u");
+  expect_same_arrays(mesh.point_data, back.point_data);
+  expect_same_arrays(mesh.cell_data, back.cell_data);
+}
+
 INSTANTIATE_TEST_SUITE_P(Formats, VtkRoundTrip, ::testing::Values(".vtu", ".vtk", ".VTU"));
 
 TEST(RoundTripGmsh, KeepsGeometryAndPhysicalTags) {
