@@ -245,6 +245,10 @@ void GuiTest::transfersTheBundledModels() {
   QVERIFY(window_->controller()->waitUntilIdle());
   QVERIFY2(error_.isEmpty(), qPrintable(error_));
   QVERIFY(progress.count() > 10);
+  for (const char* step : {"mapping vertices", "shape relaxation", "repairing folded cells"})
+    QVERIFY2(std::any_of(progress.begin(), progress.end(),
+                         [&](const QList<QVariant>& args) { return args.first().toString().contains(step); }),
+             step);
   const TransferResult* r = session()->transfer();
   QVERIFY(r);
   const VolumeMesh& standard = session()->model(Role::Standard).mesh;
