@@ -7,11 +7,14 @@
 // TetGen runs in a forked child process. TetGen 1.5.0 is not safe to call in-process on bad input: in library mode
 // terminatetetgen() frees the mesh and throws, then the unwinding frees it again (double free: the process dies before
 // any catch), some inputs trip internal assert()s (abort), and a self-intersecting surface can make the refinement
-// loop forever (hence the -d self-intersection check first). The child sends the mesh back through a pipe; a child
-// that dies becomes a facehex::Error. POSIX only, like the rest of the Debian toolchain this builds on.
+// loop forever (hence the -d self-intersection check, in a second child at the same time, which stops the first when
+// it finds one). The children send their results back through pipes; a child that dies becomes a facehex::Error. POSIX
+// only, like the rest of the Debian toolchain this builds on.
 #include "core/tetgen/tetrahedralize.h"
 
 #include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <tetgen.h>
 #include <unistd.h>
@@ -116,23 +119,35 @@ void write_array(int fd, const T* data, std::int64_t count) {
   if (count > 0) write_all(fd, data, static_cast<size_t>(count) * sizeof(T));
 }
 
-// Runs in the child: never returns.
-[[noreturn]] void tetgen_child(int fd, tetgenio& in, const TetrahedralizeOptions& options) {
-  // TetGen's assert() messages would only confuse the user: the parent reports the failure.
+// The children. Each runs TetGen once, writes its message to fd and ends; TetGen's assert() messages would only
+// confuse the user (the parent reports the failure), so their output goes to /dev/null.
+void silence_output() {
   const int devnull = ::open("/dev/null", O_WRONLY);
   if (devnull >= 0) ::dup2(devnull, STDOUT_FILENO), ::dup2(devnull, STDERR_FILENO);
+}
+
+// -d: are any two facets intersecting? Sends {kSelfIntersecting, count} or {kOk, 0}.
+[[noreturn]] void diagnose_child(int fd, tetgenio& in) {
+  silence_output();
   try {
     tetgenbehavior diagnose;
     char diagnose_switches[] = "pdQ";
     diagnose.parse_commandline(diagnose_switches);
     tetgenio found;
     ::tetrahedralize(&diagnose, &in, &found);
-    if (found.numberoftrifaces > 0) {
-      const std::int32_t message[2] = {kSelfIntersecting, found.numberoftrifaces};
-      write_all(fd, message, sizeof message);
-      ::_exit(0);
-    }
+    const std::int32_t message[2] = {found.numberoftrifaces > 0 ? kSelfIntersecting : kOk, found.numberoftrifaces};
+    write_all(fd, message, sizeof message);
+  } catch (int code) {
+    const std::int32_t message[2] = {kFailed, code};
+    write_all(fd, message, sizeof message);
+  }
+  ::_exit(0);
+}
 
+// The quality mesh. Sends {kOk, 0} and the four arrays, or {kFailed, TetGen's code}.
+[[noreturn]] void mesh_child(int fd, tetgenio& in, const TetrahedralizeOptions& options) {
+  silence_output();
+  try {
     // The volume bound is that of a regular tetrahedron with the target edge: a^3 / (6 sqrt 2).
     const double max_volume = std::pow(options.target_edge_length, 3) / (6.0 * std::sqrt(2.0));
     char switches[256];
@@ -182,44 +197,107 @@ bool read_array(const std::vector<char>& buffer, size_t& at, std::vector<T>& out
   return true;
 }
 
-RawMesh run_tetgen(tetgenio& in, const TetrahedralizeOptions& options) {
+// A forked child running `body` with the write end of a pipe, whose other end the parent reads.
+struct Child {
+  pid_t pid = -1;
+  int fd = -1;
+  std::vector<char> buffer;
+  int status = 0;
+};
+
+template <class Body>
+Child spawn(Body body) {
   int fds[2];
   if (::pipe(fds) != 0) throw Error("tetgen", std::string("cannot create a pipe: ") + std::strerror(errno));
-  const pid_t child = ::fork();
-  if (child < 0) {
+  Child child;
+  child.pid = ::fork();
+  if (child.pid < 0) {
     ::close(fds[0]), ::close(fds[1]);
     throw Error("tetgen", std::string("cannot start TetGen's process: ") + std::strerror(errno));
   }
-  if (child == 0) {
+  if (child.pid == 0) {
     ::close(fds[0]);
-    tetgen_child(fds[1], in, options);
+    body(fds[1]);
   }
   ::close(fds[1]);
-  std::vector<char> buffer;
-  char chunk[1 << 16];
-  for (;;) {
-    const ssize_t n = ::read(fds[0], chunk, sizeof chunk);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) break;
-    buffer.insert(buffer.end(), chunk, chunk + n);
-  }
-  ::close(fds[0]);
-  int status = 0;
-  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
-  }
-  if (WIFSIGNALED(status))
-    throw Error("tetgen", "TetGen crashed (" + std::string(strsignal(WTERMSIG(status))) +
-                              ") on this surface; it probably has nearly intersecting or degenerate triangles");
+  child.fd = fds[0];
+  return child;
+}
 
-  std::int32_t message[2] = {-1, 0};
-  if (buffer.size() >= sizeof message) std::memcpy(message, buffer.data(), sizeof message);
-  if (message[0] == kSelfIntersecting) throw SelfIntersectingSurface(message[1]);
+// Reads what is there; closes the pipe at its end. False once it is closed.
+bool read_some(Child& child) {
+  char chunk[1 << 16];
+  const ssize_t n = ::read(child.fd, chunk, sizeof chunk);
+  if (n < 0 && errno == EINTR) return true;
+  if (n <= 0) {
+    ::close(child.fd);
+    child.fd = -1;
+    return false;
+  }
+  child.buffer.insert(child.buffer.end(), chunk, chunk + n);
+  return true;
+}
+
+void reap(Child& child) {
+  if (child.fd >= 0) ::close(child.fd), child.fd = -1;
+  while (::waitpid(child.pid, &child.status, 0) < 0 && errno == EINTR) {
+  }
+}
+
+std::array<std::int32_t, 2> message_of(const Child& child) {
+  std::array<std::int32_t, 2> message = {-1, 0};
+  if (child.buffer.size() >= sizeof message) std::memcpy(message.data(), child.buffer.data(), sizeof message);
+  return message;
+}
+
+void throw_if_crashed(const Child& child) {
+  if (WIFSIGNALED(child.status))
+    throw Error("tetgen", "TetGen crashed (" + std::string(strsignal(WTERMSIG(child.status))) +
+                              ") on this surface; it probably has nearly intersecting or degenerate triangles");
+}
+
+// The self-intersection check and the quality mesh run at the same time, in two processes (on the bundled CT's
+// surface 1.0 and 2.2 s); a surface found intersecting stops the mesh, whose refinement could loop forever on it.
+RawMesh run_tetgen(tetgenio& in, const TetrahedralizeOptions& options) {
+  Child diagnose = spawn([&](int fd) { diagnose_child(fd, in); });
+  Child mesh_run;
+  try {
+    mesh_run = spawn([&](int fd) { mesh_child(fd, in, options); });
+  } catch (...) {
+    ::kill(diagnose.pid, SIGKILL);
+    reap(diagnose);
+    throw;
+  }
+  bool stopped = false;
+  while (diagnose.fd >= 0 || mesh_run.fd >= 0) {
+    std::array<pollfd, 2> watch = {pollfd{diagnose.fd, POLLIN, 0}, pollfd{mesh_run.fd, POLLIN, 0}};
+    if (::poll(watch.data(), watch.size(), -1) < 0) {
+      if (errno == EINTR) continue;
+      break;
+    }
+    if (diagnose.fd >= 0 && watch[0].revents != 0 && !read_some(diagnose) && message_of(diagnose)[0] != kOk) {
+      ::kill(mesh_run.pid, SIGKILL);  // the surface is bad (or the check failed): the mesh is not wanted
+      stopped = true;
+      break;
+    }
+    if (mesh_run.fd >= 0 && watch[1].revents != 0) read_some(mesh_run);
+  }
+  reap(diagnose);
+  reap(mesh_run);
+
+  throw_if_crashed(diagnose);
+  const auto check = message_of(diagnose);
+  if (check[0] == kSelfIntersecting) throw SelfIntersectingSurface(check[1]);
+  if (check[0] == kFailed) throw Error("tetgen", tetgen_failure(check[1]));
+  if (stopped || check[0] != kOk) throw Error("tetgen", "TetGen's self-intersection check ended without a result");
+  throw_if_crashed(mesh_run);
+  const auto message = message_of(mesh_run);
   if (message[0] == kFailed) throw Error("tetgen", tetgen_failure(message[1]));
   RawMesh mesh;
   size_t at = sizeof message;
-  if (message[0] != kOk || !read_array(buffer, at, mesh.points) || !read_array(buffer, at, mesh.tets) ||
-      !read_array(buffer, at, mesh.faces) || !read_array(buffer, at, mesh.markers) ||
-      mesh.faces.size() != 3 * mesh.markers.size())
+  if (message[0] != kOk || !read_array(mesh_run.buffer, at, mesh.points) ||
+      !read_array(mesh_run.buffer, at, mesh.tets) || !read_array(mesh_run.buffer, at, mesh.faces) ||
+      !read_array(mesh_run.buffer, at, mesh.markers) || mesh.faces.size() != 3 * mesh.markers.size())
     throw Error("tetgen", "TetGen's process ended without a result");
   return mesh;
 }

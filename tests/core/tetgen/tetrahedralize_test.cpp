@@ -1,8 +1,10 @@
 #include "core/tetgen/tetrahedralize.h"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
 #include <Eigen/Geometry>
+#include <cerrno>
 #include <cmath>
 #include <map>
 #include <set>
@@ -12,6 +14,13 @@
 
 namespace facehex {
 namespace {
+
+// TetGen runs in child processes (the self-intersection check and the mesh at the same time): none may outlive a call.
+void expect_no_process_left() {
+  errno = 0;
+  EXPECT_EQ(::waitpid(-1, nullptr, WNOHANG), -1);
+  EXPECT_EQ(errno, ECHILD) << "a TetGen process is still running or unreaped";
+}
 
 // Axis-aligned box [0,a]x[0,b]x[0,c], outward triangles, face label 1..6 = -x,+x,-y,+y,-z,+z.
 SurfaceMesh box(double a, double b, double c) {
@@ -103,6 +112,7 @@ TEST(Tetrahedralize, BoxVolumeOrientationAndLabels) {
   TetrahedralizeOptions opt;
   opt.target_edge_length = 2.0;
   const TetrahedralizeResult r = tetrahedralize(s, opt);
+  expect_no_process_left();
   ASSERT_TRUE(r.mesh.is_tet_mesh());
   EXPECT_NEAR(total_volume_all_positive(r.mesh), 20.0 * 12 * 8, 1e-9 * 20 * 12 * 8);
 
@@ -190,6 +200,7 @@ TEST(Tetrahedralize, RejectsASelfIntersectingSurface) {
   s.F.bottomRows(12) = a.F.array() + 8;
   expect_tetgen_error(s, "intersects itself");
   EXPECT_THROW(tetrahedralize(s), SelfIntersectingSurface);  // its own type: the segmentation remeshes and retries
+  expect_no_process_left();  // the quality mesh, started beside the check, was stopped and reaped
 }
 
 TEST(Tetrahedralize, RejectsBadLabelCount) {
