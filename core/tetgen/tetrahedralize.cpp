@@ -268,16 +268,16 @@ RawMesh run_tetgen(tetgenio& in, const TetrahedralizeOptions& options) {
     reap(diagnose);
     throw;
   }
-  bool stopped = false;
   while (diagnose.fd >= 0 || mesh_run.fd >= 0) {
     std::array<pollfd, 2> watch = {pollfd{diagnose.fd, POLLIN, 0}, pollfd{mesh_run.fd, POLLIN, 0}};
     if (::poll(watch.data(), watch.size(), -1) < 0) {
       if (errno == EINTR) continue;
+      ::kill(diagnose.pid, SIGKILL);  // cannot wait on the pipes: stop both rather than wait for them blindly
+      ::kill(mesh_run.pid, SIGKILL);
       break;
     }
     if (diagnose.fd >= 0 && watch[0].revents != 0 && !read_some(diagnose) && message_of(diagnose)[0] != kOk) {
       ::kill(mesh_run.pid, SIGKILL);  // the surface is bad (or the check failed): the mesh is not wanted
-      stopped = true;
       break;
     }
     if (mesh_run.fd >= 0 && watch[1].revents != 0) read_some(mesh_run);
@@ -289,7 +289,7 @@ RawMesh run_tetgen(tetgenio& in, const TetrahedralizeOptions& options) {
   const auto check = message_of(diagnose);
   if (check[0] == kSelfIntersecting) throw SelfIntersectingSurface(check[1]);
   if (check[0] == kFailed) throw Error("tetgen", tetgen_failure(check[1]));
-  if (stopped || check[0] != kOk) throw Error("tetgen", "TetGen's self-intersection check ended without a result");
+  if (check[0] != kOk) throw Error("tetgen", "TetGen's self-intersection check ended without a result");
   throw_if_crashed(mesh_run);
   const auto message = message_of(mesh_run);
   if (message[0] == kFailed) throw Error("tetgen", tetgen_failure(message[1]));
