@@ -16,19 +16,19 @@
 #include "app/commands.h"
 #include "app/synthetic_patient.h"
 #include "app/transfer_command.h"
-#include "core/automatic_constraints.h"
-#include "core/constraint_set.h"
-#include "core/error.h"
-#include "core/harmonic_fields.h"
-#include "core/hex_transfer.h"
+#include "core/face/automatic_constraints.h"
+#include "core/fields/constraint_set.h"
+#include "core/fields/harmonic_fields.h"
 #include "core/io/mesh_io.h"
-#include "core/io/parameterization_cache.h"
-#include "core/mesh_check.h"
-#include "core/resources.h"
+#include "core/mapping/hex_transfer.h"
+#include "core/mapping/transfer_pipeline.h"
+#include "core/mesh/mesh_check.h"
 #include "core/segment/ct_volume.h"
 #include "core/segment/voxel_grid.h"
-#include "core/stopwatch.h"
-#include "core/transfer_pipeline.h"
+#include "core/standard/parameterization_cache.h"
+#include "core/util/error.h"
+#include "core/util/resources.h"
+#include "core/util/stopwatch.h"
 
 namespace facehex::cli {
 namespace {
@@ -116,7 +116,7 @@ BenchStandard bench_standard(const Args& args) {
   BenchStandard b;
   b.mesh = read_volume_mesh(files.mesh);
   b.fields = field_options(args);
-  const StandardDomain domain = standard_domain(b.mesh, args.get("standard-domain"));
+  const TetDomain domain = standard_domain(b.mesh, args.get("standard-domain"));
   const ConstraintSet set = read_constraint_set(constraints);
   const std::optional<ModelParameterization> cached =
       cached_standard_parameterization(parameterization_cache_path(files.mesh), domain, set, b.fields);

@@ -1,10 +1,10 @@
 #include "app/cli_args.h"
 
-#include "core/error.h"
-
 #include <algorithm>
 #include <iostream>
 #include <sstream>
+
+#include "core/util/error.h"
 
 namespace facehex::cli {
 
@@ -38,8 +38,8 @@ bool Args::parse(const std::vector<std::string>& argv) {
     }
     if (a.rfind("--", 0) == 0 || (a.size() == 2 && a[0] == '-' && a != "-")) {
       const std::string name = a == "-o" ? "output" : a.substr(2);
-      const auto spec = std::find_if(specs_.begin(), specs_.end(),
-                                     [&](const Spec& s) { return !s.positional && s.name == name; });
+      const auto spec =
+          std::find_if(specs_.begin(), specs_.end(), [&](const Spec& s) { return !s.positional && s.name == name; });
       if (spec == specs_.end()) throw Error(subject, "unknown option " + a + " (see --help)");
       if (spec->is_flag) {
         values_[name] = "1";

@@ -16,22 +16,22 @@
 #include "app/report.h"
 #include "app/terminal_progress.h"
 #include "app/transfer_command.h"
-#include "core/automatic_constraints.h"
-#include "core/constraint_set.h"
-#include "core/error.h"
+#include "core/face/automatic_constraints.h"
+#include "core/fields/constraint_set.h"
 #include "core/io/fe_sets.h"
 #include "core/io/mesh_io.h"
-#include "core/io/parameterization_cache.h"
-#include "core/mesh_check.h"
-#include "core/resources.h"
+#include "core/mapping/transfer_pipeline.h"
+#include "core/mesh/mesh_check.h"
+#include "core/mesh/shell_sides.h"
+#include "core/mesh/sides.h"
+#include "core/mesh/tet_topology.h"
 #include "core/segment/patient_input.h"
-#include "core/shell_sides.h"
-#include "core/sides.h"
 #include "core/standard/closed_domain.h"
-#include "core/template_mesh.h"
-#include "core/tet_topology.h"
-#include "core/text_file.h"
-#include "core/transfer_pipeline.h"
+#include "core/standard/parameterization_cache.h"
+#include "core/standard/template_mesh.h"
+#include "core/util/error.h"
+#include "core/util/resources.h"
+#include "core/util/text_file.h"
 
 namespace facehex::cli {
 namespace fs = std::filesystem;
@@ -152,7 +152,7 @@ HarmonicFieldsOptions field_options(const Args& args) {
   return o;
 }
 
-StandardDomain standard_domain(const VolumeMesh& hex, const std::string& kind) {
+TetDomain standard_domain(const VolumeMesh& hex, const std::string& kind) {
   if (kind == "closed") return closed_domain(hex);
   if (kind == "auxiliary") return auxiliary_domain(hex);
   throw Error("--standard-domain", "expects closed or auxiliary, got '" + kind + "'");
@@ -228,7 +228,7 @@ TransferOutputs execute_transfer(const TransferInputs& in) {
     std::cerr << "automatic constraints: six sides and " << feature_specs().size() << " features at the landmarks\n";
     std::cerr << landmarks_text(landmarks, "  ");
   }
-  const StandardDomain domain = standard_domain(out.standard, in.standard_domain);
+  const TetDomain domain = standard_domain(out.standard, in.standard_domain);
   const std::string cache = parameterization_cache_path(in.standard.mesh);
   const std::optional<ModelParameterization> cached =
       cached_standard_parameterization(cache, domain, standard_set, in.options.fields);
@@ -244,8 +244,7 @@ TransferOutputs execute_transfer(const TransferInputs& in) {
   return out;
 }
 
-std::optional<ModelParameterization> cached_standard_parameterization(const std::string& cache,
-                                                                      const StandardDomain& domain,
+std::optional<ModelParameterization> cached_standard_parameterization(const std::string& cache, const TetDomain& domain,
                                                                       const ConstraintSet& set,
                                                                       const HarmonicFieldsOptions& options) {
   std::string why_not;
@@ -376,7 +375,7 @@ int cmd_fields(const Argv& argv) {
   MeshReadOptions ro;
   ro.target_edge_length = args.number("edge-length");
   VolumeMesh mesh = read_volume_mesh(path, ro);
-  StandardDomain domain;
+  TetDomain domain;
   if (mesh.is_tet_mesh()) {
     check_and_orient_tet_mesh(mesh, path);
     domain = {mesh.V, mesh.tets(), side_mask_of(mesh), mesh.num_vertices(), 0, "the model's own tets"};
@@ -562,9 +561,8 @@ int cmd_constraints(const Argv& argv) {
   FaceLandmarks landmarks;
   if (args.has("own-values")) {
     // Each feature's value is the mean of the model's side-only harmonic field over the vertices it selects.
-    const StandardDomain domain = mesh.is_tet_mesh()
-                                      ? StandardDomain{mesh.V, mesh.tets(), mask, mesh.num_vertices(), 0, ""}
-                                      : standard_domain(mesh, "closed");
+    const TetDomain domain = mesh.is_tet_mesh() ? TetDomain{mesh.V, mesh.tets(), mask, mesh.num_vertices(), 0, ""}
+                                                : standard_domain(mesh, "closed");
     HarmonicFieldsOptions plain;
     plain.orthogonality_iterations = 0;
     const ModelParameterization p =
@@ -695,7 +693,7 @@ int cmd_standards(const Argv& argv) {
     if (!args.has("write-cache")) continue;
     const VolumeMesh mesh = read_volume_mesh(s.mesh);
     const ConstraintSet set = read_constraint_set(s.constraints);
-    const StandardDomain domain = closed_domain(mesh);
+    const TetDomain domain = closed_domain(mesh);
     const HarmonicFieldsOptions options;
     const ModelParameterization p =
         parameterize_model(domain.V, domain.T, domain.side_mask, set, s.constraints, options);

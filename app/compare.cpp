@@ -12,9 +12,9 @@
 #include "app/output_folder.h"
 #include "app/terminal_progress.h"
 #include "app/transfer_command.h"
-#include "core/error.h"
-#include "core/resources.h"
-#include "core/text_file.h"
+#include "core/util/error.h"
+#include "core/util/resources.h"
+#include "core/util/text_file.h"
 
 namespace facehex::cli {
 namespace fs = std::filesystem;

@@ -9,7 +9,7 @@
 
 #include "app/report.h"
 #include "core/baseline/mesh_matching.h"
-#include "core/mesh.h"
+#include "core/mesh/mesh.h"
 #include "core/quality/surface_distance.h"
 
 namespace facehex::cli {

@@ -1,13 +1,13 @@
 // facehex: the command-line tool. Never links Qt.
-#include "app/commands.h"
-#include "core/allocator_tuning.h"
-#include "core/error.h"
-#include "core/progress.h"
-
 #include <cstring>
 #include <functional>
 #include <iostream>
 #include <map>
+
+#include "app/commands.h"
+#include "core/util/allocator_tuning.h"
+#include "core/util/error.h"
+#include "core/util/progress.h"
 
 namespace {
 
@@ -40,7 +40,8 @@ void print_usage() {
   std::cout << "usage: facehex COMMAND [options]   (facehex COMMAND --help for each)\n\n"
                "Patient-specific hexahedral meshes of the facial soft tissue by harmonic-field volumetric mapping.\n\n"
                "commands:\n";
-  for (const auto& [name, c] : commands()) std::cout << "  " << name << std::string(12 - name.size(), ' ') << c.summary << "\n";
+  for (const auto& [name, c] : commands())
+    std::cout << "  " << name << std::string(12 - name.size(), ' ') << c.summary << "\n";
   std::cout << "\n'facehex run -o OUT' runs the bundled demo.\n";
 }
 

@@ -12,8 +12,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/atomic_file.h"
-#include "core/error.h"
+#include "core/util/atomic_file.h"
+#include "core/util/error.h"
 
 namespace facehex::cli {
 namespace {

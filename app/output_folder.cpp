@@ -2,7 +2,7 @@
 
 #include <unistd.h>
 
-#include "core/error.h"
+#include "core/util/error.h"
 
 namespace fs = std::filesystem;
 

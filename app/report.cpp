@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <sstream>
 
-#include "core/constraint_set.h"
-#include "core/tet_topology.h"
+#include "core/fields/constraint_set.h"
+#include "core/mesh/tet_topology.h"
 
 namespace facehex::cli {
 

@@ -5,10 +5,10 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "core/mesh.h"
+#include "core/mapping/transfer_pipeline.h"
+#include "core/mesh/mesh.h"
 #include "core/quality/hex_quality.h"
 #include "core/quality/surface_distance.h"
-#include "core/transfer_pipeline.h"
 
 namespace facehex::cli {
 

@@ -1,6 +1,6 @@
 #include "app/synthetic_patient.h"
 
-#include "core/synthetic_shell.h"
+#include "core/mesh/synthetic_shell.h"
 #include "core/tetgen/tetrahedralize.h"
 
 namespace facehex::cli {

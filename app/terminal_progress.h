@@ -1,11 +1,12 @@
 #pragma once
 // A one-line progress display on stderr for long stages: redrawn in place on a terminal, one line per stage
 // otherwise (logs stay readable).
-#include "core/progress.h"
+#include <unistd.h>
 
 #include <cstdio>
 #include <string>
-#include <unistd.h>
+
+#include "core/util/progress.h"
 
 namespace facehex::cli {
 

@@ -7,11 +7,11 @@
 
 #include "app/cli_args.h"
 #include "app/report.h"
-#include "core/mesh.h"
+#include "core/fields/tet_domain.h"
+#include "core/mapping/transfer_pipeline.h"
+#include "core/mesh/mesh.h"
 #include "core/quality/surface_distance.h"
 #include "core/segment/soft_tissue.h"
-#include "core/standard_domain.h"
-#include "core/transfer_pipeline.h"
 
 namespace facehex::cli {
 
@@ -24,8 +24,7 @@ struct TransferOutputs {
 
 // The standard's parameterization from its cache file (core/io/parameterization_cache.h), or nullopt; a cache that
 // exists but does not fit is reported on stderr (it is then recomputed).
-std::optional<ModelParameterization> cached_standard_parameterization(const std::string& cache,
-                                                                      const StandardDomain& domain,
+std::optional<ModelParameterization> cached_standard_parameterization(const std::string& cache, const TetDomain& domain,
                                                                       const ConstraintSet& set,
                                                                       const HarmonicFieldsOptions& options);
 
@@ -38,7 +37,7 @@ HarmonicFieldsOptions field_options(const Args& args);
 
 // The tet domain a hex standard is parameterized on (--standard-domain): "closed" (openings filled) or "auxiliary"
 // (the paper's: its cells split into tets).
-StandardDomain standard_domain(const VolumeMesh& hex, const std::string& kind);
+TetDomain standard_domain(const VolumeMesh& hex, const std::string& kind);
 
 // The segmentation options of add_transfer_options (--edge-length, --skin, --bone, --anterior, --superior, the cut
 // planes and their automatic distances). Throws facehex::Error naming the option for a non-finite cut, a negative

@@ -21,8 +21,8 @@
 #include <QUndoStack>
 
 #include "core/io/mesh_io.h"
-#include "core/resources.h"
 #include "core/segment/ct_volume.h"
+#include "core/util/resources.h"
 #include "ui/angle_histogram.h"
 #include "ui/autosave.h"
 #include "ui/constraint_panel.h"

@@ -3,23 +3,23 @@
 #include <QFileInfo>
 #include <filesystem>
 
-#include "core/automatic_constraints.h"
+#include "core/face/automatic_constraints.h"
 #include "core/io/mesh_io.h"
-#include "core/mesh_check.h"
+#include "core/mesh/mesh_check.h"
+#include "core/mesh/side_mask.h"
+#include "core/mesh/synthetic_shell.h"
+#include "core/mesh/tet_topology.h"
 #include "core/quality/hex_quality.h"
-#include "core/resources.h"
 #include "core/segment/patient_input.h"
-#include "core/side_mask.h"
 #include "core/standard/closed_domain.h"
-#include "core/synthetic_shell.h"
-#include "core/tet_topology.h"
 #include "core/tetgen/tetrahedralize.h"
+#include "core/util/resources.h"
 
 namespace facehex::gui {
 namespace fs = std::filesystem;
 namespace {
 
-std::vector<char> boundary_of(const StandardDomain& d) {
+std::vector<char> boundary_of(const TetDomain& d) {
   return boundary_vertex_flags(static_cast<int>(d.V.rows()), boundary_faces(d.T).F);
 }
 

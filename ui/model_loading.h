@@ -4,7 +4,7 @@
 #include <map>
 #include <string>
 
-#include "core/progress.h"
+#include "core/util/progress.h"
 #include "ui/session_model.h"
 
 namespace facehex::gui {

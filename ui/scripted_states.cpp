@@ -6,7 +6,7 @@
 #include <QTabWidget>
 #include <QTableWidget>
 
-#include "core/resources.h"
+#include "core/util/resources.h"
 #include "ui/main_window.h"
 #include "ui/model_view.h"
 #include "ui/transfer_controller.h"

@@ -9,13 +9,13 @@
 #include <optional>
 #include <vector>
 
-#include "core/automatic_constraints.h"
-#include "core/constraint_set.h"
-#include "core/mesh.h"
+#include "core/face/automatic_constraints.h"
+#include "core/fields/constraint_set.h"
+#include "core/fields/tet_domain.h"
+#include "core/mapping/transfer_pipeline.h"
+#include "core/mesh/mesh.h"
 #include "core/quality/hex_quality.h"
 #include "core/segment/patient_input.h"
-#include "core/standard_domain.h"
-#include "core/transfer_pipeline.h"
 
 class QUndoStack;
 
@@ -36,7 +36,7 @@ struct LoadedModel {
   VolumeMesh mesh;  // standard: hex-dominant mesh; patient: checked, positively oriented tet model
   // The tets the fields live on and the constraints select from: the patient's own tets, or the standard's
   // parameterization domain (its first rows are the hex vertices). For the patient hex_vertices is 0.
-  StandardDomain domain;
+  TetDomain domain;
   std::vector<char> boundary;  // per domain vertex: on the domain's boundary
   ElementQuality quality;      // per cell of a hex-dominant mesh (the standard's reference quality), else empty
   QString path;                // the mesh file, or empty for a model made in memory

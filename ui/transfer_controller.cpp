@@ -8,13 +8,13 @@
 #include <memory>
 #include <optional>
 
-#include "core/automatic_constraints.h"
-#include "core/error.h"
+#include "core/face/automatic_constraints.h"
 #include "core/io/mesh_io.h"
-#include "core/io/parameterization_cache.h"
-#include "core/resources.h"
 #include "core/segment/ct_volume.h"
 #include "core/segment/patient_input.h"
+#include "core/standard/parameterization_cache.h"
+#include "core/util/error.h"
+#include "core/util/resources.h"
 #include "ui/model_loading.h"
 
 namespace facehex::gui {
@@ -36,7 +36,7 @@ const char* kStale = QT_TRANSLATE_NOOP("TransferController", " (not applied: the
 
 // The parameterization cached beside a model's file (the bundled standards have one), when it fits the model as
 // edited (its constraints may have changed) and the options; nullopt otherwise (then it is computed).
-std::optional<ModelParameterization> cachedParameterization(const QString& path, const StandardDomain& domain,
+std::optional<ModelParameterization> cachedParameterization(const QString& path, const TetDomain& domain,
                                                             const ConstraintSet& set,
                                                             const HarmonicFieldsOptions& options) {
   if (path.isEmpty()) return std::nullopt;
@@ -169,7 +169,7 @@ bool TransferController::computeFields() {
   struct Input {
     Role role;
     QString path;
-    StandardDomain domain;
+    TetDomain domain;
     ConstraintSet set;
     std::string source;
     quint64 revision;

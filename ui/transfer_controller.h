@@ -8,7 +8,7 @@
 #include <atomic>
 #include <functional>
 
-#include "core/progress.h"
+#include "core/util/progress.h"
 #include "ui/session_model.h"
 
 namespace facehex::gui {

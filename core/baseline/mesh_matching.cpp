@@ -10,12 +10,12 @@
 #include <unordered_map>
 
 #include "core/baseline/thin_plate_spline.h"
-#include "core/cell_faces.h"
-#include "core/constraint_set.h"
-#include "core/error.h"
+#include "core/fields/constraint_set.h"
+#include "core/mesh/cell_faces.h"
+#include "core/mesh/sides.h"
 #include "core/quality/surface_distance.h"
-#include "core/sides.h"
-#include "core/stopwatch.h"
+#include "core/util/error.h"
+#include "core/util/stopwatch.h"
 
 namespace facehex {
 namespace {

@@ -28,8 +28,8 @@
 #include <string>
 #include <vector>
 
-#include "core/mesh.h"
-#include "core/progress.h"
+#include "core/mesh/mesh.h"
+#include "core/util/progress.h"
 
 namespace facehex {
 

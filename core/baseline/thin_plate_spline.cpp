@@ -3,7 +3,7 @@
 #include <Eigen/LU>
 #include <cmath>
 
-#include "core/error.h"
+#include "core/util/error.h"
 
 namespace facehex {
 namespace {

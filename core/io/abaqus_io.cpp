@@ -10,10 +10,10 @@
 #include <map>
 #include <unordered_map>
 
-#include "core/cell_faces.h"
-#include "core/error.h"
 #include "core/io/fe_sets.h"
 #include "core/io/io_util.h"
+#include "core/mesh/cell_faces.h"
+#include "core/util/error.h"
 
 namespace facehex::io {
 

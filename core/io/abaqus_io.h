@@ -20,7 +20,7 @@
 // "side_mask", the distribution becomes cell data "frame_e1".."frame_e3" (fe_sets.h). *INCLUDE is an error.
 #include <string>
 
-#include "core/mesh.h"
+#include "core/mesh/mesh.h"
 
 namespace facehex::io {
 

@@ -10,12 +10,11 @@
 //        (tets, pyramids) are rejected.
 // Node ids may have gaps; they are kept in point_data "ansys_node_id", the element numbers in cell_data
 // "ansys_element_id".
-#include "core/mesh.h"
-
 #include <Eigen/Core>
-
 #include <string>
 #include <string_view>
+
+#include "core/mesh/mesh.h"
 
 namespace facehex {
 

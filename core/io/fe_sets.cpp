@@ -2,10 +2,10 @@
 
 #include <algorithm>
 
-#include "core/cell_faces.h"
-#include "core/constraint_set.h"
-#include "core/corner_jacobian.h"
-#include "core/error.h"
+#include "core/fields/constraint_set.h"
+#include "core/mesh/cell_faces.h"
+#include "core/mesh/corner_jacobian.h"
+#include "core/util/error.h"
 
 namespace facehex {
 

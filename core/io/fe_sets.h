@@ -25,9 +25,9 @@
 #include <string>
 #include <vector>
 
-#include "core/material_frame.h"
-#include "core/mesh.h"
-#include "core/sides.h"
+#include "core/mesh/material_frame.h"
+#include "core/mesh/mesh.h"
+#include "core/mesh/sides.h"
 
 namespace facehex {
 

@@ -20,7 +20,7 @@
 // and mat_axis becomes "frame_e1".."frame_e3" (elements without one get the global axes, as in FEBio).
 #include <string>
 
-#include "core/mesh.h"
+#include "core/mesh/mesh.h"
 
 namespace facehex::io {
 

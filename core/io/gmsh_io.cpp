@@ -1,16 +1,16 @@
 #include "core/io/gmsh_io.h"
 
-#include "core/cell_faces.h"
-#include "core/error.h"
-#include "core/io/fe_sets.h"
-#include "core/io/io_util.h"
-
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
 #include <unordered_map>
 #include <vector>
+
+#include "core/io/fe_sets.h"
+#include "core/io/io_util.h"
+#include "core/mesh/cell_faces.h"
+#include "core/util/error.h"
 
 namespace facehex::io {
 

@@ -10,9 +10,9 @@
 // data "side_mask" also gets its side surfaces (fe_sets.h) as triangles and quads in physical surfaces 1..6 (side s
 // -> s+1) named like the FE exports' surfaces ("SKIN_SURF", ...), and then, unless "gmsh_physical" is given, all
 // cells in physical volume 1 "ALL" (Gmsh drops elements outside physical groups when it saves).
-#include "core/mesh.h"
-
 #include <string>
+
+#include "core/mesh/mesh.h"
 
 namespace facehex::io {
 

@@ -1,7 +1,5 @@
 #include "core/io/io_util.h"
 
-#include "core/error.h"
-
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -12,6 +10,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+
+#include "core/util/error.h"
 
 namespace facehex::io {
 

@@ -2,13 +2,12 @@
 // Helpers shared by the mesh readers and writers of core/io (not part of the public API): file-name handling,
 // up-front file checks, a line-by-line text parser whose errors carry "line N", number formatting that
 // round-trips, and the consistency checks every reader runs before it hands out a mesh.
-#include "core/mesh.h"
-
 #include <Eigen/Core>
-
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "core/mesh/mesh.h"
 
 namespace facehex::io {
 

@@ -5,8 +5,6 @@
 #include <filesystem>
 #include <functional>
 
-#include "core/atomic_file.h"
-#include "core/error.h"
 #include "core/io/abaqus_io.h"
 #include "core/io/ansys_io.h"
 #include "core/io/fe_sets.h"
@@ -16,6 +14,8 @@
 #include "core/io/tetgen_io.h"
 #include "core/io/vtk_mesh_io.h"
 #include "core/tetgen/tetrahedralize.h"
+#include "core/util/atomic_file.h"
+#include "core/util/error.h"
 
 namespace facehex {
 

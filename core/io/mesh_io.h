@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "core/mesh.h"
+#include "core/mesh/mesh.h"
 
 namespace facehex {
 

@@ -1,8 +1,5 @@
 #include "core/io/surface_file_checks.h"
 
-#include "core/error.h"
-#include "core/io/io_util.h"
-
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -10,6 +7,9 @@
 #include <sstream>
 #include <string_view>
 #include <vector>
+
+#include "core/io/io_util.h"
+#include "core/util/error.h"
 
 namespace facehex::io {
 

@@ -1,12 +1,5 @@
 // Triangle surfaces (.stl, .obj, .ply, .vtp) through VTK's readers and writers: read_surface_mesh and
 // write_surface_mesh of mesh_io.h.
-#include "core/error.h"
-#include "core/atomic_file.h"
-#include "core/io/io_util.h"
-#include "core/io/mesh_io.h"
-#include "core/io/surface_file_checks.h"
-#include "core/io/vtk_util.h"
-
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkCleanPolyData.h>
@@ -26,6 +19,13 @@
 #include <vtkTriangleFilter.h>
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
+
+#include "core/io/io_util.h"
+#include "core/io/mesh_io.h"
+#include "core/io/surface_file_checks.h"
+#include "core/io/vtk_util.h"
+#include "core/util/atomic_file.h"
+#include "core/util/error.h"
 
 namespace facehex {
 

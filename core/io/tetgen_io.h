@@ -7,9 +7,9 @@
 // '#' starts a comment. Numbering starts at 0 or 1, as the first point of the .node says. Second-order (10-node)
 // tets keep their 4 corners. Attributes go to point_data "tetgen_attributes" / cell_data "tetgen_attributes",
 // boundary markers to point_data "tetgen_boundary_marker".
-#include "core/mesh.h"
-
 #include <string>
+
+#include "core/mesh/mesh.h"
 
 namespace facehex::io {
 

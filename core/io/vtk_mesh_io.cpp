@@ -15,9 +15,9 @@
 #include <vtkXMLUnstructuredGridReader.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
-#include "core/error.h"
 #include "core/io/io_util.h"
 #include "core/io/vtk_util.h"
+#include "core/util/error.h"
 
 namespace facehex::io {
 

@@ -4,7 +4,7 @@
 #include <set>
 #include <string>
 
-#include "core/mesh.h"
+#include "core/mesh/mesh.h"
 
 namespace facehex::io {
 

@@ -22,7 +22,7 @@
 #include <mutex>
 #include <sstream>
 
-#include "core/error.h"
+#include "core/util/error.h"
 
 namespace facehex::io {
 

@@ -11,7 +11,7 @@
 #include <set>
 #include <string>
 
-#include "core/mesh.h"
+#include "core/mesh/mesh.h"
 
 class vtkAlgorithm;
 class vtkPolyData;

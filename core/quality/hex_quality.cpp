@@ -16,10 +16,10 @@
 #include <utility>
 #include <vector>
 
-#include "core/cell_faces.h"
-#include "core/corner_jacobian.h"
-#include "core/error.h"
+#include "core/mesh/cell_faces.h"
+#include "core/mesh/corner_jacobian.h"
 #include "core/quality/vtk_grid.h"
+#include "core/util/error.h"
 
 namespace facehex {
 

@@ -16,7 +16,7 @@
 #include <array>
 #include <string>
 
-#include "core/mesh.h"
+#include "core/mesh/mesh.h"
 
 namespace facehex {
 

@@ -1,9 +1,9 @@
 #pragma once
 // VolumeMesh -> vtkUnstructuredGrid, for the VTK filters of the quality module (and anything else that needs one).
-#include "core/mesh.h"
-
 #include <vtkSmartPointer.h>
 #include <vtkUnstructuredGrid.h>
+
+#include "core/mesh/mesh.h"
 
 namespace facehex {
 

@@ -20,10 +20,10 @@
 #include <filesystem>
 #include <functional>
 
-#include "core/atomic_file.h"
-#include "core/error.h"
 #include "core/io/vtk_util.h"
 #include "core/segment/dicom_series.h"
+#include "core/util/atomic_file.h"
+#include "core/util/error.h"
 
 namespace facehex {
 namespace {

@@ -15,7 +15,7 @@
 #include <memory>
 #include <sstream>
 
-#include "core/error.h"
+#include "core/util/error.h"
 
 namespace facehex {
 namespace {

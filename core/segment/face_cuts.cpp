@@ -6,7 +6,7 @@
 #include <sstream>
 #include <vector>
 
-#include "core/error.h"
+#include "core/util/error.h"
 
 namespace facehex {
 namespace {

@@ -24,8 +24,8 @@
 #include <optional>
 #include <vector>
 
+#include "core/mesh/sides.h"
 #include "core/segment/voxel_grid.h"
-#include "core/sides.h"
 
 namespace facehex {
 

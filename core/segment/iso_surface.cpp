@@ -15,8 +15,8 @@
 #include <Eigen/Geometry>
 #include <map>
 
-#include "core/error.h"
 #include "core/io/vtk_util.h"
+#include "core/util/error.h"
 
 namespace facehex {
 namespace {

@@ -2,7 +2,7 @@
 // The closed triangle surface bounding {phi < 0} of a field on a voxel grid (Flying Edges, so linear
 // interpolation along voxel edges: no voxel staircase when phi is smooth). Its triangles are as fine as the grid and
 // often slivers: remesh.h makes a mesh of it.
-#include "core/mesh.h"
+#include "core/mesh/mesh.h"
 #include "core/segment/voxel_grid.h"
 
 namespace facehex {

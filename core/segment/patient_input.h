@@ -5,10 +5,10 @@
 #include <optional>
 #include <string>
 
-#include "core/mesh.h"
-#include "core/mesh_check.h"
-#include "core/progress.h"
+#include "core/mesh/mesh.h"
+#include "core/mesh/mesh_check.h"
 #include "core/segment/soft_tissue.h"
+#include "core/util/progress.h"
 
 namespace facehex {
 

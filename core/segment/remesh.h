@@ -10,7 +10,7 @@
 // the input's feature lines between the same two labels; vertices where three labels meet (or a feature line ends or
 // branches) do not move. So every labelled patch keeps its boundary and its connectivity, and the surface keeps its
 // topology (collapses respect the link condition).
-#include "core/mesh.h"
+#include "core/mesh/mesh.h"
 
 namespace facehex {
 

@@ -10,10 +10,10 @@
 // meets the skin at a grazing angle) take the side of the faces around them.
 #include <Eigen/Core>
 
-#include "core/mesh.h"
+#include "core/mesh/mesh.h"
+#include "core/mesh/sides.h"
 #include "core/segment/face_cuts.h"
 #include "core/segment/voxel_grid.h"
-#include "core/sides.h"
 
 namespace facehex {
 

@@ -5,12 +5,12 @@
 #include <set>
 #include <sstream>
 
-#include "core/error.h"
 #include "core/segment/distance_transform.h"
 #include "core/segment/iso_surface.h"
 #include "core/segment/morphology.h"
 #include "core/segment/remesh.h"
 #include "core/segment/side_labels.h"
+#include "core/util/error.h"
 
 namespace facehex {
 namespace {

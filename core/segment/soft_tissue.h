@@ -23,12 +23,12 @@
 #include <optional>
 #include <string>
 
-#include "core/mesh.h"
-#include "core/progress.h"
+#include "core/mesh/mesh.h"
 #include "core/segment/ct_volume.h"
 #include "core/segment/face_cuts.h"
 #include "core/segment/thresholds.h"
 #include "core/tetgen/tetrahedralize.h"
+#include "core/util/progress.h"
 
 namespace facehex {
 

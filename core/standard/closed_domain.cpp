@@ -1,15 +1,15 @@
 #include "core/standard/closed_domain.h"
 
-#include "core/error.h"
-#include "core/tet_topology.h"
-#include "core/tetgen/tetrahedralize.h"
-
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <limits>
 #include <map>
 #include <set>
+
+#include "core/mesh/tet_topology.h"
+#include "core/tetgen/tetrahedralize.h"
+#include "core/util/error.h"
 
 namespace facehex {
 namespace {
@@ -83,7 +83,8 @@ std::vector<Eigen::Vector3i> cap_loop(const Eigen::MatrixXd& V, const std::vecto
   const int n = static_cast<int>(loop.size());
   if (n < 3) return {};
   auto area = [&](int i, int j, int k) {
-    const Eigen::Vector3d a = V.row(loop[i]).transpose(), b = V.row(loop[j]).transpose(), c = V.row(loop[k]).transpose();
+    const Eigen::Vector3d a = V.row(loop[i]).transpose(), b = V.row(loop[j]).transpose(),
+                          c = V.row(loop[k]).transpose();
     return 0.5 * (b - a).cross(c - a).norm();
   };
   std::vector<std::vector<double>> best(n, std::vector<double>(n, 0.0));
@@ -133,8 +134,8 @@ void orient_cap(std::vector<Eigen::Vector3i>& cap, const std::vector<Eigen::Vect
 
 }  // namespace
 
-StandardDomain closed_domain(const VolumeMesh& hex) {
-  StandardDomain d = auxiliary_domain(hex);
+TetDomain closed_domain(const VolumeMesh& hex) {
+  TetDomain d = auxiliary_domain(hex);
   if (d.side_mask.size() != d.V.rows())
     throw Error("closed domain", "the standard has no \"side_mask\" (label its sides first: facehex sides)");
   // Opening walls: boundary triangles with no side common to their three vertices.

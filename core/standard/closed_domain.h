@@ -11,10 +11,10 @@
 //
 // An opening whose cap cannot be built or meshed (e.g. rims that touch each other) stays open; the returned
 // description says how many were closed.
-#include "core/standard_domain.h"
+#include "core/fields/tet_domain.h"
 
 namespace facehex {
 
-StandardDomain closed_domain(const VolumeMesh& hex);
+TetDomain closed_domain(const VolumeMesh& hex);
 
 }  // namespace facehex

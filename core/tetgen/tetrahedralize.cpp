@@ -31,10 +31,10 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
-#include "core/side_mask.h"
-#include "core/sides.h"
-#include "core/tet_topology.h"
+#include "core/mesh/side_mask.h"
+#include "core/mesh/sides.h"
+#include "core/mesh/tet_topology.h"
+#include "core/util/error.h"
 
 namespace facehex {
 namespace {

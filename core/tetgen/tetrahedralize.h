@@ -2,8 +2,8 @@
 // The one wrapper around TetGen 1.5 (libtet, linked as a library).
 #include <Eigen/Core>
 
-#include "core/error.h"
-#include "core/mesh.h"
+#include "core/mesh/mesh.h"
+#include "core/util/error.h"
 
 namespace facehex {
 

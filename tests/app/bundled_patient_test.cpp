@@ -4,10 +4,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/constraint_set.h"
-#include "core/face_landmarks.h"
+#include "core/face/face_landmarks.h"
+#include "core/fields/constraint_set.h"
 #include "core/io/mesh_io.h"
-#include "core/resources.h"
+#include "core/util/resources.h"
 
 namespace facehex {
 namespace {

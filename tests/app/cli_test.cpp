@@ -8,11 +8,11 @@
 #include <sstream>
 #include <string>
 
-#include "core/constraint_set.h"
-#include "core/hex_to_tets.h"
+#include "core/fields/constraint_set.h"
 #include "core/io/mesh_io.h"
-#include "core/resources.h"
+#include "core/mesh/hex_to_tets.h"
 #include "core/segment/ct_volume.h"
+#include "core/util/resources.h"
 #include "tests/core/test_meshes.h"
 
 namespace {

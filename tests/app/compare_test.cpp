@@ -8,8 +8,8 @@
 #include <fstream>
 
 #include "app/histogram_png.h"
-#include "core/error.h"
-#include "core/hex_to_tets.h"
+#include "core/mesh/hex_to_tets.h"
+#include "core/util/error.h"
 #include "tests/core/test_meshes.h"
 
 namespace facehex::cli {

@@ -6,17 +6,17 @@
 #include <filesystem>
 #include <map>
 
-#include "core/automatic_constraints.h"
-#include "core/constraint_set.h"
-#include "core/corner_jacobian.h"
-#include "core/hex_to_tets.h"
+#include "core/face/automatic_constraints.h"
+#include "core/fields/constraint_set.h"
 #include "core/io/mesh_io.h"
-#include "core/io/parameterization_cache.h"
+#include "core/mapping/transfer_pipeline.h"
+#include "core/mesh/corner_jacobian.h"
+#include "core/mesh/hex_to_tets.h"
+#include "core/mesh/shell_sides.h"
 #include "core/quality/hex_quality.h"
-#include "core/resources.h"
-#include "core/shell_sides.h"
 #include "core/standard/closed_domain.h"
-#include "core/transfer_pipeline.h"
+#include "core/standard/parameterization_cache.h"
+#include "core/util/resources.h"
 
 namespace facehex {
 namespace {
@@ -42,7 +42,7 @@ TEST(BundledStandard, MapsOntoItsOwnTetModelAsTheIdentityAwayFromFolds) {
   const BundledModel standard = default_standard();
   const VolumeMesh hex = read_volume_mesh(standard.mesh);
   const ConstraintSet set = read_constraint_set(standard.constraints);
-  const StandardDomain domain = auxiliary_domain(hex);
+  const TetDomain domain = auxiliary_domain(hex);
   VolumeMesh patient = VolumeMesh::from_tets(domain.V, domain.T);
   patient.point_data[kSideMaskArray] = domain.side_mask.cast<double>();  // the labels the standard is solved with
   TransferOptions options;
@@ -69,7 +69,7 @@ TEST(BundledStandard, MapsOntoItsOwnTetModelAsTheIdentityAwayFromFolds) {
 TEST(BundledStandard, OnlyRelaxedCornerCellsAreFlatInItsOwnParameterization) {
   const BundledModel standard = default_standard();
   const VolumeMesh hex = read_volume_mesh(standard.mesh);
-  const StandardDomain domain = closed_domain(hex);
+  const TetDomain domain = closed_domain(hex);
   const ModelParameterization p =
       parameterize_model(domain.V, domain.T, domain.side_mask, read_constraint_set(standard.constraints),
                          standard.constraints, HarmonicFieldsOptions{});
@@ -97,7 +97,7 @@ TEST(BundledStandard, ParameterizationCachesAreFreshAndGiveTheComputedFields) {
   for (const BundledModel& standard : bundled_standards()) {
     const VolumeMesh hex = read_volume_mesh(standard.mesh);
     const ConstraintSet set = read_constraint_set(standard.constraints);
-    const StandardDomain domain = closed_domain(hex);
+    const TetDomain domain = closed_domain(hex);
     std::string why;
     const auto cached = read_parameterization_cache(parameterization_cache_path(standard.mesh), domain, set, {}, &why);
     ASSERT_TRUE(cached) << standard.name << ": " << why;

@@ -1,17 +1,18 @@
 // The bundled standard mapped onto a synthetic face-like shell patient (TetGen): the whole method end to end.
 #include "app/synthetic_patient.h"
-#include "core/constraint_set.h"
-#include "core/corner_jacobian.h"
-#include "core/io/mesh_io.h"
-#include "core/quality/hex_quality.h"
-#include "core/resources.h"
-#include "core/standard/closed_domain.h"
-#include "core/transfer_pipeline.h"
 
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <cstdlib>
+
+#include "core/fields/constraint_set.h"
+#include "core/io/mesh_io.h"
+#include "core/mapping/transfer_pipeline.h"
+#include "core/mesh/corner_jacobian.h"
+#include "core/quality/hex_quality.h"
+#include "core/standard/closed_domain.h"
+#include "core/util/resources.h"
 
 namespace facehex {
 namespace {

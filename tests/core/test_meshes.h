@@ -1,10 +1,10 @@
 #pragma once
 // Small meshes built in code for the core tests.
-#include "core/mesh.h"
-#include "core/sides.h"
-
 #include <Eigen/Core>
 #include <random>
+
+#include "core/mesh/mesh.h"
+#include "core/mesh/sides.h"
 
 namespace facehex::test {
 

@@ -23,15 +23,15 @@
 #include <QTest>
 #include <QUndoStack>
 
-#include "core/automatic_constraints.h"
-#include "core/error.h"
-#include "core/hex_to_tets.h"
+#include "core/face/automatic_constraints.h"
 #include "core/io/mesh_io.h"
-#include "core/io/parameterization_cache.h"
+#include "core/mesh/hex_to_tets.h"
+#include "core/mesh/tet_topology.h"
 #include "core/quality/hex_quality.h"
-#include "core/resources.h"
 #include "core/segment/patient_input.h"
-#include "core/tet_topology.h"
+#include "core/standard/parameterization_cache.h"
+#include "core/util/error.h"
+#include "core/util/resources.h"
 #include "tests/core/test_meshes.h"
 #include "ui/autosave.h"
 #include "ui/main_window.h"

@@ -8,10 +8,10 @@
 #include <random>
 
 #include "core/baseline/thin_plate_spline.h"
-#include "core/error.h"
-#include "core/hex_to_tets.h"
+#include "core/mesh/hex_to_tets.h"
+#include "core/mesh/tet_topology.h"
 #include "core/quality/surface_distance.h"
-#include "core/tet_topology.h"
+#include "core/util/error.h"
 #include "tests/core/test_meshes.h"
 
 namespace facehex {

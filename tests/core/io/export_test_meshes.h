@@ -5,8 +5,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "core/mesh.h"
-#include "core/sides.h"
+#include "core/mesh/mesh.h"
+#include "core/mesh/sides.h"
 #include "tests/core/test_meshes.h"
 
 namespace facehex::test {

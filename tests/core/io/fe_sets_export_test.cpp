@@ -1,9 +1,9 @@
 // The sets, surfaces and frames every FE export shares (fe_sets.h), and the refusal of inverted meshes.
 #include <gtest/gtest.h>
 
-#include "core/cell_faces.h"
 #include "core/io/fe_sets.h"
 #include "core/io/mesh_io.h"
+#include "core/mesh/cell_faces.h"
 #include "export_test_meshes.h"
 #include "io_test_util.h"
 

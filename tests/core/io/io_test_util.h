@@ -1,15 +1,10 @@
 #pragma once
 // Helpers shared by the core/io tests: a scratch folder, small files, a sample mesh with every cell type, and the
 // "throws a facehex::Error that names the file" check.
-#include "core/error.h"
-#include "core/mesh.h"
-
 #include <gtest/gtest.h>
-
-#include <Eigen/Geometry>
-
 #include <stdlib.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -19,6 +14,9 @@
 #include <string>
 #include <typeinfo>
 #include <vector>
+
+#include "core/mesh/mesh.h"
+#include "core/util/error.h"
 
 namespace facehex::test {
 

@@ -4,18 +4,17 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <sstream>
 
-#include "core/constraint_set.h"
-#include "core/hex_to_tets.h"
+#include "core/fields/constraint_set.h"
 #include "core/io/fe_sets.h"
 #include "core/io/mesh_io.h"
-#include "core/transfer_pipeline.h"
+#include "core/mapping/transfer_pipeline.h"
+#include "core/mesh/hex_to_tets.h"
 #include "export_test_meshes.h"
 #include "io_test_util.h"
 

@@ -7,8 +7,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/corner_jacobian.h"
-#include "core/error.h"
+#include "core/mesh/corner_jacobian.h"
+#include "core/util/error.h"
 
 namespace facehex {
 namespace {

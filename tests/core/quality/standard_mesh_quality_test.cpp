@@ -1,12 +1,12 @@
 // The ArtiSynth reference face (the paper's standard hex mesh), when the shared data folder is present.
-#include "core/corner_jacobian.h"
-#include "core/io/mesh_io.h"
-#include "core/quality/hex_quality.h"
-
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <iostream>
+
+#include "core/io/mesh_io.h"
+#include "core/mesh/corner_jacobian.h"
+#include "core/quality/hex_quality.h"
 
 namespace facehex {
 namespace {

@@ -9,8 +9,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/error.h"
 #include "core/segment/voxel_grid.h"
+#include "core/util/error.h"
 
 namespace facehex {
 namespace {

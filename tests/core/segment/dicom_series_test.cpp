@@ -13,9 +13,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/error.h"
-#include "core/resources.h"
 #include "core/segment/ct_volume.h"
+#include "core/util/error.h"
+#include "core/util/resources.h"
 
 namespace facehex {
 namespace {

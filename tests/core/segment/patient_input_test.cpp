@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <string>
 
-#include "core/error.h"
 #include "core/io/mesh_io.h"
 #include "core/segment/ct_volume.h"
+#include "core/util/error.h"
 #include "tests/core/segment/phantom.h"
 
 namespace facehex {

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
-#include "core/sides.h"
+#include "core/mesh/sides.h"
+#include "core/util/error.h"
 #include "tests/core/segment/phantom.h"
 
 namespace facehex {

@@ -10,7 +10,7 @@
 #include <set>
 #include <utility>
 
-#include "core/error.h"
+#include "core/util/error.h"
 
 namespace facehex {
 namespace {

@@ -1,0 +1,21 @@
+#include "core/face/automatic_constraints.h"
+
+namespace facehex {
+
+std::map<std::string, double> feature_values(const ConstraintSet& standard) {
+  std::map<std::string, double> values;
+  for (const auto& c : standard.constraints) values[c.name] = c.value;
+  return values;
+}
+
+ConstraintSet automatic_constraints(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
+                                    const std::map<std::string, double>& values, double band,
+                                    FaceLandmarks* landmarks_out) {
+  const FaceLandmarks landmarks = find_face_landmarks(V, side_mask);
+  ConstraintSet set = side_constraints();
+  for (auto& c : feature_constraints(landmarks, values, band).constraints) set.constraints.push_back(c);
+  if (landmarks_out) *landmarks_out = landmarks;
+  return set;
+}
+
+}  // namespace facehex

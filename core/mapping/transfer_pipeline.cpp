@@ -1,0 +1,286 @@
+#include "core/mapping/transfer_pipeline.h"
+
+#include <Eigen/LU>
+#include <Eigen/QR>
+#include <algorithm>
+#include <memory>
+
+#include "core/mesh/corner_jacobian.h"
+#include "core/util/error.h"
+#include "core/util/stopwatch.h"
+
+namespace facehex {
+namespace {
+
+std::string health_problem(const ParamHealth& h) {
+  return std::to_string(h.inverted) + " of " + std::to_string(h.tets) + " parametric tets are inverted and " +
+         std::to_string(h.degenerate - h.flat_by_constraint) +
+         " degenerate (the fields fold); check the constraint set (sides, feature values) of this model";
+}
+
+// The untangler moves mapped standard vertices through their (u, v, w) and places them with the patient map: a
+// coordinate pinned in the standard (a shape end: on the patient's boundary; a feature value: on its feature surface)
+// stays pinned, so those vertices stay exactly on their side or feature.
+VertexPlacement parametric_placement(const TransferRun& run, const PatientMap& patient, int hex_vertices) {
+  VertexPlacement placement;
+  placement.p = hex_vertex_uvw(run, hex_vertices);
+  placement.movable.assign(hex_vertices, Eigen::Matrix3d::Identity());
+  for (int v = 0; v < hex_vertices; ++v)
+    for (int f = 0; f < 3; ++f)
+      if (run.standard.fixed(v, f)) placement.movable[v](f, f) = 0;
+  auto hints = std::make_shared<Eigen::VectorXi>(run.transfer.tet);
+  placement.place = [&patient, hints](int v, const Eigen::Vector3d& q, Eigen::Vector3d& x, Eigen::Matrix3d& dxdq) {
+    if ((q.array() < 0).any() || (q.array() > 1).any()) return false;  // outside the common domain
+    const PatientMap::Placement p = patient.place(q, (*hints)(v));
+    if (p.violation > 0) return false;
+    (*hints)(v) = p.tet;
+    x = p.x;
+    dxdq = patient.jacobian(p.tet);
+    return true;
+  };
+  return placement;
+}
+
+// True if coordinate f of standard vertex v is pinned to a shape end (0 or 1): the vertex lies on that side.
+bool pinned_to_side(const TransferRun& run, const Eigen::MatrixXd& uvw, int v, int f) {
+  return run.standard.fixed(v, f) && (uvw(v, f) == 0.0 || uvw(v, f) == 1.0);
+}
+
+// The last resort's placement: the vertices not fixed move in space, a vertex on a side only along that side's tangent
+// plane (normal: the gradient of the side's field in the patient tet the vertex was placed in), so it stays on the
+// patient's surface to first order; on two sides it slides along their common edge. uvw: the standard's hex vertex
+// parameters.
+VertexPlacement sliding_placement(const TransferRun& run, const PatientMap& patient, const Eigen::MatrixXd& uvw,
+                                  const std::vector<char>& fixed) {
+  VertexPlacement placement = spatial_placement(run.patient_hex.V, fixed);
+  for (int v = 0; v < static_cast<int>(fixed.size()); ++v) {
+    if (fixed[v]) continue;
+    const Eigen::Matrix3d gradients = patient.jacobian(run.transfer.tet(v)).inverse();  // rows: grad u, v, w
+    Eigen::MatrixXd normals(3, 0);
+    for (int f = 0; f < 3; ++f)
+      if (pinned_to_side(run, uvw, v, f)) {
+        normals.conservativeResize(3, normals.cols() + 1);
+        normals.col(normals.cols() - 1) = gradients.row(f).transpose();
+      }
+    if (normals.cols() == 0) continue;
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(normals);
+    const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(3, normals.cols());
+    placement.movable[v] = Eigen::Matrix3d::Identity() - Q * Q.transpose();
+  }
+  return placement;
+}
+
+// Moves each free vertex to the mean of the other nodes of its cells, ten times: a collapsed cluster of vertices
+// (a fold the local untangling steps cannot open one vertex at a time) is spread out before the last passes.
+void spread_free_vertices(VolumeMesh& mesh, const std::vector<char>& fixed) {
+  for (int iteration = 0; iteration < 10; ++iteration) {
+    Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(mesh.num_vertices(), 3);
+    Eigen::VectorXd count = Eigen::VectorXd::Zero(mesh.num_vertices());
+    for (int c = 0; c < mesh.num_cells(); ++c)
+      for (int i = 0; i < node_count(mesh.types[c]); ++i) {
+        const int v = mesh.C(c, i);
+        if (fixed[v]) continue;
+        for (int j = 0; j < node_count(mesh.types[c]); ++j)
+          if (j != i) {
+            sum.row(v) += mesh.V.row(mesh.C(c, j));
+            ++count(v);
+          }
+      }
+    for (int v = 0; v < mesh.num_vertices(); ++v)
+      if (!fixed[v] && count(v) > 0) mesh.V.row(v) = sum.row(v) / count(v);
+  }
+}
+
+}  // namespace
+
+TransferRun run_transfer(const VolumeMesh& standard, const TetDomain& domain, const ConstraintSet& standard_constraints,
+                         const std::string& standard_source, const VolumeMesh& patient,
+                         const ConstraintSet& patient_constraints, const std::string& patient_source,
+                         const TransferOptions& options, const ProgressCallback& progress,
+                         const ModelParameterization* standard_parameterization) {
+  TransferRun run;
+  Stopwatch clock;
+  if (domain.hex_vertices != standard.num_vertices() ||
+      (domain.V.topRows(domain.hex_vertices) - standard.V).cwiseAbs().maxCoeff() > 0)
+    throw Error(standard_source, "the parameterization domain was not built from this standard mesh");
+  run.standard_domain = domain.description;
+  run.standard_domain_non_positive = domain.non_positive_tets;
+  run.standard_relaxed_corner_vertices = domain.relaxed_corner_vertices;
+  if (standard_parameterization) {
+    if (standard_parameterization->V.rows() != domain.V.rows() ||
+        standard_parameterization->T.rows() != domain.T.rows())
+      throw Error(standard_source, "the given parameterization was not made on this standard's domain");
+    run.standard = *standard_parameterization;
+    run.standard_parameterization_source = "given";
+  } else {
+    run.standard = parameterize_model(domain.V, domain.T, domain.side_mask, standard_constraints, standard_source,
+                                      options.fields, sub_progress(progress, 0.0, 0.2));
+  }
+  run.seconds["standard_parameterization"] = clock.lap();
+  run.patient = parameterize_model(patient.V, patient.tets(), side_mask_of(patient), patient_constraints,
+                                   patient_source, options.fields, sub_progress(progress, 0.2, 0.6));
+  run.seconds["patient_parameterization"] = clock.lap();
+  map_parameterized(run, standard, patient_source, options, sub_progress(progress, 0.6, 1.0));
+  return run;
+}
+
+void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::string& patient_source,
+                       const TransferOptions& options, const ProgressCallback& progress) {
+  Stopwatch clock;
+  const ParamHealth& health = run.patient.health;
+  const int folded = health.inverted + health.degenerate - health.flat_by_constraint;
+  if (!options.allow_inverted_parameterization && folded > options.max_inverted_fraction * health.tets)
+    throw Error(patient_source, "parameterization: " + health_problem(health));
+  if (run.standard.health.orientation != run.patient.health.orientation)
+    throw Error(patient_source,
+                "the model frame has the opposite handedness to the standard's (mirrored scan?): swap the u0 and u1 "
+                "sides of its constraint set");
+  const PatientMap patient_map(run.patient.V, run.patient.T, run.patient.fields.uvw);
+  run.seconds["locator_build"] = clock.lap();
+  run.patient_hex = transfer_hex_mesh(standard, hex_vertex_uvw(run, standard.num_vertices()), patient_map,
+                                      &run.transfer, sub_progress(progress, 0.0, 0.05));
+  run.seconds["mapping"] = clock.lap();
+  run.mapped_hex = run.patient_hex;
+  // One placement for both steps: its parameters follow the vertices' moves.
+  VertexPlacement placement = parametric_placement(run, patient_map, standard.num_vertices());
+  // With the relaxation, the repair keeps the standard's shapes too (the same energy), else it aims at ideal cells.
+  UntangleOptions shape = options.untangle_options;
+  if (options.shape_relaxation) {
+    shape.target = options.relax_towards_ideal_cells ? nullptr : &standard;
+    shape.target_towards_ideal = options.relaxation_towards_ideal;
+    UntangleOptions relax = shape;
+    relax.whole_mesh = true;
+    relax.over_relaxation = 1.5;
+    relax.keep_above = 0.05;
+    relax.corner_power = 1;  // the relaxation evens out all cells; a higher power is for a repair's worst cells
+    relax.progress = sub_progress(progress, 0.05, 0.8, "shape relaxation");
+    run.relaxation = untangle(run.patient_hex, placement, relax);
+    run.seconds["shape_relaxation"] = clock.lap();
+  }
+  if (options.untangle) {
+    // While unusable (inverted or flat) cells remain: widen the region that may move (a fold may need room beyond two
+    // rings; not after the relaxation, which moved every vertex already), then release the feature pins (never the
+    // sides) of the vertices of the cells still unusable: where the patient's anatomy squeezes a feature (a flat
+    // nose), a valid element matters more than an exact feature line.
+    const Eigen::MatrixXd uvw = hex_vertex_uvw(run, standard.num_vertices());
+    // Progress by passes (at most 1 + 3 + 8 + 1 of them; most runs need a few).
+    const ProgressCallback repair_progress =
+        sub_progress(progress, options.shape_relaxation ? 0.8 : 0.05, 1.0, "repairing folded cells");
+    int passes = 0;
+    auto repair_pass = [&](VertexPlacement& moves, const UntangleOptions& o) {
+      report_progress(repair_progress, "", std::min(1.0, passes++ / 13.0));
+      return untangle(run.patient_hex, moves, o);
+    };
+    UntangleOptions pass = shape;
+    if (pass.reference_scaled_jacobian.size() == 0) {
+      pass.reference_scaled_jacobian.resize(standard.num_cells());
+      for (int c = 0; c < standard.num_cells(); ++c)
+        pass.reference_scaled_jacobian(c) = scaled_jacobian(standard.types[c], cell_nodes(standard, c));
+    }
+    run.untangle = repair_pass(placement, pass);
+    auto unusable_after = [](const UntangleReport& r) { return r.inverted_after + r.degenerate_after; };
+    auto remaining = [&] { return unusable_after(run.untangle); };
+    // The counts that describe the mesh after a pass (run.patient_hex as it then is).
+    auto set_state = [&](const UntangleReport& state) {
+      run.untangle.inverted_after = state.inverted_after;
+      run.untangle.degenerate_after = state.degenerate_after;
+      run.untangle.bad_after = state.bad_after;
+      run.untangle.min_scaled_jacobian_after = state.min_scaled_jacobian_after;
+    };
+    auto take = [&](const UntangleReport& again) {
+      set_state(again);
+      run.untangle.free_vertices = std::max(run.untangle.free_vertices, again.free_vertices);
+      run.untangle.sweeps += again.sweeps;
+    };
+    for (int attempt = options.shape_relaxation ? 2 : 0; attempt < 3 && remaining() > 0; ++attempt) {
+      // The first two passes improved the bad cells around the folds; the later ones finish the untangling.
+      pass.seed_unusable_only = attempt > 0;
+      if (attempt < 2) {
+        pass.rings += 2;
+      } else {
+        for (int c : check_corner_jacobians(run.patient_hex).unusable())
+          for (int i = 0; i < node_count(standard.types[c]); ++i) {
+            const int v = standard.C(c, i);
+            for (int f = 0; f < 3; ++f)
+              if (!pinned_to_side(run, uvw, v, f)) placement.movable[v](f, f) = 1;
+            ++run.untangle.released_feature_vertices;
+          }
+      }
+      take(repair_pass(placement, pass));
+    }
+    // Last resort, in up to eight passes: the vertices of the cells still unusable, and of the cells within 1 to 8
+    // rings around them, move in space; side vertices only if they belong to an unusable cell, and along their side
+    // (to first order: they may leave it by a little, reported as side_vertex_distance). From the third pass on, the
+    // free vertices off the sides are first spread out (a collapsed cluster, which one-vertex-at-a-time steps cannot
+    // open). From the fifth, all vertices within the rings, side vertices too, move freely (where the standard's side
+    // meets a patient side far away, as the inner wall of the standard's nostrils the patient's bone), since a valid
+    // element matters more than an exact boundary there. Side vertices are never spread: spreading them too moved 5 %
+    // of them by millimetres on a longer face (p95 2.5 mm instead of 0.4 mm), for no fewer inverted cells. Each
+    // spread starts the untangling from another configuration, so a pass can end with more folds than the one before
+    // (the bundled CT meshed at 3 mm: 4, 4, 1, 2, 1, 2, 0 folds after passes 1 to 7); the best state is kept.
+    auto on_side = [&](int v) {
+      return pinned_to_side(run, uvw, v, 0) || pinned_to_side(run, uvw, v, 1) || pinned_to_side(run, uvw, v, 2);
+    };
+    constexpr int kLastResortPasses = 8, kFirstFreePass = 5;
+    Eigen::MatrixXd best_V = run.patient_hex.V;
+    UntangleReport best = run.untangle;
+    for (int rings = 1; rings <= kLastResortPasses && remaining() > 0; ++rings) {
+      const bool free_pass = rings >= kFirstFreePass;
+      std::vector<char> in_cell(standard.num_vertices(), 0);  // vertices of the unusable cells
+      for (int c : check_corner_jacobians(run.patient_hex).unusable())
+        for (int i = 0; i < node_count(standard.types[c]); ++i) in_cell[standard.C(c, i)] = 1;
+      const std::vector<char> free = within_cell_rings(run.patient_hex, in_cell, rings);
+      // Side vertices move only if they belong to an unusable cell, except in the free passes.
+      std::vector<char> fixed(standard.num_vertices());
+      int released = 0;
+      for (int v = 0; v < standard.num_vertices(); ++v) {
+        fixed[v] = !free[v] || (!free_pass && on_side(v) && !in_cell[v]);
+        released += !fixed[v] && on_side(v);
+      }
+      run.untangle.released_side_vertices = std::max(run.untangle.released_side_vertices, released);
+      if (rings >= 3) {
+        std::vector<char> kept = fixed;  // side vertices are not spread
+        for (int v = 0; v < standard.num_vertices(); ++v) kept[v] |= on_side(v);
+        spread_free_vertices(run.patient_hex, kept);
+      }
+      VertexPlacement last =
+          free_pass ? spatial_placement(run.patient_hex.V, fixed) : sliding_placement(run, patient_map, uvw, fixed);
+      pass.max_sweeps = 2 * options.untangle_options.max_sweeps;  // few vertices: cheap, and a long way may remain
+      take(repair_pass(last, pass));
+      if (remaining() < unusable_after(best)) {
+        best_V = run.patient_hex.V;
+        best = run.untangle;
+      }
+    }
+    if (remaining() > unusable_after(best)) {
+      run.patient_hex.V = best_V;
+      set_state(best);
+    }
+    // Polish: cells still below their bound (a cell next to a fold can come out of the untangling nearly flat, valid
+    // but useless to a solver) get one more pass in space, their vertices that are on no side and no feature free
+    // (all of them with options.polish_moves_sides).
+    // Nothing is inverted now, so the energy's regularization is off and its barrier against flat corners whole.
+    if (run.untangle.bad_after > 0) {
+      std::vector<char> fixed(standard.num_vertices());
+      for (int v = 0; v < standard.num_vertices(); ++v)
+        fixed[v] = !options.polish_moves_sides && run.standard.fixed.row(v).any();
+      VertexPlacement polish = spatial_placement(run.patient_hex.V, fixed);
+      UntangleOptions last = pass;
+      last.rings = 1;
+      last.seed_unusable_only = false;
+      take(repair_pass(polish, last));
+    }
+    report_progress(repair_progress, "", 1.0);
+    run.seconds["untangle"] = clock.lap();
+  }
+}
+
+Eigen::VectorXd moved_from_mapping(const TransferRun& run) {
+  return (run.patient_hex.V - run.mapped_hex.V).rowwise().norm();
+}
+
+Eigen::MatrixXd hex_vertex_uvw(const TransferRun& run, int hex_vertices) {
+  return run.standard.fields.uvw.topRows(hex_vertices);
+}
+
+}  // namespace facehex

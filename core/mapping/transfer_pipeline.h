@@ -1,0 +1,84 @@
+#pragma once
+// The whole method on in-memory data, shared by the CLI and the GUI: parameterize the standard (through its
+// auxiliary tet mesh) and the patient, check both parameterizations, and map the standard hex mesh onto the patient.
+#include <map>
+#include <string>
+
+#include "core/fields/constraint_set.h"
+#include "core/fields/harmonic_fields.h"
+#include "core/fields/parameterization.h"
+#include "core/fields/tet_domain.h"
+#include "core/mapping/hex_transfer.h"
+#include "core/mapping/untangle.h"
+#include "core/mesh/mesh.h"
+#include "core/util/progress.h"
+
+namespace facehex {
+
+struct TransferOptions {
+  HarmonicFieldsOptions fields;
+  // A parameterization with inverted tets is not a bijection. Local folds (at most max_inverted_fraction of the
+  // patient's tets) are reported and their effect on the hex mesh repaired by the untangler; more stop the run with
+  // an error, unless allow_inverted_parameterization.
+  double max_inverted_fraction = 0.01;
+  bool allow_inverted_parameterization = false;
+  // After the mapping, cells that are inverted or below untangle_options.min_scaled_jacobian are repaired by moving
+  // nearby vertices that are on no side and no feature (untangle.h).
+  bool untangle = true;
+  UntangleOptions untangle_options;
+  // Before the repair, every vertex moves through its (u, v, w) (pinned coordinates stay: side and feature vertices
+  // only slide along their side or feature) to bring each corner back to the standard's shape (untangle.h with the
+  // standard as target): the harmonic map puts vertices at the right place on the patient but shears the cells in
+  // between; this keeps the correspondence of sides and features and the standard's angles.
+  bool shape_relaxation = true;
+  // The relaxation's target corners: the standard's, moved towards the ideal cell's by this fraction of their
+  // distortion in the mapped mesh (UntangleOptions::target_towards_ideal). On the bundled patient (plain steps): 0
+  // keeps the standard's angles best (11.0 deg mean change) but leaves a mean shape 8 % below the standard's; 0.5
+  // gives 11.3 deg and a mean shape 1 % below it; 1 gives 12.0 deg and 5 % above it.
+  double relaxation_towards_ideal = 0.5;
+  // The relaxation (and the repair after it) aims at the ideal cells instead of the standard's: for a template grid,
+  // whose cells in parameter space are no shape to keep.
+  bool relax_towards_ideal_cells = false;
+  // The repair's last polish of the cells still below their bound moves side and feature vertices too, in space, off
+  // the patient's surfaces: for a template, which may cut a corner of its reference where no cell there can reach the
+  // bound (template_mesh.h).
+  bool polish_moves_sides = false;
+};
+
+struct TransferRun {
+  ModelParameterization standard, patient;   // standard: on its domain; its first #Vs rows are the hex vertices
+  std::string standard_domain;               // how the standard's tet domain was built
+  int standard_domain_non_positive = 0;      // domain tets with non-positive volume (badly shaped standard cells)
+  int standard_relaxed_corner_vertices = 0;  // side labels dropped at the standard's shell corners
+  std::string standard_parameterization_source = "computed";  // or where it was read from (a cache)
+  VolumeMesh mapped_hex;                                      // the mapping's result, before relaxation and repair
+  VolumeMesh patient_hex;                                     // the result
+  TransferStatistics transfer;
+  UntangleReport relaxation;  // shape relaxation (TransferOptions::shape_relaxation)
+  UntangleReport untangle;
+  std::map<std::string, double> seconds;  // stage timings
+};
+
+// standard: hex-dominant mesh with its constraint set, parameterized on `domain` (see standard_domain.h); patient:
+// checked tet model (see mesh_check.h) with its set. Sources name the files in error messages.
+// standard_parameterization: the standard's parameterization on `domain` made beforehand (a cache,
+// core/io/parameterization_cache.h), or null to compute it here.
+TransferRun run_transfer(const VolumeMesh& standard, const TetDomain& domain, const ConstraintSet& standard_constraints,
+                         const std::string& standard_source, const VolumeMesh& patient,
+                         const ConstraintSet& patient_constraints, const std::string& patient_source,
+                         const TransferOptions& options, const ProgressCallback& progress = {},
+                         const ModelParameterization* standard_parameterization = nullptr);
+
+// The mapping and the repair alone, on parameterizations made beforehand (run.standard on the standard's domain,
+// whose first rows are the hex vertices; run.patient on the patient's tets): checks the patient's health and
+// handedness against the standard's, maps the standard and repairs the result (run_transfer's second half).
+void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::string& patient_source,
+                       const TransferOptions& options, const ProgressCallback& progress = {});
+
+// How far the shape relaxation and the repair moved each standard vertex from where the mapping put it (#Vs, mm).
+Eigen::VectorXd moved_from_mapping(const TransferRun& run);
+
+// The standard's (u,v,w) at its hex vertices: the first rows of its domain's parameterization (#Vs x 3).
+Eigen::MatrixXd hex_vertex_uvw(const TransferRun& run, int hex_vertices);
+
+}  // namespace facehex

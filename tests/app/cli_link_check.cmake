@@ -1,0 +1,18 @@
+# Fails when the facehex binary (BINARY) or its link line (LINK_LINE) names Qt or a VTK module for windows, OpenGL,
+# interaction or Qt. Run by ctest as cli_link_has_no_gui.
+set(forbidden "Qt5|libQt|vtkGUISupportQt|vtkRenderingQt|vtkRenderingOpenGL2|vtkInteraction|vtkRenderingUI|libGL[.X]|libX11")
+file(READ ${LINK_LINE} link)
+if(link MATCHES "(${forbidden})")
+  message(FATAL_ERROR "the facehex link line names ${CMAKE_MATCH_1}: ${LINK_LINE}")
+endif()
+execute_process(COMMAND ldd ${BINARY} OUTPUT_VARIABLE loaded RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "ldd ${BINARY} failed")
+endif()
+if(loaded MATCHES "(${forbidden})")
+  message(FATAL_ERROR "facehex loads ${CMAKE_MATCH_1}:\n${loaded}")
+endif()
+if(NOT loaded MATCHES "libvtkCommonCore")
+  message(FATAL_ERROR "ldd output does not list VTK at all; the check would prove nothing:\n${loaded}")
+endif()
+message(STATUS "facehex links no Qt and no VTK windowing, OpenGL or Qt module")

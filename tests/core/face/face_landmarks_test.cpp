@@ -1,0 +1,93 @@
+#include "core/face/face_landmarks.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/mesh/sides.h"
+#include "core/util/error.h"
+
+namespace facehex {
+namespace {
+
+double bump(double t, double centre, double sigma) {
+  return std::exp(-(t - centre) * (t - centre) / (2 * sigma * sigma));
+}
+
+// A phantom skin: the surface y(x, z) sampled every 0.5 mm, all on the skin side (w1), looking to +y with +z up. Its
+// mid-sagittal profile has a nose (20 mm, at z = 0), a dip below it (z = -14), upper and lower lips (z = -24, -38)
+// with the lip contact between (z = -31), the nose root (z = 26) and the brow ridge (z = 40); the extremes of the
+// summed profile lie within 0.6 mm of these centres (computed once, numerically). The nose is narrow (8 mm), the
+// rest wide (25 mm), and the face is curved sideways. The x range is not symmetric about the midline x0, so the
+// midline must be found from the nose, not the middle of the range.
+struct PhantomFace {
+  static constexpr double x0 = 7.0;
+  Eigen::MatrixXd V;
+  Eigen::VectorXi side_mask;
+
+  PhantomFace() {
+    const int nx = 261, nz = 261;  // x0 - 60 .. x0 + 70, z -70 .. 60
+    V.resize(nx * nz, 3);
+    for (int i = 0; i < nx; ++i)
+      for (int k = 0; k < nz; ++k) {
+        const double x = x0 - 60 + 0.5 * i, z = -70 + 0.5 * k, dx = x - x0;
+        const double wide = -3 * bump(z, -14, 3) + 6 * bump(z, -24, 4) - 4 * bump(z, -31, 2) + 6 * bump(z, -38, 4) -
+                            4 * bump(z, 26, 4) + 6 * bump(z, 40, 5);
+        const double y = 80 - 0.01 * dx * dx + 20 * bump(z, 0, 6) * bump(dx, 0, 8) + wide * bump(dx, 0, 25);
+        V.row(i * nz + k) << x, y, z;
+      }
+    side_mask = Eigen::VectorXi::Constant(V.rows(), side_bit(W1));
+  }
+};
+
+TEST(FaceLandmarks, PhantomLandmarksWithinOneAndAHalfMillimetres) {
+  const PhantomFace face;
+  const FaceLandmarks l = find_face_landmarks(face.V, face.side_mask);
+  constexpr double tolerance = 1.5;  // mm: 1 mm profile bins on a 0.5 mm sampling
+  EXPECT_NEAR(l.x_mid, PhantomFace::x0, 0.5);
+  const std::map<std::string, double> expected_z = {
+      {"pronasale", 0},          {"subnasale", -14.6}, {"labrale superius", -24}, {"stomion", -31},
+      {"labrale inferius", -38}, {"nasion", 25.8},     {"glabella", 40}};
+  for (const auto& [name, z] : expected_z) {
+    ASSERT_TRUE(l.points.count(name)) << name;
+    const Eigen::Vector3d p = l.points.at(name);
+    EXPECT_NEAR(p.z(), z, tolerance) << name;
+    EXPECT_NEAR(p.x(), PhantomFace::x0, 3.0) << name;  // within the profile band
+  }
+  EXPECT_NEAR(l.points.at("pronasale").y(), 100.0, 0.1);
+}
+
+TEST(FaceLandmarks, FeatureConstraintsSitOnTheLandmarks) {
+  const PhantomFace face;
+  const FaceLandmarks l = find_face_landmarks(face.V, face.side_mask);
+  const std::map<std::string, double> values = {
+      {"eyebrow line", 0.9}, {"below-nose line", 0.6}, {"middle lip line", 0.5}};
+  const ConstraintSet set = feature_constraints(l, values, 2.0);
+  ASSERT_EQ(set.constraints.size(), feature_specs().size());
+  for (const Constraint& c : set.constraints) {
+    ASSERT_TRUE(c.select.plane) << c.name;
+    const PlaneSelection& p = *c.select.plane;
+    if (c.field == 0) {
+      EXPECT_EQ(c.value, 0.5);
+      EXPECT_NEAR(p.point.x(), PhantomFace::x0, 0.5);
+      EXPECT_EQ(p.normal, Eigen::Vector3d::UnitX());
+    } else {
+      EXPECT_EQ(c.value, values.at(c.name)) << c.name;
+      EXPECT_EQ(p.normal, Eigen::Vector3d::UnitZ()) << c.name;
+    }
+  }
+  EXPECT_THROW(feature_constraints(l, {}, 2.0), Error);  // the v features need the standard's values
+}
+
+TEST(FaceLandmarks, AModelWithoutSkinOrLabelsIsAnError) {
+  const PhantomFace face;
+  EXPECT_THROW(find_face_landmarks(face.V, Eigen::VectorXi()), Error);
+  EXPECT_THROW(find_face_landmarks(face.V, Eigen::VectorXi::Constant(face.V.rows(), side_bit(W0))), Error);
+  // A face with no profile features at all (a plane): no nose tip to find above the rest, so no lips below it.
+  Eigen::MatrixXd flat = face.V;
+  flat.col(1).setConstant(80.0);
+  EXPECT_THROW(find_face_landmarks(flat, face.side_mask), Error);
+}
+
+}  // namespace
+}  // namespace facehex

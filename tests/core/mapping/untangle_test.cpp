@@ -1,0 +1,243 @@
+#include "core/mapping/untangle.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "core/mesh/corner_jacobian.h"
+#include "core/util/error.h"
+#include "tests/core/test_meshes.h"
+
+namespace facehex {
+namespace {
+
+std::vector<char> boundary_fixed(const VolumeMesh& m) {
+  const Eigen::MatrixXd& mask = m.point_data.at(kSideMaskArray);
+  std::vector<char> fixed(m.num_vertices());
+  for (int v = 0; v < m.num_vertices(); ++v) fixed[v] = mask(v) != 0;
+  return fixed;
+}
+
+TEST(Untangle, RepairsADeliberatelyInvertedMeshWithoutMovingTheBoundary) {
+  VolumeMesh m = test::hex_box(4, 4, 4, 4, 4, 4);
+  const Eigen::MatrixXd boundary_before = m.V;
+  // Push the interior vertex at (2,2,2) through two cells and drag a neighbour the other way.
+  const int centre = (2 * 5 + 2) * 5 + 2, neighbour = (2 * 5 + 2) * 5 + 3;
+  m.V.row(centre) += Eigen::RowVector3d(1.6, 0.3, -0.2);
+  m.V.row(neighbour) += Eigen::RowVector3d(-1.5, 0.0, 0.4);
+  const int inverted_before = static_cast<int>(check_corner_jacobians(m).inverted.size());
+  ASSERT_GT(inverted_before, 0);
+  const std::vector<char> fixed = boundary_fixed(m);
+  VertexPlacement placement = spatial_placement(m.V, fixed);
+  const UntangleReport r = untangle(m, placement);
+  EXPECT_EQ(r.inverted_before, inverted_before);
+  EXPECT_EQ(r.inverted_after, 0);
+  EXPECT_TRUE(check_corner_jacobians(m).inverted.empty());
+  EXPECT_GT(r.min_scaled_jacobian_after, 0.2);
+  for (int v = 0; v < m.num_vertices(); ++v)
+    if (fixed[v]) {
+      EXPECT_EQ((m.V.row(v) - boundary_before.row(v)).norm(), 0.0) << v;
+    }
+}
+
+TEST(Untangle, RepairsAFlatCellThatIsNotInverted) {
+  VolumeMesh m = test::hex_box(3, 3, 3, 3, 3, 3);
+  // Interior vertex (1,1,1) moved almost onto the midpoint of two of its neighbours: positive but ~0 Jacobians.
+  auto id = [](int i, int j, int k) { return (k * 4 + j) * 4 + i; };
+  const double t = 1 - 1e-9;
+  m.V.row(id(1, 1, 1)) = (1 - t) * m.V.row(id(1, 1, 1)) + t * 0.5 * (m.V.row(id(2, 1, 1)) + m.V.row(id(1, 2, 1)));
+  const CornerJacobianCheck before = check_corner_jacobians(m);
+  ASSERT_TRUE(before.inverted.empty());
+  ASSERT_FALSE(before.degenerate.empty());
+  VertexPlacement placement = spatial_placement(m.V, boundary_fixed(m));
+  const UntangleReport r = untangle(m, placement);
+  EXPECT_EQ(r.degenerate_before, static_cast<int>(before.degenerate.size()));
+  EXPECT_EQ(r.degenerate_after, 0);
+  EXPECT_EQ(r.inverted_after, 0);
+  EXPECT_TRUE(check_corner_jacobians(m).unusable().empty());
+  EXPECT_GT(r.min_scaled_jacobian_after, 0.2);
+}
+
+TEST(Untangle, LeavesAGoodMeshUntouched) {
+  VolumeMesh m = test::hex_box(3, 3, 3);
+  test::jitter_interior(m, 0.05);
+  const Eigen::MatrixXd before = m.V;
+  VertexPlacement placement = spatial_placement(m.V, boundary_fixed(m));
+  const UntangleReport r = untangle(m, placement);
+  EXPECT_EQ(r.bad_before, 0);
+  EXPECT_EQ(m.V, before);
+}
+
+// A poorly shaped cell (a squeezed interior vertex) is bad on its own, but not when the mesh it was mapped from had
+// it as poor: then it is kept as it is.
+TEST(Untangle, KeepsCellsAsPoorAsInTheReference) {
+  VolumeMesh m = test::hex_box(3, 3, 3, 3, 3, 3);
+  auto id = [](int i, int j, int k) { return (k * 4 + j) * 4 + i; };
+  m.V.row(id(1, 1, 1)) += Eigen::RowVector3d(0.3, 0.3, 0.3);  // one corner of a cell at scaled Jacobian 0.18
+  ASSERT_TRUE(check_corner_jacobians(m).unusable().empty());
+  Eigen::VectorXd reference(m.num_cells());
+  for (int c = 0; c < m.num_cells(); ++c) reference(c) = scaled_jacobian(m.types[c], cell_nodes(m, c));
+  ASSERT_LT(reference.minCoeff(), 0.2);
+
+  UntangleOptions as_reference;
+  as_reference.reference_scaled_jacobian = reference;
+  VolumeMesh kept = m;
+  VertexPlacement placement = spatial_placement(kept.V, boundary_fixed(kept));
+  const UntangleReport r = untangle(kept, placement, as_reference);
+  EXPECT_EQ(r.bad_before, 0);
+  EXPECT_EQ(kept.V, m.V);
+
+  VolumeMesh improved = m;  // without the reference the same cells are bad and are improved
+  VertexPlacement free_placement = spatial_placement(improved.V, boundary_fixed(improved));
+  const UntangleReport r2 = untangle(improved, free_placement);
+  EXPECT_GT(r2.bad_before, 0);
+  EXPECT_GT(r2.min_scaled_jacobian_after, r2.min_scaled_jacobian_before);
+
+  UntangleOptions wrong_size;
+  wrong_size.reference_scaled_jacobian = Eigen::VectorXd::Ones(3);
+  EXPECT_THROW(untangle(improved, free_placement, wrong_size), Error);
+}
+
+// A finishing pass grows its region from the unusable cells only: a merely poor cell far from them is left alone.
+TEST(Untangle, FinishingPassMovesOnlyAroundUnusableCells) {
+  VolumeMesh m = test::hex_box(8, 3, 3, 8, 3, 3);
+  auto id = [](int i, int j, int k) { return (k * 4 + j) * 9 + i; };
+  m.V.row(id(1, 1, 1)) += Eigen::RowVector3d(1.6, 0.3, -0.2);  // inverts cells at the -x end
+  m.V.row(id(7, 1, 1)) += Eigen::RowVector3d(0.3, 0.3, 0.3);   // only squeezes a cell at the +x end
+  const VolumeMesh start = m;
+  const int squeezed = (1 * 3 + 1) * 8 + 7;  // the cell whose first corner is the vertex (7, 1, 1)
+  ASSERT_LT(scaled_jacobian(m.types[squeezed], cell_nodes(m, squeezed)), 0.2);
+  const std::vector<int> unusable = check_corner_jacobians(m).unusable();
+  ASSERT_EQ(std::count(unusable.begin(), unusable.end(), squeezed), 0);
+  UntangleOptions finishing;
+  finishing.seed_unusable_only = true;
+  finishing.rings = 1;
+  VertexPlacement placement = spatial_placement(m.V, boundary_fixed(m));
+  const UntangleReport r = untangle(m, placement, finishing);
+  EXPECT_GT(r.inverted_before, 0);
+  EXPECT_EQ(r.inverted_after, 0);
+  EXPECT_EQ(m.V.row(id(7, 1, 1)), start.V.row(id(7, 1, 1)));  // the squeezed vertex did not move
+  EXPECT_NE(m.V.row(id(1, 1, 1)), start.V.row(id(1, 1, 1)));
+}
+
+// Relaxes the whole of m (boundary fixed) towards the shapes of target, blended towards_ideal (UntangleOptions).
+void relax_towards(VolumeMesh& m, const VolumeMesh& target, double towards_ideal) {
+  UntangleOptions relax;
+  relax.target = &target;
+  relax.target_towards_ideal = towards_ideal;
+  relax.whole_mesh = true;
+  VertexPlacement placement = spatial_placement(m.V, boundary_fixed(m));
+  untangle(m, placement, relax);
+}
+
+// Shape relaxation with a target (the standard a mesh was mapped from): the target's own shape is where it settles.
+TEST(ShapeRelaxation, ReturnsAPerturbedMeshToItsTargetShape) {
+  VolumeMesh target = test::hex_box(4, 4, 4, 4, 4, 4);
+  test::jitter_interior(target, 0.25);  // a target that is not the ideal cube grid
+  VolumeMesh m = target;
+  test::jitter_interior(m, 0.2, 11);  // the "mapping" moved the interior
+  const double start = (m.V - target.V).cwiseAbs().maxCoeff();
+  ASSERT_GT(start, 0.1);
+  UntangleOptions relax;
+  relax.target = &target;
+  relax.whole_mesh = true;
+  relax.max_sweeps = 200;
+  // Newton steps with a Hessian refreshed every sweep, and reused for three (the default): the same end.
+  for (const int every : {1, 3}) {
+    VolumeMesh moved = m;
+    relax.hessian_every_sweeps = every;
+    VertexPlacement placement = spatial_placement(moved.V, boundary_fixed(moved));
+    const UntangleReport r = untangle(moved, placement, relax);
+    EXPECT_EQ(r.free_vertices, 27);  // every interior vertex, though no cell is bad
+    EXPECT_LT((moved.V - target.V).cwiseAbs().maxCoeff(), 1e-3) << every;
+  }
+  // Without the target, the same steps aim at cubes: the jittered target is not where they settle.
+  VolumeMesh ideal = target;
+  test::jitter_interior(ideal, 0.2, 11);
+  UntangleOptions cubes = relax;
+  cubes.target = nullptr;
+  VertexPlacement ideal_placement = spatial_placement(ideal.V, boundary_fixed(ideal));
+  untangle(ideal, ideal_placement, cubes);
+  EXPECT_GT((ideal.V - target.V).cwiseAbs().maxCoeff(), 0.1);
+}
+
+TEST(ShapeRelaxation, ReportsEachSweepAndCanBeCancelledBetweenSweeps) {
+  VolumeMesh target = test::hex_box(4, 4, 4, 4, 4, 4);
+  VolumeMesh m = target;
+  test::jitter_interior(m, 0.2, 11);
+  UntangleOptions relax;
+  relax.target = &target;
+  relax.whole_mesh = true;
+  relax.max_sweeps = 40;
+  std::vector<double> fractions;
+  relax.progress = [&](const std::string& stage, double f) {
+    EXPECT_EQ(stage, "untangling");
+    fractions.push_back(f);
+    return true;
+  };
+  VolumeMesh moved = m;
+  VertexPlacement placement = spatial_placement(moved.V, boundary_fixed(moved));
+  const UntangleReport r = untangle(moved, placement, relax);
+  ASSERT_EQ(static_cast<int>(fractions.size()), std::min(r.sweeps + 1, relax.max_sweeps));
+  EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+  EXPECT_DOUBLE_EQ(fractions.front(), 1.0 / relax.max_sweeps);
+  EXPECT_LE(fractions.back(), 1.0);
+
+  // Cancelled after the third sweep: the exception comes out, the mesh is whole (a sweep is never cut short).
+  int calls = 0;
+  relax.progress = [&](const std::string&, double) { return ++calls < 3; };
+  VolumeMesh cancelled = m;
+  VertexPlacement cancelled_placement = spatial_placement(cancelled.V, boundary_fixed(cancelled));
+  EXPECT_THROW(untangle(cancelled, cancelled_placement, relax), Cancelled);
+  EXPECT_EQ(calls, 3);
+  EXPECT_TRUE(check_corner_jacobians(cancelled).inverted.empty());
+  EXPECT_GT((cancelled.V - m.V).cwiseAbs().maxCoeff(), 0) << "three sweeps moved nothing";
+}
+
+// A mesh that already has its target's shape does not move, whatever the pull towards ideal cells (which acts only
+// in proportion to a corner's distortion): mapping a standard onto itself stays the identity.
+TEST(ShapeRelaxation, LeavesAMeshWithTheTargetShapeInPlace) {
+  VolumeMesh target = test::hex_box(4, 3, 5, 4, 3, 5);
+  test::jitter_interior(target, 0.3);
+  for (const double towards_ideal : {0.0, 0.5, 1.0}) {
+    VolumeMesh m = target;
+    m.V *= 2.5;  // size does not matter, only shape
+    const Eigen::MatrixXd start = m.V;
+    relax_towards(m, target, towards_ideal);
+    EXPECT_LT((m.V - start).cwiseAbs().maxCoeff(), 1e-9) << towards_ideal;
+  }
+}
+
+// The pull towards ideal cells: a mesh of cubes relaxed towards a poor target (a jittered grid) goes back to the
+// target's poor cells with target_towards_ideal = 0 and keeps better cells with 1.
+TEST(ShapeRelaxation, TowardsIdealImprovesCellsOfADistortedMesh) {
+  VolumeMesh target = test::hex_box(4, 4, 4, 4, 4, 4);
+  test::jitter_interior(target, 0.35);
+  const VolumeMesh cubes = test::hex_box(4, 4, 4, 4, 4, 4);
+  auto mean_scaled_jacobian = [](const VolumeMesh& mesh) {
+    double sum = 0;
+    for (int c = 0; c < mesh.num_cells(); ++c) sum += scaled_jacobian(mesh.types[c], cell_nodes(mesh, c));
+    return sum / mesh.num_cells();
+  };
+  std::vector<double> quality;
+  for (const double towards_ideal : {0.0, 1.0}) {
+    VolumeMesh m = cubes;
+    relax_towards(m, target, towards_ideal);
+    quality.push_back(mean_scaled_jacobian(m));
+  }
+  EXPECT_GT(quality[1], quality[0] + 0.02);
+  EXPECT_LT(quality[0], mean_scaled_jacobian(target) + 0.01);  // 0: the target's own cells, about
+}
+
+TEST(ShapeRelaxation, RejectsATargetWithOtherCells) {
+  VolumeMesh m = test::hex_box(2, 2, 2, 2, 2, 2);
+  const VolumeMesh other = test::hex_box(3, 2, 2, 3, 2, 2);
+  UntangleOptions relax;
+  relax.target = &other;
+  relax.whole_mesh = true;
+  VertexPlacement placement = spatial_placement(m.V, boundary_fixed(m));
+  EXPECT_THROW(untangle(m, placement, relax), Error);
+}
+
+}  // namespace
+}  // namespace facehex
