@@ -4,7 +4,7 @@
 #include <iostream>
 #include <map>
 
-#include "app/commands.h"
+#include "app/commands/commands.h"
 #include "core/util/allocator_tuning.h"
 #include "core/util/error.h"
 #include "core/util/progress.h"

@@ -368,7 +368,7 @@ void ModelView::onResultsChanged() {
   if (role_ == Role::Standard && m.quality.shape.size() > 0) {
     p.hexGrid = p.grid;
   } else if (role_ == Role::Patient && session_->transfer()) {
-    const VolumeMesh& hex = session_->transfer()->hex;
+    const VolumeMesh& hex = session_->transfer()->patient_hex;
     p.hexGrid = to_vtk_grid(hex);
     for (const char* name : {"shape", "scaled_jacobian"})
       p.hexGrid->GetCellData()->AddArray(doubleArray(name, hex.cell_data.at(name).col(0)));

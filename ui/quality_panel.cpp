@@ -66,19 +66,19 @@ void QualityPanel::refresh() {
   const TransferResult* r = session_->transfer();
   status_->setText(r ? tr("Patient hex mesh: %L1 vertices; %L2 placed inside a parametric tet, %L3 by the nearest "
                           "one.")
-                           .arg(r->statistics.vertices)
-                           .arg(r->statistics.located_inside)
-                           .arg(r->statistics.located_nearest)
+                           .arg(r->run.transfer.vertices)
+                           .arg(r->run.transfer.located_inside)
+                           .arg(r->run.transfer.located_nearest)
                      : tr("Run the transfer to fill these tables."));
   distortion_->clearContents();
   quality_->clearContents();
   if (!r) return;
-  const DihedralDistortion& d = r->distortion;
+  const DihedralDistortion& d = r->patient_quality.distortion;
   const int bins = static_cast<int>(d.percent.size());
   for (int b = 0; b < bins; ++b) set(distortion_, 0, b, QString::number(d.percent[b], 'f', 1));
   set(distortion_, 0, bins, QString("%1\u00b0").arg(d.mean_deg, 0, 'f', 1));
   set(distortion_, 0, bins + 1, QString("%1\u00b0").arg(d.max_deg, 0, 'f', 1));
-  const std::array<const QualitySummary*, 2> rows = {&r->standardQuality, &r->patientQuality};
+  const std::array<const QualitySummary*, 2> rows = {&r->standard_quality.summary, &r->patient_quality.summary};
   for (int row = 0; row < 2; ++row) {
     const QualitySummary& q = *rows[row];
     set(quality_, row, 0, QString::number(q.shape_mean, 'f', 3));

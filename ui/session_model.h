@@ -16,6 +16,7 @@
 #include "core/mesh/mesh.h"
 #include "core/quality/hex_quality.h"
 #include "core/segment/patient_input.h"
+#include "core/workflow/transfer.h"
 
 class QUndoStack;
 
@@ -57,14 +58,6 @@ struct PlanePose {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitX();
   double band = kFeatureBand;     // mm, full width of the slab (as wide as the automatic features' slabs)
   std::string region = "volume";  // "volume", "boundary" or a side name
-};
-
-struct TransferResult {
-  VolumeMesh hex;  // the patient hex mesh, with cell data "shape" and "scaled_jacobian" and point data "uvw"
-  QualitySummary standardQuality, patientQuality;
-  DihedralDistortion distortion;
-  TransferStatistics statistics;
-  std::map<std::string, double> seconds;
 };
 
 enum class GlyphMode { Off, Before, After };  // gradients before / after the orthogonality improvement
@@ -127,7 +120,8 @@ class SessionModel : public QObject {
   const DisplaySettings& display() const { return display_; }
   void setDisplay(const DisplaySettings& display);
 
-  // Results (set by the controller on the GUI thread).
+  // Results (set by the controller on the GUI thread). The transfer's parameterizations live in parameterization():
+  // its run holds none.
   const ModelParameterization* parameterization(Role role) const;
   void setParameterization(Role role, ModelParameterization p);
   const TransferResult* transfer() const { return transfer_ ? &*transfer_ : nullptr; }

@@ -12,7 +12,6 @@
 #include "core/io/mesh_io.h"
 #include "core/segment/ct_volume.h"
 #include "core/segment/patient_input.h"
-#include "core/standard/parameterization_cache.h"
 #include "core/util/error.h"
 #include "core/util/resources.h"
 #include "ui/model_loading.h"
@@ -23,7 +22,8 @@ namespace {
 // The progress of one of several consecutive stages, mapped into [lo, hi] of the job and named after its model.
 ProgressCallback part(const ProgressCallback& progress, const QString& prefix, double lo, double hi) {
   const std::string p = prefix.toStdString();
-  return [=](const std::string& stage, double f) { return progress(p + ": " + stage, lo + (hi - lo) * f); };
+  const ProgressCallback named = [=](const std::string& stage, double f) { return progress(p + ": " + stage, f); };
+  return sub_progress(named, lo, hi);
 }
 
 QString count(long n) { return QString("%L1").arg(n); }
@@ -33,15 +33,6 @@ QString sizeText(const LoadedModel& m) {
 }
 
 const char* kStale = QT_TRANSLATE_NOOP("TransferController", " (not applied: the models changed meanwhile)");
-
-// The parameterization cached beside a model's file (the bundled standards have one), when it fits the model as
-// edited (its constraints may have changed) and the options; nullopt otherwise (then it is computed).
-std::optional<ModelParameterization> cachedParameterization(const QString& path, const TetDomain& domain,
-                                                            const ConstraintSet& set,
-                                                            const HarmonicFieldsOptions& options) {
-  if (path.isEmpty()) return std::nullopt;
-  return read_parameterization_cache(parameterization_cache_path(path.toStdString()), domain, set, options);
-}
 
 }  // namespace
 
@@ -120,14 +111,14 @@ bool TransferController::openPatient(const QString& path, const SegmentOptions& 
   const std::string p = path.toStdString();
   const bool ct = is_ct_input(p);
   // Without a standard there is nothing to value the features with: the patient opens with its six sides.
-  const std::map<std::string, double> values = session_->hasModel(Role::Standard)
-                                                   ? feature_values(session_->constraints(Role::Standard).set)
-                                                   : std::map<std::string, double>();
+  std::optional<std::map<std::string, double>> values;
+  if (session_->hasModel(Role::Standard)) values = feature_values(session_->constraints(Role::Standard).set);
   const QString file = QFileInfo(path).fileName();
   return start(ct ? tr("Segmenting %1").arg(file) : tr("Opening %1").arg(file),
                [p, ct, values, segmentOptions](const ProgressCallback& progress) -> Apply {
                  auto note = std::make_shared<QString>();
-                 auto m = std::make_shared<LoadedModel>(load_patient(p, segmentOptions, values, progress, *note));
+                 auto m = std::make_shared<LoadedModel>(
+                     load_patient(p, segmentOptions, values ? &*values : nullptr, progress, *note));
                  return [m, note, ct](SessionModel& s) {
                    QString text = (ct ? tr("Segmented the CT %1: %2; %3") : tr("Opened the patient %1: %2; %3"))
                                       .arg(m->name, sizeText(*m), *note);
@@ -155,7 +146,8 @@ bool TransferController::openDemo(const QString& standardName) {
   return start(tr("Opening the demo"), [name](const ProgressCallback&) -> Apply {
     auto standard = std::make_shared<LoadedModel>(load_standard(name.empty() ? default_standard().name : name));
     auto note = std::make_shared<QString>();
-    auto patient = std::make_shared<LoadedModel>(demo_patient(feature_values(standard->constraints.set), *note));
+    const std::map<std::string, double> values = feature_values(standard->constraints.set);
+    auto patient = std::make_shared<LoadedModel>(demo_patient(&values, *note));
     return [standard, patient, note](SessionModel& s) {
       const QString text = tr("Opened the demo: standard %1, patient %2; %3").arg(standard->name, patient->name, *note);
       s.setModel(Role::Standard, std::move(*standard));
@@ -168,18 +160,12 @@ bool TransferController::openDemo(const QString& standardName) {
 bool TransferController::computeFields() {
   struct Input {
     Role role;
-    QString path;
-    TetDomain domain;
-    ConstraintSet set;
-    std::string source;
+    StandardSetup model;  // the standard's, or the patient's domain and constraints
     quint64 revision;
   };
   std::vector<Input> inputs;
   for (Role r : kRoles)
-    if (session_->hasModel(r)) {
-      const LoadedModel& m = session_->model(r);
-      inputs.push_back({r, m.path, m.domain, m.constraints.set, m.source(), session_->revision(r)});
-    }
+    if (session_->hasModel(r)) inputs.push_back({r, standard_setup(session_->model(r)), session_->revision(r)});
   if (inputs.empty()) {
     emit failed(tr("fields: open a model first"));
     return false;
@@ -191,10 +177,12 @@ bool TransferController::computeFields() {
     for (size_t i = 0; i < inputs.size(); ++i) {
       const Input& in = inputs[i];
       const double lo = double(i) / inputs.size(), hi = double(i + 1) / inputs.size();
-      std::optional<ModelParameterization> cached = cachedParameterization(in.path, in.domain, in.set, options);
+      std::optional<ModelParameterization> cached;
+      if (in.role == Role::Standard && !in.model.path.empty()) cached = cached_parameterization(in.model, options);
       fromCache->push_back(cached.has_value());
+      const TetDomain& d = in.model.domain;
       results->push_back(cached ? std::move(*cached)
-                                : parameterize_model(in.domain.V, in.domain.T, in.domain.side_mask, in.set, in.source,
+                                : parameterize_model(d.V, d.T, d.side_mask, in.model.constraints, in.model.source(),
                                                      options, part(progress, roleName(in.role), lo, hi)));
     }
     return [inputs, results, fromCache](SessionModel& s) {
@@ -223,43 +211,23 @@ bool TransferController::runTransfer() {
     emit failed(tr("transfer: open a standard and a patient first"));
     return false;
   }
-  auto standard = std::make_shared<const LoadedModel>(session_->model(Role::Standard));
-  auto patient = std::make_shared<const LoadedModel>(session_->model(Role::Patient));
+  auto standard = std::make_shared<const StandardSetup>(standard_setup(session_->model(Role::Standard)));
+  auto patient = std::make_shared<const PatientSetup>(patient_setup(session_->model(Role::Patient)));
   const std::array<quint64, 2> revisions = {session_->revision(Role::Standard), session_->revision(Role::Patient)};
   const TransferOptions options = options_;
   return start(tr("Transfer"), [standard, patient, revisions, options](const ProgressCallback& progress) -> Apply {
-    const std::optional<ModelParameterization> cached =
-        cachedParameterization(standard->path, standard->domain, standard->constraints.set, options.fields);
-    auto run = std::make_shared<TransferRun>(
-        run_transfer(standard->mesh, standard->domain, standard->constraints.set, standard->source(), patient->mesh,
-                     patient->constraints.set, patient->source(), options, progress, cached ? &*cached : nullptr));
-    report_progress(progress, "quality", 1.0);
-    // Quality and the exported arrays as `facehex run` writes them.
-    auto result = std::make_shared<TransferResult>();
-    result->hex = run->patient_hex;
-    const ElementQuality q = element_quality(result->hex);
-    result->hex.cell_data["shape"] = q.shape;
-    result->hex.cell_data["scaled_jacobian"] = q.scaled_jacobian;
-    result->hex.point_data["uvw"] = run->standard.fields.uvw.topRows(standard->mesh.num_vertices());
-    if (standard->domain.side_mask.size() > 0)
-      result->hex.point_data[kSideMaskArray] =
-          standard->domain.side_mask.head(standard->mesh.num_vertices()).cast<double>();
-    result->patientQuality = summarize(result->hex, q);
-    result->standardQuality = summarize(standard->mesh, standard->quality);
-    result->distortion = dihedral_distortion(standard->mesh, result->hex);
-    result->statistics = run->transfer;
-    result->seconds = run->seconds;
-    return [run, result, revisions](SessionModel& s) {
-      const QualitySummary& q = result->patientQuality;
+    auto result = std::make_shared<TransferResult>(transfer(*standard, *patient, options, progress));
+    return [result, revisions](SessionModel& s) {
+      const QualitySummary& q = result->patient_quality.summary;
       QString text = tr("Transfer done: %1 cells, %2 inverted, mean shape %3 (standard %4)")
                          .arg(count(q.cells))
                          .arg(q.inverted)
                          .arg(q.shape_mean, 0, 'f', 3)
-                         .arg(result->standardQuality.shape_mean, 0, 'f', 3);
+                         .arg(result->standard_quality.summary.shape_mean, 0, 'f', 3);
       if (s.revision(Role::Standard) != revisions[0] || s.revision(Role::Patient) != revisions[1])
         return text + tr(kStale);
-      s.setParameterization(Role::Standard, std::move(run->standard));
-      s.setParameterization(Role::Patient, std::move(run->patient));
+      s.setParameterization(Role::Standard, std::move(result->run.standard));
+      s.setParameterization(Role::Patient, std::move(result->run.patient));
       s.setTransfer(std::move(*result));
       return text;
     };
@@ -312,7 +280,7 @@ bool TransferController::saveConstraints(Role role, const QString& path) {
 bool TransferController::exportHex(const QString& path) {
   return reportErrors([&] {
     if (!session_->transfer()) throw Error(path.toStdString(), "no hex mesh to export yet: run the transfer first");
-    write_volume_mesh(path.toStdString(), session_->transfer()->hex);
+    write_volume_mesh(path.toStdString(), session_->transfer()->patient_hex);
   });
 }
 

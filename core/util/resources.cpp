@@ -47,10 +47,16 @@ BundledModel find_standard(const std::string& name_or_path) {
   const fs::path p(name_or_path);
   if (!fs::exists(p))
     throw Error(name_or_path, "no bundled standard of that name and no such file (see 'facehex standards')");
-  fs::path constraints = p;
-  constraints.replace_extension(".json");
-  if (!fs::exists(constraints)) constraints = p.parent_path() / "constraints.json";
-  return {p.stem().string(), p.string(), constraints.string(), ""};
+  std::string constraints = constraints_beside(name_or_path);
+  if (constraints.empty()) constraints = fs::path(p).replace_extension(".json").string();  // named in the read error
+  return {p.stem().string(), p.string(), constraints, ""};
+}
+
+std::string constraints_beside(const std::string& model_path) {
+  const fs::path p(model_path);
+  for (const fs::path& candidate : {fs::path(p).replace_extension(".json"), p.parent_path() / "constraints.json"})
+    if (fs::is_regular_file(candidate)) return candidate.string();
+  return "";
 }
 
 BundledModel default_standard() {

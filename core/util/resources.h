@@ -22,8 +22,12 @@ struct BundledModel {
 std::vector<BundledModel> bundled_standards();
 std::vector<BundledModel> bundled_patients();
 
-// A bundled standard by name, or a mesh path (its constraints: NAME.json beside it, else constraints.json in its
-// folder). Throws facehex::Error when neither exists.
+// The constraint file that goes with a model file: NAME.json beside it, else constraints.json in its folder (the
+// bundled models' layout); empty when there is none.
+std::string constraints_beside(const std::string& model_path);
+
+// A bundled standard by name, or a mesh path (its constraints: constraints_beside it). Throws facehex::Error when
+// neither exists.
 BundledModel find_standard(const std::string& name_or_path);
 BundledModel default_standard();
 BundledModel default_patient();

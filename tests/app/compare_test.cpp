@@ -1,5 +1,5 @@
 // The numbers of `facehex compare` against a hand computation on one cube, and the PNG histograms.
-#include "app/compare.h"
+#include "app/commands/compare.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,4 @@
 // The bundled standard mapped onto a synthetic face-like shell patient (TetGen): the whole method end to end.
-#include "app/synthetic_patient.h"
-
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -13,6 +11,7 @@
 #include "core/quality/hex_quality.h"
 #include "core/standard/closed_domain.h"
 #include "core/util/resources.h"
+#include "core/workflow/patient_setup.h"
 
 namespace facehex {
 namespace {
@@ -20,7 +19,7 @@ namespace {
 TEST(SyntheticPatient, BundledStandardTransfersWithNoInvertedElement) {
   const BundledModel files = default_standard();
   const VolumeMesh standard = read_volume_mesh(files.mesh);
-  const VolumeMesh patient = cli::synthetic_shell_patient(6.0);
+  const VolumeMesh patient = synthetic_shell_patient(6.0);
   // Both with the same semantics: the six sides only (the shell has no lips or brows to place features on).
   const TransferRun run = run_transfer(standard, closed_domain(standard), side_constraints(), files.constraints,
                                        patient, side_constraints(), "shell", TransferOptions{});

@@ -64,6 +64,7 @@ class GuiTest : public QObject {
   void computesTheFields();
   void scriptedFieldStatesShowTheModels();
   void transfersExportsAndReloads();
+  void exportWritesWhatRunExportWrites();
   void thresholdIsolatesBadCells();
   void badFilesGiveTheCoreMessageAndTheAppKeepsRunning();
 
@@ -252,12 +253,12 @@ void GuiTest::transfersTheBundledModels() {
   const TransferResult* r = session()->transfer();
   QVERIFY(r);
   const VolumeMesh& standard = session()->model(Role::Standard).mesh;
-  QCOMPARE(r->hex.num_cells(), standard.num_cells());
-  QCOMPARE(r->hex.count(CellType::Hex), standard.count(CellType::Hex));
-  QCOMPARE(r->patientQuality.cells, standard.num_cells());
-  QCOMPARE(r->patientQuality.inverted, 0);
-  QCOMPARE(summarize(r->hex, element_quality(r->hex)).inverted, 0);
-  QVERIFY(r->hex.cell_data.count("scaled_jacobian") && r->hex.point_data.count("uvw"));
+  QCOMPARE(r->patient_hex.num_cells(), standard.num_cells());
+  QCOMPARE(r->patient_hex.count(CellType::Hex), standard.count(CellType::Hex));
+  QCOMPARE(r->patient_quality.summary.cells, standard.num_cells());
+  QCOMPARE(r->patient_quality.summary.inverted, 0);
+  QCOMPARE(summarize(r->patient_hex, element_quality(r->patient_hex)).inverted, 0);
+  QVERIFY(r->patient_hex.cell_data.count("scaled_jacobian") && r->patient_hex.point_data.count("uvw"));
   for (Role role : kRoles) QVERIFY(session()->parameterization(role));
   QCOMPARE(session()->parameterization(Role::Patient)->V.rows(), session()->model(Role::Patient).mesh.V.rows());
 }
@@ -439,16 +440,59 @@ void GuiTest::transfersExportsAndReloads() {
   QVERIFY2(error_.isEmpty(), qPrintable(error_));
   const TransferResult* r = session()->transfer();
   QVERIFY(r);
-  QCOMPARE(r->hex.num_cells(), session()->model(Role::Standard).mesh.num_cells());
+  QCOMPARE(r->patient_hex.num_cells(), session()->model(Role::Standard).mesh.num_cells());
 
   const QString path = dir_.filePath("patient_hex.vtu");
   QVERIFY(window_->controller()->exportHex(path));
   const VolumeMesh reloaded = read_volume_mesh(path.toStdString());
-  QCOMPARE(reloaded.num_cells(), r->hex.num_cells());
-  QCOMPARE(reloaded.num_vertices(), r->hex.num_vertices());
+  QCOMPARE(reloaded.num_cells(), r->patient_hex.num_cells());
+  QCOMPARE(reloaded.num_vertices(), r->patient_hex.num_vertices());
   QCOMPARE(summarize(reloaded, element_quality(reloaded)).inverted, 0);
   QVERIFY(reloaded.cell_data.count("scaled_jacobian"));
-  QVERIFY((reloaded.V - r->hex.V).cwiseAbs().maxCoeff() < 1e-9);
+  QVERIFY((reloaded.V - r->patient_hex.V).cwiseAbs().maxCoeff() < 1e-9);
+}
+
+// The same case through both front ends: the bundled patient opened in the application (the demo) and given to
+// `facehex run --export`, with the defaults of both. The exported files are the same, byte for byte.
+void GuiTest::exportWritesWhatRunExportWrites() {
+  QVERIFY(window_->controller()->openDemo(QString()));
+  QVERIFY(window_->controller()->waitUntilIdle(120000));
+  QVERIFY2(takeError().isEmpty(), "the demo opens");
+  QVERIFY(window_->controller()->runTransfer());
+  QVERIFY(window_->controller()->waitUntilIdle(300000));
+  QVERIFY2(error_.isEmpty(), qPrintable(error_));
+  QVERIFY(session()->transfer());
+  for (const char* ext : {"inp", "vtu"})
+    QVERIFY(window_->controller()->exportHex(dir_.filePath(QString("gui.") + ext)));
+
+  const QString cli_out = dir_.filePath("cli");
+  const std::string command = std::string(FACEHEX_CLI) + " run " + default_patient().mesh + " -o " +
+                              cli_out.toStdString() + " --export inp > /dev/null 2>&1";
+  QCOMPARE(std::system(command.c_str()), 0);
+  const auto bytes = [](const QString& path) {
+    QFile f(path);
+    return f.open(QIODevice::ReadOnly) ? f.readAll() : QByteArray();
+  };
+  const QByteArray gui_inp = bytes(dir_.filePath("gui.inp"));
+  QVERIFY(!gui_inp.isEmpty());
+  QVERIFY2(gui_inp == bytes(cli_out + "/patient_hex.inp"), "the .inp files differ");
+
+  const VolumeMesh gui = read_volume_mesh(dir_.filePath("gui.vtu").toStdString());
+  const VolumeMesh cli = read_volume_mesh((cli_out + "/patient_hex.vtu").toStdString());
+  QCOMPARE(gui.C, cli.C);
+  QCOMPARE(gui.V, cli.V);
+  QCOMPARE(gui.point_data.size(), cli.point_data.size());
+  for (const auto& [name, a] : cli.point_data) {
+    QVERIFY2(gui.point_data.count(name), name.c_str());
+    QVERIFY2(gui.point_data.at(name) == a, name.c_str());
+  }
+  QCOMPARE(gui.cell_data.size(), cli.cell_data.size());
+  for (const auto& [name, a] : cli.cell_data) {
+    QVERIFY2(gui.cell_data.count(name), name.c_str());
+    QVERIFY2(gui.cell_data.at(name) == a, name.c_str());
+  }
+  for (const char* array : {"moved_from_mapping", "uvw", "side_mask"}) QVERIFY2(gui.point_data.count(array), array);
+  QVERIFY(gui.cell_data.count("dihedral_change"));
 }
 
 void GuiTest::thresholdIsolatesBadCells() {
@@ -458,10 +502,10 @@ void GuiTest::thresholdIsolatesBadCells() {
   d.threshold = 1.0;
   session()->setDisplay(d);
   ModelView* view = window_->view(Role::Patient);
-  QCOMPARE(view->drawnHexCells(), session()->transfer()->hex.num_cells());
+  QCOMPARE(view->drawnHexCells(), session()->transfer()->patient_hex.num_cells());
   d.threshold = 0.5;
   session()->setDisplay(d);
-  const Eigen::VectorXd sj = session()->transfer()->hex.cell_data.at("scaled_jacobian").col(0);
+  const Eigen::VectorXd sj = session()->transfer()->patient_hex.cell_data.at("scaled_jacobian").col(0);
   QCOMPARE(view->drawnHexCells(), int((sj.array() <= 0.5).count()));
   QVERIFY(!view->planeWidgetEnabled());  // the hex display has no plane
   session()->setDisplay(DisplaySettings{});

@@ -7,10 +7,10 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "app/report.h"
 #include "core/baseline/mesh_matching.h"
 #include "core/mesh/mesh.h"
 #include "core/quality/surface_distance.h"
+#include "core/workflow/report.h"
 
 namespace facehex::cli {
 

@@ -13,9 +13,8 @@
 #include <sstream>
 
 #include "app/cli_args.h"
-#include "app/commands.h"
-#include "app/synthetic_patient.h"
-#include "app/transfer_command.h"
+#include "app/commands/commands.h"
+#include "app/transfer_options.h"
 #include "core/face/automatic_constraints.h"
 #include "core/fields/constraint_set.h"
 #include "core/fields/harmonic_fields.h"
@@ -29,6 +28,7 @@
 #include "core/util/error.h"
 #include "core/util/resources.h"
 #include "core/util/stopwatch.h"
+#include "core/workflow/patient_setup.h"
 
 namespace facehex::cli {
 namespace {
@@ -77,16 +77,16 @@ int ct_bench(const Args& args) {
     write_ct_volume(tmp, CtVolume{resample(ct.intensity, target), "resampled"});
   }
   Stopwatch clock;
-  TransferOutputs out = execute_transfer(args, tmp, "");
+  const CliTransfer out = cli_transfer(args, tmp, "");
   const double total = clock.lap();
   std::filesystem::remove(tmp);
-  std::map<std::string, double> stages = out.run.seconds;
+  std::map<std::string, double> stages = out.result.run.seconds;
   double transfer = 0;
   for (const auto& [name, seconds] : stages) transfer += seconds;
   stages["read_and_segment"] = total - transfer;
-  const QualitySummary& q = out.patient_quality.summary;
+  const QualitySummary& q = out.result.patient_quality.summary;
   const nlohmann::json result = {{"ct", dims},
-                                 {"tets", out.patient.num_cells()},
+                                 {"tets", out.patient.mesh.num_cells()},
                                  {"stages", stages},
                                  {"total_seconds", total},
                                  {"peak_memory_mb", peak_memory_mb()},
@@ -95,7 +95,8 @@ int ct_bench(const Args& args) {
     std::cout << result.dump(2) << "\n";
   } else {
     std::printf("CT %ld x %ld x %ld: patient %d tets, whole run %.2f s, peak memory %.0f MB, %d unusable cells\n",
-                dims[0], dims[1], dims[2], out.patient.num_cells(), total, peak_memory_mb(), q.inverted + q.degenerate);
+                dims[0], dims[1], dims[2], out.patient.mesh.num_cells(), total, peak_memory_mb(),
+                q.inverted + q.degenerate);
     for (const auto& [name, seconds] : stages) std::printf("    %-36s %9.3f s\n", name.c_str(), seconds);
   }
   return 0;
@@ -110,20 +111,16 @@ struct BenchStandard {
 };
 
 BenchStandard bench_standard(const Args& args) {
-  const BundledModel files = find_standard(args.get("standard"));
-  const std::string constraints =
-      args.has("standard-constraints") ? args.get("standard-constraints") : files.constraints;
+  const StandardSetup standard = standard_setup(args);
   BenchStandard b;
-  b.mesh = read_volume_mesh(files.mesh);
+  b.mesh = standard.mesh;
   b.fields = field_options(args);
-  const TetDomain domain = standard_domain(b.mesh, args.get("standard-domain"));
-  const ConstraintSet set = read_constraint_set(constraints);
-  const std::optional<ModelParameterization> cached =
-      cached_standard_parameterization(parameterization_cache_path(files.mesh), domain, set, b.fields);
-  const ModelParameterization param =
-      cached ? *cached : parameterize_model(domain.V, domain.T, domain.side_mask, set, constraints, b.fields);
-  b.uvw = param.fields.uvw.topRows(b.mesh.num_vertices());
-  b.feature_values = feature_values(set);
+  std::optional<ModelParameterization> param = cached_parameterization(standard, b.fields);
+  if (!param)
+    param = parameterize_model(standard.domain.V, standard.domain.T, standard.domain.side_mask, standard.constraints,
+                               standard.source(), b.fields);
+  b.uvw = param->fields.uvw.topRows(b.mesh.num_vertices());
+  b.feature_values = feature_values(standard.constraints);
   return b;
 }
 
@@ -144,19 +141,16 @@ nlohmann::json time_transfer(VolumeMesh patient, const std::optional<ConstraintS
   const Eigen::VectorXi side_mask = side_mask_of(patient);
   const ConstraintSet used =
       set ? *set : automatic_constraints(patient.V, side_mask, standard.feature_values, kFeatureBand, nullptr);
-  const ResolvedConstraints constraints = resolve_constraints(used, patient.V, patient.tets(), side_mask, source);
   stages["constraints"] = clock.lap();
-  const HarmonicFields fields(patient.V, patient.tets(), constraints, standard.fields);
-  const HarmonicFieldsResult r = fields.compute();
+  const ModelParameterization p =
+      parameterize_model(patient.V, patient.tets(), side_mask, used, source, standard.fields);
   clock.lap();
-  for (const auto& [name, s] : r.seconds) stages[name] = s;
-  for (size_t i = 0; i < r.iteration_seconds.size(); ++i)
-    stages["orthogonality_iteration_" + std::to_string(i + 1)] = r.iteration_seconds[i];
+  for (const auto& [name, s] : p.fields.seconds) stages[name] = s;
+  for (size_t i = 0; i < p.fields.iteration_seconds.size(); ++i)
+    stages["orthogonality_iteration_" + std::to_string(i + 1)] = p.fields.iteration_seconds[i];
   stages.erase("orthogonality_improvement");
   TransferStatistics t;
-  const Eigen::MatrixXd uvw = r.uvw.cwiseMax(0.0).cwiseMin(1.0);
-  const Eigen::MatrixXi T = patient.tets();
-  const PatientMap patient_map(patient.V, T, uvw);
+  const PatientMap patient_map(patient.V, p.T, p.fields.uvw);
   stages["locator_build"] = clock.lap();
   transfer_hex_mesh(standard.mesh, standard.uvw, patient_map, &t);
   stages["point_location_and_interpolation"] = t.seconds_mapping;
@@ -233,10 +227,11 @@ int cmd_bench(const Argv& argv) {
   const BenchStandard standard = bench_standard(args);
   nlohmann::json results = nlohmann::json::array();
   for (const std::string& file : patients) {
-    const std::filesystem::path beside = std::filesystem::path(file).replace_extension(".json");
+    // A constraint file as run finds one; else the automatic constraints, placed inside the timed stages.
+    const PatientSetup patient = load_patient(file, segment_options(args), "", nullptr);
     std::optional<ConstraintSet> set;
-    if (std::filesystem::is_regular_file(beside)) set = read_constraint_set(beside.string());
-    results.push_back(time_transfer(load_tet_model(file, segment_options(args)), set, standard, file));
+    if (!patient.constraints_path.empty()) set = patient.constraints;
+    results.push_back(time_transfer(patient.mesh, set, standard, patient.source()));
     results.back()["patient"] = file;
     if (!args.has("json")) print_timing(results.back());
   }

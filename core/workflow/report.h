@@ -10,7 +10,7 @@
 #include "core/quality/hex_quality.h"
 #include "core/quality/surface_distance.h"
 
-namespace facehex::cli {
+namespace facehex {
 
 // printf-style formatting of one number, for reports.
 std::string fmt(const char* format, double x);
@@ -39,4 +39,4 @@ std::string run_summary_text(const TransferRun& run, const MeshQualityReport& st
                              const MeshQualityReport& plain_mapping_quality, const MeshQualityReport& patient_quality,
                              const DistanceSummary& distance);
 
-}  // namespace facehex::cli
+}  // namespace facehex

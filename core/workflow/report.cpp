@@ -1,4 +1,4 @@
-#include "app/report.h"
+#include "core/workflow/report.h"
 
 #include <cstdio>
 #include <sstream>
@@ -6,7 +6,7 @@
 #include "core/fields/constraint_set.h"
 #include "core/mesh/tet_topology.h"
 
-namespace facehex::cli {
+namespace facehex {
 
 std::string fmt(const char* format, double x) {
   char buf[64];
@@ -220,4 +220,4 @@ std::string run_summary_text(const TransferRun& run, const MeshQualityReport& st
   return os.str();
 }
 
-}  // namespace facehex::cli
+}  // namespace facehex

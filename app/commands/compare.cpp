@@ -1,4 +1,4 @@
-#include "app/compare.h"
+#include "app/commands/compare.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -7,11 +7,11 @@
 #include <sstream>
 
 #include "app/cli_args.h"
-#include "app/commands.h"
+#include "app/commands/commands.h"
 #include "app/histogram_png.h"
 #include "app/output_folder.h"
 #include "app/terminal_progress.h"
-#include "app/transfer_command.h"
+#include "app/transfer_options.h"
 #include "core/util/error.h"
 #include "core/util/resources.h"
 #include "core/util/text_file.h"
@@ -54,30 +54,27 @@ double total_seconds(const std::map<std::string, double>& seconds) {
 }
 
 struct PatientInput {
-  std::string name, path, constraints;  // constraints: a file, or empty for the automatic ones
+  std::string name, path;
+  std::string constraints;  // the file the transfer took them from (core/workflow/patient_setup.h), or empty: automatic
 };
 
-// The patients to compare: the given paths (a constraint set NAME.json beside one is used), else the bundled ones
-// (with their constraints.json when present). Names are unique, for the plot files.
+// The patients to compare: the given paths, else the bundled ones. Names are unique, for the plot files.
 std::vector<PatientInput> patient_inputs(const Args& args) {
   std::vector<PatientInput> inputs;
   std::vector<std::string> paths;
   if (args.has("PATIENT")) paths.push_back(args.get("PATIENT"));
   paths.insert(paths.end(), args.rest().begin(), args.rest().end());
   if (paths.empty()) {
-    for (const BundledModel& m : bundled_patients())
-      inputs.push_back({m.name, m.mesh, fs::is_regular_file(m.constraints) ? m.constraints : ""});
+    for (const BundledModel& m : bundled_patients()) inputs.push_back({m.name, m.mesh, ""});
     if (inputs.empty())
       throw Error(resource_dir(), "no bundled patient found (resources/patients/*/patient.vtu): give PATIENT files");
   }
   std::set<std::string> names;
   for (const std::string& path : paths) {
     if (!fs::exists(path)) throw Error(path, "no such patient file or folder");
-    fs::path beside = fs::path(path);
-    beside.replace_extension(".json");
     std::string name = fs::path(path).stem().string();
     if (name == "patient" && fs::path(path).has_parent_path()) name = fs::path(path).parent_path().filename().string();
-    inputs.push_back({name, path, fs::is_regular_file(beside) ? beside.string() : ""});
+    inputs.push_back({name, path, ""});
   }
   for (PatientInput& in : inputs) {
     const std::string base = in.name;
@@ -388,16 +385,18 @@ int cmd_compare(const Argv& argv) {
     const PatientInput& in = inputs[i];
     const std::string step = "[" + std::to_string(i + 1) + "/" + std::to_string(inputs.size()) + "] " + in.name;
     std::cerr << step << ": harmonic transfer\n";
-    const TransferOutputs h = execute_transfer(args, in.path, in.constraints);
+    const CliTransfer t = cli_transfer(args, in.path, "");
+    const TransferResult& h = t.result;
     std::cerr << step << ": mesh matching\n";
-    const std::string standard_source = find_standard(args.get("standard")).mesh;
-    MatchingOutputs m = execute_mesh_matching(h.standard, standard_source, h.patient, in.path);
+    const std::string& standard_source = t.standard.path;
+    MatchingOutputs m = execute_mesh_matching(t.standard.mesh, standard_source, t.patient.mesh, in.path);
     std::cerr << step << ": measuring and plotting\n";
     PatientComparison c;
     c.input = in;
+    c.input.constraints = t.patient.constraints_path;
     c.tets = static_cast<int>(h.run.patient.T.rows());
     c.vertices = static_cast<int>(h.run.patient.V.rows());
-    c.harmonic = method_metrics(h.standard, h.run.patient_hex, h.run.patient.V, h.run.patient.T, h.run.seconds);
+    c.harmonic = method_metrics(t.standard.mesh, h.run.patient_hex, h.run.patient.V, h.run.patient.T, h.run.seconds);
     c.mesh_matching = std::move(m.metrics);
     c.registration = std::move(m.result);
     c.inverted_before_repair = h.plain_mapping_quality.summary.inverted;  // the mapping's, before relaxation and repair
@@ -405,7 +404,7 @@ int cmd_compare(const Argv& argv) {
     c.gradients_after = h.run.patient.fields.angles;
     c.standard_gradients_before = h.run.standard.fields.angles_initial;
     c.standard_gradients_after = h.run.standard.fields.angles;
-    c.plots = write_plots(out_dir, c, element_quality(h.standard).shape);
+    c.plots = write_plots(out_dir, c, element_quality(t.standard.mesh).shape);
     standard_name = standard_source;
     standard_quality = h.standard_quality.summary;
     patients.push_back(patient_json(c));

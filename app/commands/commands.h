@@ -1,6 +1,6 @@
 #pragma once
-// The facehex sub-commands. Each takes its arguments (after the command name) and returns the exit code; errors
-// are thrown as facehex::Error and printed by main.
+// The facehex sub-commands, one file each in this folder. Each takes its arguments (after the command name) and returns
+// the exit code; errors are thrown as facehex::Error and printed by main.
 #include <string>
 #include <vector>
 
@@ -20,6 +20,6 @@ int cmd_template(const Argv& argv);
 int cmd_bench(const Argv& argv);
 int cmd_constraints(const Argv& argv);
 int cmd_segment(const Argv& argv);
-int cmd_compare(const Argv& argv);  // app/compare.cpp
+int cmd_compare(const Argv& argv);
 
 }  // namespace facehex::cli

@@ -1,0 +1,43 @@
+#include <iostream>
+
+#include "app/cli_args.h"
+#include "app/commands/commands.h"
+#include "core/face/automatic_constraints.h"
+#include "core/io/mesh_io.h"
+#include "core/standard/own_feature_values.h"
+#include "core/util/error.h"
+#include "core/util/resources.h"
+
+namespace facehex::cli {
+
+int cmd_constraints(const Argv& argv) {
+  Args args("constraints",
+            "Writes the constraint set of a model with side labels: its six sides and the feature constraints at its "
+            "facial landmarks (mid-sagittal line, eyebrow, below-nose and middle lip lines). Feature values come "
+            "from the standard's set, or with --own-values from this model's own harmonic fields (to build a "
+            "standard's set). Landmark positions are printed for checking.");
+  args.positional("MODEL", "tet model or hex-dominant standard with side_mask")
+      .option("output", "output constraint-set JSON")
+      .option("standard", "standard whose feature values to use", "artisynth-refface")
+      .option("band", "slab width (mm) selecting feature vertices", "2")
+      .flag("own-values", "take the feature values from the model's own fields (for a standard)");
+  if (!args.parse(argv)) return 0;
+  if (!args.has("output")) throw Error("facehex constraints", "missing -o OUTPUT");
+  const std::string path = args.get("MODEL");
+  const VolumeMesh mesh = read_volume_mesh(path);
+  const Eigen::VectorXi mask = side_mask_of(mesh);
+  FaceLandmarks landmarks;
+  const std::map<std::string, double> values =
+      args.has("own-values") ? own_feature_values(mesh, args.number("band"), path)
+                             : feature_values(read_constraint_set(find_standard(args.get("standard")).constraints));
+  const ConstraintSet set = automatic_constraints(mesh.V, mask, values, args.number("band"), &landmarks);
+  write_constraint_set(args.get("output"), set);
+  std::cout << "mid-sagittal plane x = " << landmarks.x_mid << " mm\n";
+  std::cout << landmarks_text(landmarks, "");
+  for (const auto& c : set.constraints)
+    if (!c.select.side) std::cout << c.name << ": " << kFieldNames[c.field] << " = " << c.value << "\n";
+  std::cout << "wrote " << args.get("output") << "\n";
+  return 0;
+}
+
+}  // namespace facehex::cli

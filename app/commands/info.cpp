@@ -1,0 +1,37 @@
+#include <iostream>
+
+#include "app/cli_args.h"
+#include "app/commands/commands.h"
+#include "core/fields/constraint_set.h"
+#include "core/io/mesh_io.h"
+#include "core/mesh/sides.h"
+
+namespace facehex::cli {
+
+int cmd_info(const Argv& argv) {
+  Args args("info", "Prints sizes, cell types, bounding box, volume and side labels of a mesh.");
+  args.positional("MESH", "mesh file");
+  if (!args.parse(argv)) return 0;
+  const std::string path = args.get("MESH");
+  const VolumeMesh m = read_volume_mesh(path);
+  const Eigen::RowVector3d lo = m.V.colwise().minCoeff(), hi = m.V.colwise().maxCoeff();
+  std::cout << path << "\n  vertices " << m.num_vertices() << "\n  cells " << m.num_cells() << " (tet "
+            << m.count(CellType::Tet) << ", wedge " << m.count(CellType::Wedge) << ", hex " << m.count(CellType::Hex)
+            << ")\n  bounding box [" << lo << "] - [" << hi << "] mm\n";
+  const Eigen::VectorXi mask = side_mask_of(m);
+  if (mask.size() > 0) {
+    std::cout << "  side vertices:";
+    for (int s = 0; s < kNumSides; ++s)
+      std::cout << " " << kSideNames[s] << " " << std::count_if(mask.data(), mask.data() + mask.size(), [&](int m) {
+        return (m & side_bit(static_cast<Side>(s))) != 0;
+      });
+    std::cout << "\n";
+  }
+  std::cout << "  arrays:";
+  for (const auto& [name, a] : m.point_data) std::cout << " " << name << "(point," << a.cols() << ")";
+  for (const auto& [name, a] : m.cell_data) std::cout << " " << name << "(cell," << a.cols() << ")";
+  std::cout << "\n";
+  return 0;
+}
+
+}  // namespace facehex::cli

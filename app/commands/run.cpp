@@ -1,0 +1,69 @@
+#include <filesystem>
+#include <iostream>
+
+#include "app/cli_args.h"
+#include "app/commands/commands.h"
+#include "app/mesh_output.h"
+#include "app/output_folder.h"
+#include "app/transfer_options.h"
+#include "core/io/mesh_io.h"
+#include "core/util/error.h"
+#include "core/util/resources.h"
+#include "core/workflow/transfer.h"
+
+namespace facehex::cli {
+namespace fs = std::filesystem;
+
+int cmd_run(const Argv& argv) {
+  Args args("run",
+            "End to end: the patient (a CT is segmented first; default: the bundled sample CT) is parameterized with "
+            "its constraints (--constraints, else NAME.json or constraints.json beside a mesh file, else automatic: "
+            "six sides and the facial features at its landmarks), the standard mapped onto it, and OUT/ gets "
+            "patient_model.vtu, standard_hex.vtu, patient_hex.vtu and report.json.");
+  args.positional("INPUT", "patient CT volume, tet model or closed surface", false)
+      .option("output", "output folder")
+      .option("constraints",
+              "constraint set of the patient (default: NAME.json or constraints.json beside it, else automatic)")
+      .option("export", "also write OUT/patient_hex.EXT for each listed format, e.g. feb,inp,msh (docs/export.md)")
+      .flag("force-export", kForceExportHelp);
+  add_transfer_options(args);
+  if (!args.parse(argv)) return 0;
+  if (!args.has("output")) throw Error("facehex run", "missing -o OUTPUT_FOLDER");
+  const std::vector<std::string> exports = export_formats(args.get("export"));
+  std::string input = args.get("INPUT");
+  const std::string constraints = args.get("constraints");
+  if (input.empty()) {
+    input = default_ct();
+    std::cerr << "no input given: running the bundled demo, the whole chain from the sample CT " << input << "\n";
+  }
+  check_transfer_options(args);  // option errors before any folder
+  OutputFolder folder(args.get("output"));
+  const fs::path& out_dir = folder.path();
+
+  const CliTransfer t = cli_transfer(args, input, constraints);
+  const TransferResult& r = t.result;
+  write_volume_mesh((out_dir / "patient_model.vtu").string(), parameterized_tet_mesh(r.run.patient, &t.patient.mesh),
+                    parameterized_model_writing());
+  write_volume_mesh((out_dir / "standard_hex.vtu").string(), standard_with_fields(t.standard.mesh, r.run.standard));
+  write_volume_mesh((out_dir / "patient_hex.vtu").string(), r.patient_hex);
+  nlohmann::json report = run_report(r.run, r.standard_quality, r.plain_mapping_quality, r.patient_quality, r.distance);
+  report["inputs"] = {
+      {"patient", input}, {"patient_constraints", t.patient.constraints_path}, {"standard", t.standard.name}};
+  write_json((out_dir / "report.json").string(), report);
+  std::cout << run_summary_text(r.run, r.standard_quality, r.plain_mapping_quality, r.patient_quality, r.distance)
+            << "outputs in " << out_dir.string()
+            << "/: patient_model.vtu, standard_hex.vtu, patient_hex.vtu, report.json\n";
+  for (const std::string& ext : exports) {
+    const std::string path = (out_dir / ("patient_hex." + ext)).string();
+    write_volume_mesh(path, r.patient_hex, write_options(args));
+    std::cout << "exported " << path << "\n";
+  }
+  folder.keep();
+  const QualitySummary& q = r.patient_quality.summary;
+  if (exit_code(q) != 0)
+    std::cerr << "warning: " << q.inverted << " inverted and " << q.degenerate
+              << " degenerate cells remain in patient_hex.vtu (cell data scaled_jacobian shows where)\n";
+  return exit_code(q);
+}
+
+}  // namespace facehex::cli

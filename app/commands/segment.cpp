@@ -1,0 +1,46 @@
+#include <algorithm>
+#include <iostream>
+
+#include "app/cli_args.h"
+#include "app/commands/commands.h"
+#include "app/terminal_progress.h"
+#include "app/transfer_options.h"
+#include "core/io/mesh_io.h"
+#include "core/mesh/sides.h"
+#include "core/segment/ct_volume.h"
+#include "core/segment/patient_input.h"
+#include "core/util/error.h"
+
+namespace facehex::cli {
+
+int cmd_segment(const Argv& argv) {
+  Args args("segment",
+            "From a head CT (MetaImage, NIfTI, NRRD, or a DICOM folder) to the labelled patient tet model of the "
+            "facial soft tissue: thresholds from the histogram, cavities closed, cut at the forehead, below the chin "
+            "and in front of the ears, six sides labelled (point data side_mask). See docs/segmentation.md.");
+  args.positional("CT", "CT volume file or DICOM folder").option("output", "output tet model (.vtu)");
+  args.option("edge-length", "target mean edge length of the tets (mm)", "2");
+  add_segment_options(args);
+  if (!args.parse(argv)) return 0;
+  if (!args.has("output")) throw Error("facehex segment", "missing -o OUTPUT");
+  const SegmentOptions options = segment_options(args);
+  if (!is_ct_input(args.get("CT")))
+    throw Error(args.get("CT"), "not a CT volume (.mhd, .mha, .nii, .nii.gz, .nrrd, or a DICOM folder)");
+  std::cerr << "segmenting the facial soft tissue from the CT " << args.get("CT") << "\n";
+  TerminalProgress progress;
+  const PatientTetModel patient = load_patient_model(args.get("CT"), options, progress.callback());
+  progress.finish();
+  print_segmentation(*patient.segmentation);
+  const VolumeMesh& model = patient.mesh;
+  write_volume_mesh(args.get("output"), model);
+  const Eigen::VectorXi mask = side_mask_of(model);
+  std::cout << model.num_vertices() << " vertices, " << model.num_cells() << " tets; side vertices:";
+  for (int s = 0; s < kNumSides; ++s)
+    std::cout << " " << kSideNames[s] << " " << std::count_if(mask.data(), mask.data() + mask.size(), [&](int m) {
+      return (m & side_bit(static_cast<Side>(s))) != 0;
+    });
+  std::cout << "\nwrote " << args.get("output") << "\n";
+  return 0;
+}
+
+}  // namespace facehex::cli

@@ -1,0 +1,156 @@
+#include "app/transfer_options.h"
+
+#include <cmath>
+#include <iostream>
+#include <set>
+
+#include "app/terminal_progress.h"
+#include "core/face/automatic_constraints.h"
+#include "core/util/error.h"
+#include "core/util/resources.h"
+
+namespace facehex::cli {
+
+void add_field_options(Args& args) {
+  args.option("iterations", "orthogonality-improvement iterations (paper: 6)", "6")
+      .option("order", "orthogonalization order: basic, second, third field (e.g. wuv)", "wuv");
+}
+
+void add_segment_options(Args& args) {
+  args.option("skin", "skin threshold in the file's units (default: from the histogram)")
+      .option("bone", "bone threshold in the file's units (default: from the histogram)")
+      .option("anterior",
+              "voxel axis the face looks to: +x -x +y -y +z -z (default: from a DICOM series' orientation, else +y)")
+      .option("superior", "voxel axis towards the top of the head (default: from a DICOM series, else +z)")
+      .option("top-cut",
+              "height z (mm, segmentation frame) of the top cut (default: --face-height above the bottom cut)")
+      .option("bottom-cut", "height z (mm) of the bottom cut (default: --chin-clearance below the chin's bone)")
+      .option("posterior-cut", "y (mm) of the posterior cut (default: --ear-clearance in front of the ears)")
+      .option("mid-plane", "x (mm) of the plane between the u0 and u1 ends (default: the head's mean x)")
+      .option("face-height", "mm from the bottom to the top cut when --top-cut is not given", "130")
+      .option("chin-clearance", "mm from the chin's bone down to the bottom cut", "10")
+      .option("ear-clearance", "mm from the front of the ears forward to the posterior cut", "10");
+}
+
+void add_transfer_options(Args& args) {
+  args.option("standard", "bundled standard name or a hex mesh file", "artisynth-refface")
+      .option("standard-constraints", "constraint set of the standard (default: the one bundled with it)")
+      .option("edge-length", "target edge length (mm) when the patient is a closed surface or a CT", "2")
+      .option("standard-domain",
+              "tet domain of the standard: closed (openings filled) or auxiliary (paper: split hexes only)", "closed")
+      .flag("allow-inverted", "continue even if the patient parameterization has inverted tets")
+      .option("shape-relaxation",
+              "after the mapping, move vertices along the patient towards the standard's cell shapes; where the "
+              "mapping distorted a cell, its target moves this fraction of that distortion towards an ideal cell (0: "
+              "the standard's own shapes); off: the paper's plain mapping",
+              "0.5");
+  add_field_options(args);
+  add_segment_options(args);
+}
+
+HarmonicFieldsOptions field_options(const Args& args) {
+  HarmonicFieldsOptions o;
+  o.orthogonality_iterations = args.integer("iterations");
+  const std::string order = args.get("order");
+  if (order.size() != 3 || std::set<char>(order.begin(), order.end()) != std::set<char>{'u', 'v', 'w'})
+    throw Error("--order", "expects a permutation of u, v, w such as wuv, got '" + order + "'");
+  for (int i = 0; i < 3; ++i) o.order[i] = order[i] - 'u';
+  return o;
+}
+
+SegmentOptions segment_options(const Args& args) {
+  SegmentOptions o;
+  if (args.has("skin")) o.skin_threshold = args.number("skin");
+  if (args.has("bone")) o.bone_threshold = args.number("bone");
+  o.orientation.anterior = args.get("anterior");
+  o.orientation.superior = args.get("superior");
+  o.tets.target_edge_length = args.number("edge-length");
+  const auto finite = [&](const std::string& name) {
+    const double x = args.number(name);
+    if (!std::isfinite(x))
+      throw Error("--" + name, "expects a finite number of millimetres, got '" + args.get(name) + "'");
+    return x;
+  };
+  const auto not_negative = [&](const std::string& name) {
+    const double x = finite(name);
+    if (x < 0) throw Error("--" + name, "expects a distance of 0 mm or more, got '" + args.get(name) + "'");
+    return x;
+  };
+  FaceCutOptions& cuts = o.cuts;
+  if (args.has("top-cut")) cuts.top_z = finite("top-cut");
+  if (args.has("bottom-cut")) cuts.bottom_z = finite("bottom-cut");
+  if (args.has("posterior-cut")) cuts.posterior_y = finite("posterior-cut");
+  if (args.has("mid-plane")) cuts.centre_x = finite("mid-plane");
+  cuts.face_height = not_negative("face-height");
+  if (cuts.face_height == 0) throw Error("--face-height", "expects a height above 0 mm");
+  cuts.chin_clearance = not_negative("chin-clearance");
+  cuts.ear_clearance = not_negative("ear-clearance");
+  return o;
+}
+
+TransferOptions transfer_options(const Args& args) {
+  TransferOptions o;
+  o.fields = field_options(args);
+  o.allow_inverted_parameterization = args.has("allow-inverted");
+  const std::string relaxation = args.get("shape-relaxation");
+  o.shape_relaxation = relaxation != "off";
+  if (o.shape_relaxation) {
+    o.relaxation_towards_ideal = args.number("shape-relaxation");
+    if (!(o.relaxation_towards_ideal >= 0 && o.relaxation_towards_ideal <= 1))
+      throw Error("--shape-relaxation", "expects off or a fraction from 0 to 1, got '" + relaxation + "'");
+  }
+  return o;
+}
+
+void check_transfer_options(const Args& args) {
+  transfer_options(args);
+  segment_options(args);
+  find_standard(args.get("standard"));
+  if (!is_standard_domain_kind(args.get("standard-domain")))
+    throw Error("--standard-domain", "expects closed or auxiliary, got '" + args.get("standard-domain") + "'");
+}
+
+StandardSetup standard_setup(const Args& args) {
+  std::cerr << "reading the standard " << args.get("standard") << "\n";
+  return load_standard(args.get("standard"), args.get("standard-constraints"), args.get("standard-domain"));
+}
+
+void print_segmentation(const CtSegmentation& segmentation) {
+  std::cerr << "segmentation: " << segmentation_summary(segmentation)
+            << "\n  (change with --skin, --bone, --top-cut, --bottom-cut, --posterior-cut, --mid-plane)\n";
+}
+
+PatientSetup cli_patient(const std::string& path, const SegmentOptions& segment, const std::string& constraints_file,
+                         const ConstraintSet& standard_constraints) {
+  if (is_ct_input(path)) std::cerr << "segmenting the facial soft tissue from the CT " << path << "\n";
+  const std::map<std::string, double> values = feature_values(standard_constraints);
+  TerminalProgress progress;
+  PatientSetup p = load_patient(path, segment, constraints_file, &values, progress.callback());
+  progress.finish();
+  if (p.segmentation) print_segmentation(*p.segmentation);
+  if (p.reoriented) std::cerr << "note: " << path << ": all tets were negatively oriented; flipped\n";
+  if (!p.features_problem.empty())
+    throw Error(path, "the facial feature constraints cannot be placed (" + p.features_problem +
+                          "); give the patient's constraint set with --constraints");
+  std::cerr << p.constraints_note << "\n";
+  if (p.landmarks) std::cerr << landmarks_text(*p.landmarks, "  ");
+  return p;
+}
+
+CliTransfer cli_transfer(const Args& args, const std::string& patient, const std::string& patient_constraints) {
+  const TransferOptions options = transfer_options(args);
+  CliTransfer t;
+  t.standard = standard_setup(args);
+  std::cerr << "reading the patient " << patient << "\n";
+  t.patient = cli_patient(patient, segment_options(args), patient_constraints, t.standard.constraints);
+  TerminalProgress progress;
+  t.result = transfer(t.standard, t.patient, options, progress.callback());
+  progress.finish();
+  if (!t.result.cache_note.empty())
+    std::cerr << "note: " << t.result.cache_note << "; the standard's parameterization was computed instead (expected "
+              << "with --standard-domain, --standard-constraints, --iterations or --order; after editing a bundled "
+              << "standard, refresh it with facehex standards --write-cache)\n";
+  return t;
+}
+
+}  // namespace facehex::cli

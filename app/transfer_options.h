@@ -1,0 +1,47 @@
+#pragma once
+// The options of the commands that transfer (run, map, compare, bench) and the CLI's side of a transfer: the
+// workflow of core/workflow/ with its notes and progress on the terminal.
+#include <string>
+
+#include "app/cli_args.h"
+#include "core/workflow/transfer.h"
+
+namespace facehex::cli {
+
+// --iterations, --order.
+void add_field_options(Args& args);
+// --skin, --bone, --anterior, --superior, the cut planes and their automatic distances.
+void add_segment_options(Args& args);
+// --standard, --standard-constraints, --standard-domain, --edge-length, --allow-inverted, --shape-relaxation, and
+// the field and segmentation options.
+void add_transfer_options(Args& args);
+
+HarmonicFieldsOptions field_options(const Args& args);
+// Throws facehex::Error naming the option for a non-finite cut, a negative distance or a zero face height.
+SegmentOptions segment_options(const Args& args);
+TransferOptions transfer_options(const Args& args);
+StandardSetup standard_setup(const Args& args);
+// Parses every transfer option and finds the standard, so that a bad option fails before any output is made.
+void check_transfer_options(const Args& args);
+
+// The thresholds and cuts a CT was segmented with, and the options that change them, on stderr.
+void print_segmentation(const CtSegmentation& segmentation);
+
+// The patient of `path` (a CT segmented with its steps on the terminal) with its constraints (core/workflow/
+// patient_setup.h: `constraints_file`, else a file beside a mesh, else automatic), the choice and the landmarks
+// printed on stderr. Without a constraint file the facial features are required: a transfer without them lands the
+// standard's eyes, nose and mouth anywhere, so a model where they cannot be found is an error naming the option that
+// helps.
+PatientSetup cli_patient(const std::string& path, const SegmentOptions& segment, const std::string& constraints_file,
+                         const ConstraintSet& standard_constraints);
+
+struct CliTransfer {
+  StandardSetup standard;
+  PatientSetup patient;
+  TransferResult result;
+};
+
+// The whole transfer as run, map, compare and bench do it (options parsed by add_transfer_options).
+CliTransfer cli_transfer(const Args& args, const std::string& patient, const std::string& patient_constraints);
+
+}  // namespace facehex::cli

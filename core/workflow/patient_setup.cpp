@@ -1,0 +1,85 @@
+#include "core/workflow/patient_setup.h"
+
+#include <filesystem>
+
+#include "core/face/automatic_constraints.h"
+#include "core/mesh/mesh_check.h"
+#include "core/mesh/synthetic_shell.h"
+#include "core/segment/ct_volume.h"
+#include "core/tetgen/tetrahedralize.h"
+#include "core/util/error.h"
+#include "core/util/resources.h"
+
+namespace facehex {
+namespace fs = std::filesystem;
+
+void choose_constraints(PatientSetup& patient, const std::string& constraints_file,
+                        const std::map<std::string, double>* feature_values) {
+  patient.landmarks.reset();
+  patient.features_problem.clear();
+  if (!constraints_file.empty()) {
+    patient.constraints = read_constraint_set(constraints_file);
+    patient.constraints_path = constraints_file;
+    patient.constraints_note = "constraints from " + constraints_file;
+    return;
+  }
+  patient.constraints_path.clear();
+  if (patient.domain.side_mask.size() == 0)
+    throw Error(patient.path,
+                "no constraint set given and the model has no \"side_mask\" array (give a constraint file)");
+  patient.constraints = side_constraints();
+  patient.constraints_note = "the six sides";
+  if (!feature_values) {
+    patient.features_problem = "no standard to value the facial features with";
+    return;
+  }
+  try {
+    FaceLandmarks landmarks;
+    patient.constraints =
+        automatic_constraints(patient.domain.V, patient.domain.side_mask, *feature_values, kFeatureBand, &landmarks);
+    patient.landmarks = landmarks;
+    patient.constraints_note =
+        "automatic constraints: six sides and " + std::to_string(feature_specs().size()) + " features at the landmarks";
+  } catch (const Error& e) {
+    patient.features_problem = e.what();
+    patient.constraints_note += " only: no facial features (" + patient.features_problem + ")";
+  }
+}
+
+PatientSetup load_patient(const std::string& path, const SegmentOptions& segment, const std::string& constraints_file,
+                          const std::map<std::string, double>* feature_values, const ProgressCallback& progress) {
+  PatientTetModel model = load_patient_model(path, segment, progress);
+  PatientSetup p;
+  p.path = path;
+  p.mesh = std::move(model.mesh);
+  p.reoriented = model.check.reoriented;
+  p.segmentation = std::move(model.segmentation);
+  p.domain = own_domain(p.mesh);
+  // A constraint file beside a CT would select from a model the file was not made for: only mesh files have one.
+  const std::string file = !constraints_file.empty() ? constraints_file
+                           : is_ct_input(path)       ? std::string()
+                                                     : constraints_beside(path);
+  choose_constraints(p, file, feature_values);
+  return p;
+}
+
+PatientSetup patient_from_mesh(VolumeMesh mesh, const std::string& name,
+                               const std::map<std::string, double>* feature_values) {
+  PatientSetup p;
+  p.reoriented = check_and_orient_tet_mesh(mesh, name).reoriented;
+  p.path = name;
+  p.mesh = std::move(mesh);
+  p.domain = own_domain(p.mesh);
+  choose_constraints(p, "", feature_values);
+  return p;
+}
+
+VolumeMesh synthetic_shell_patient(double edge_length) {
+  SyntheticShellOptions shell;
+  shell.edge_length = edge_length;
+  TetrahedralizeOptions options;
+  options.target_edge_length = edge_length;
+  return tetrahedralize_with_sides(synthetic_shell_surface(shell), options).mesh;
+}
+
+}  // namespace facehex
