@@ -56,11 +56,11 @@ else
   os=$(. /etc/os-release 2>/dev/null && echo "${PRETTY_NAME:-}" || true)
   build_type=$(sed -n 's/^CMAKE_BUILD_TYPE:STRING=//p' "$(dirname "$facehex")/../CMakeCache.txt" 2>/dev/null || true)
   python3 - "$out/machine.json" "$(date -u +%Y-%m-%d)" "$commit" "$(nproc)" "${cpu:-unknown}" "$mem_gb" \
-    "${os:-unknown}" "${build_type:-unknown}" <<'EOF'
+    "${os:-unknown}" "${build_type:-unknown}" "$(cut -d' ' -f1 /proc/loadavg)" <<'EOF'
 import json, sys
-path, date, commit, cores, cpu, mem, os_name, build = sys.argv[1:]
+path, date, commit, cores, cpu, mem, os_name, build, load = sys.argv[1:]
 json.dump({"date": date, "commit": commit, "cores": int(cores), "cpu": cpu, "memory_gb": int(mem), "os": os_name,
-           "build_type": build}, open(path, "w"), indent=1)
+           "build_type": build, "load_before": float(load)}, open(path, "w"), indent=1)
 EOF
 
   step() {  # step NAME COMMAND...: stdout to $out/NAME.json (or ignored), stderr to $out/NAME.log
@@ -73,6 +73,7 @@ EOF
       exit 1
     fi
     echo " $((SECONDS - start)) s" >&2
+    cut -d' ' -f1 /proc/loadavg >>"$out/load.txt"  # the machine's load while the figures were measured
   }
 
   if want results; then
@@ -109,8 +110,14 @@ machine = load("machine.json")
 
 def machine_line():
     m = machine
-    return (f"Generated {m['date']} by `scripts/regenerate-docs.sh` at commit {m['commit']}; {m['cores']} cores "
-            f"({m['cpu']}), {m['memory_gb']} GB, {m['os']}, {m['build_type']} build. Wall-clock times.")
+    line = (f"Generated {m['date']} by `scripts/regenerate-docs.sh` at commit {m['commit']}; {m['cores']} cores "
+            f"({m['cpu']}), {m['memory_gb']} GB, {m['os']}, {m['build_type']} build. Wall-clock times")
+    loads = [m["load_before"]] if "load_before" in m else []
+    if os.path.exists(os.path.join(out, "load.txt")):
+        loads += [float(x) for x in open(os.path.join(out, "load.txt")).read().split()]
+    if loads:  # other jobs on the machine slow every stage down
+        line += f"; 1-minute load average {min(loads):.1f}-{max(loads):.1f} during the runs"
+    return line + "."
 
 
 def n(x):  # counts with thousands separators
