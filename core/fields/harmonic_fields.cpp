@@ -11,8 +11,8 @@ namespace facehex {
 namespace {
 
 // Runs job(0), ..., job(count - 1), concurrently (one per thread) when `concurrent`, and rethrows the first failure.
-// Not one parallel loop with an if clause: CHOLMOD's supernodal routines are 4x slower when called inside even an
-// inactive OpenMP region.
+// Not one parallel loop with an if clause: CHOLMOD's supernodal routines run several times slower when called inside
+// even an inactive OpenMP region.
 template <class Job>
 void run_jobs(int count, bool concurrent, const Job& job) {
   std::vector<std::exception_ptr> failure(static_cast<size_t>(count));
@@ -53,8 +53,8 @@ HarmonicFields::HarmonicFields(const Eigen::MatrixXd& V, const Eigen::MatrixXi& 
   double factor_flops = 0;
   const auto elimination_order = std::make_shared<const std::vector<int>>(fill_reducing_order(K_, &factor_flops));
   // Small (simplicial) factorizations and their solves run concurrently, one per thread. Supernodal ones run one
-  // after the other: concurrently they compete for memory bandwidth and BLAS threads (22.5 s instead of 12.6 s at 1M
-  // tets, docs/benchmarks.md). With the shared order, the results do not depend on which thread factors what.
+  // after the other, each on all BLAS threads: run concurrently they compete for memory bandwidth and BLAS threads
+  // and take longer in all. With the shared order, the results do not depend on which thread factors what.
   concurrent_ = factor_flops < kSupernodalAboveFlops;
   run_jobs(3, concurrent_, [&](int f) {
     if (!concurrent_)

@@ -14,8 +14,8 @@ struct HarmonicSolver::Factorization {
 namespace {
 
 // The block of K with rows and columns `vertices`, in that order (position[v]: v's index in `vertices`, -1 if
-// absent). Copied column by column, each column's rows then sorted; at 50k tets 5x faster than S K S^T with a
-// selection matrix S.
+// absent). Copied column by column, each column's rows then sorted: one pass over K, where S K S^T with a selection
+// matrix S would take two sparse products.
 SparseMatrix block(const SparseMatrix& K, const std::vector<int>& vertices, const std::vector<int>& position) {
   const auto m = static_cast<Eigen::Index>(vertices.size());
   SparseMatrix B(m, m);

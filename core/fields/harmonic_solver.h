@@ -20,16 +20,16 @@ struct DirichletConditions {
 
 // A fill-reducing elimination order of all #V rows of K (CHOLMOD's pick among AMD and METIS), for sharing between
 // solvers on the same K: their free-free blocks are K minus different fixed rows, and the order restricted to a
-// block's rows serves it nearly as well as its own, while the symbolic analysis that finds it is about 40 % of a
+// block's rows serves it nearly as well as its own, while the symbolic analysis that finds it costs a large share of a
 // factorization's time. factor_flops, if given, receives CHOLMOD's predicted flop count of factoring K in that
 // order (each block's is a little less).
 std::vector<int> fill_reducing_order(const SparseMatrix& K, double* factor_flops = nullptr);
 
 // Factorizations predicted to take fewer floating-point operations than this are done simplicial (HarmonicFields
 // factors the three fields' concurrently, one per core), the others supernodal (dense BLAS kernels on supernodes,
-// one field after the other on BLAS threads). Measured on the bundled CT meshed finer and finer (2 cores, OpenBLAS;
-// the three factorizations): 5.2e8 flops (89k tets) 0.25 s concurrent simplicial against 0.43 s sequential
-// supernodal; 1.9e9 (159k) 1.07 against 1.17 s; 3.3e9 (316k) 2.21 against 2.05 s (docs/benchmarks.md).
+// one field after the other on BLAS threads). On small systems the supernodes are short and the dense kernels'
+// overhead dominates, so the concurrent simplicial factorizations finish first; the bound is where the sequential
+// supernodal ones catch up on 2 cores (the factorization column of docs/benchmarks.md shows the current times).
 constexpr double kSupernodalAboveFlops = 2e9;
 
 class HarmonicSolver {
@@ -39,7 +39,7 @@ class HarmonicSolver {
     // fill_reducing_order(K), shared between solvers on the same K; empty: CHOLMOD finds one for this block.
     std::shared_ptr<const std::vector<int>> order;
     // fill_reducing_order's flop count for K in that order, if known: picks simplicial or supernodal
-    // (kSupernodalAboveFlops) without a trial symbolic analysis of the block (about 10 ms at 50k tets).
+    // (kSupernodalAboveFlops) without a trial symbolic analysis of the block.
     std::optional<double> predicted_flops;
   };
 

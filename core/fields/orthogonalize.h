@@ -5,7 +5,7 @@
 // gradient is kept, the "second" one is projected onto the plane normal to it keeping its norm, and the "third"
 // one is replaced by the cross product of the two, scaled to its own norm and signed to keep its orientation
 // (positive dot product with the original third gradient). The result is a perfectly orthogonal frame per tet,
-// which is no longer a gradient field: the harmonic solver recovers the closest fields (eq. 5-6).
+// which in general is not a gradient field: the harmonic solver recovers the closest fields (eq. 5-6).
 #include <Eigen/Core>
 #include <array>
 #include <vector>

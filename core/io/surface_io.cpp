@@ -159,7 +159,7 @@ void write_surface_mesh(const std::string& path, const SurfaceMesh& surface) {
       writer->SetCompressorTypeToZLib();
       io::run_vtk(tmp, "writing VTK XML", writer, [&] { return writer->Write(); });
     } else if (ext == ".stl") {
-      vtkNew<vtkSTLWriter> writer;  // binary: STL stores floats either way, binary is 5x smaller
+      vtkNew<vtkSTLWriter> writer;  // binary: STL stores floats either way, and binary is far smaller
       writer->SetInputData(poly);
       writer->SetFileName(tmp.c_str());
       writer->SetFileTypeToBinary();

@@ -172,7 +172,7 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
 
   // Corners touching each free vertex (the vertex is the corner node or one of its three neighbours), the centre of
   // every hex around it (its first interior sample), and all interior samples of the cells bad at the start (the
-  // Gauss points of every cell would triple the time for cells that are fine anyway).
+  // Gauss points of every cell would multiply the work for cells that are fine anyway).
   std::vector<std::vector<Corner>> corners_of(nv);
   for (int v : free_vertices)
     for (int c : cells_of[v]) {

@@ -57,23 +57,23 @@ struct UntangleOptions {
   int rings = 2;
   int max_sweeps = 60;
   // A vertex's Newton step uses a finite-difference Hessian of its energy (3 of the step's 4 gradient evaluations);
-  // it is recomputed every this many sweeps and reused in between (the line search keeps every step a descent). On
-  // the bundled patient, 3 instead of 1: relaxation 9.7 to 7.3 s, repair 3.5 to 1.7 s, dihedral change 10.95 to
-  // 10.98 deg, 13 instead of 17 folds left to the repair.
+  // it is recomputed every this many sweeps and reused in between (the line search keeps every step a descent):
+  // between sweeps a vertex's neighbourhood changes little, so a reused Hessian still gives good steps at a fraction
+  // of the cost, and the results stay close to those of a fresh Hessian per step.
   int hessian_every_sweeps = 3;
   // The line search starts from this multiple of the Newton step, then halves (successive over-relaxation): long,
   // smooth moves, which Gauss-Seidel sweeps propagate slowly, need fewer sweeps. The transfer's shape relaxation uses
-  // 1.5 (on the bundled patient a lower energy in 60 sweeps: dihedral change 11.0 deg instead of 11.3); the repair
-  // keeps 1, since with 1.5 one fold of a synthetic patient stayed inverted.
+  // 1.5 (a lower energy within its sweep budget); the repair keeps 1, since longer steps can leave a fold inverted
+  // that plain steps untangle.
   double over_relaxation = 1;
   // If > 0, a step never brings a cell whose scaled Jacobian is at or above this below it. The transfer's shape
   // relaxation uses 0.05: while folds remain, the energy's regularization weakens its barrier against flat corners,
-  // and a cell far from any fold once came out of it at a scaled Jacobian of 1e-5.
+  // so without this bound a cell far from any fold could come out nearly flat.
   double keep_above = 0;
   // The energy sums eta^corner_power over the corners: above 1 the worst corners weigh more (towards maximizing the
   // minimum quality, which the sum of eta only does loosely). The template's repair uses 8 (template_mesh.h); the
-  // transfer's repair keeps 1: on the bundled patient 8 raised the cells below 0.3 from 3.0 to 5.0 % and the mean
-  // dihedral change from 11.0 to 12.3 deg.
+  // transfer's repair keeps 1: a higher power trades the many fair cells, and the standard's angles, for the few
+  // worst ones, which costs the transfer more than it gains.
   double corner_power = 1;
   // Called after each sweep with stage "untangling" and the fraction of max_sweeps done; returning false cancels
   // (Cancelled is thrown between sweeps).

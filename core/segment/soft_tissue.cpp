@@ -223,9 +223,9 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   surface.labels.array() += 1;  // TetGen's marker 0 means "on no input facet"
 
   // The remesher keeps every vertex on the input surface, but where the bone side meets a cut in a thin wedge (bone
-  // within a millimetre or two of the bottom cut), a triangle of one patch can cross one of the other: on the bundled
-  // CT one pair at 2.5 mm edges, none at 2.2-3.3 mm. TetGen finds crossings before meshing; the surface is then
-  // remeshed at an edge length 3 % shorter, then 3 % longer, which places the vertices differently.
+  // within a millimetre or two of the bottom cut), a triangle of one patch can cross one of the other, at some edge
+  // lengths and not at others close to them. TetGen finds crossings before meshing; the surface is then remeshed at
+  // an edge length 3 % shorter, then 3 % longer, which places the vertices differently.
   // A vertex where skin touches bone at a zero-thickness rim is left free in w (tetrahedralize_with_sides).
   TetrahedralizeResult tets;
   for (const double scale : {1.0, 0.97, 1.03}) {

@@ -7,8 +7,8 @@
 //   - skin  = the deepest point of the valley between the two modes (the middle of it when the valley is flat);
 //   - bone  = the first intensity above the soft-tissue mode where the (smoothed) histogram has fallen below
 //             kBoneTailFraction of the mode's height, i.e. where soft tissue (plus its noise) ends.
-// On VTK's headsq (file units) this gives about 560 / 1170; on calibrated CTs about -500 HU / +150 HU (bone
-// this low still stops the soft tissue at the bone surface; pass thresholds explicitly to be stricter).
+// On calibrated CTs this gives about -500 HU / +150 HU (bone this low still stops the soft tissue at the bone
+// surface; pass thresholds explicitly to be stricter).
 #include "core/segment/voxel_grid.h"
 
 namespace facehex {

@@ -193,8 +193,8 @@ ConstraintSet grid_constraints(const TemplateGrid& grid, const ConstraintSet& re
   return set;
 }
 
-// The repair's corner power (UntangleOptions::corner_power): on the bundled CT, with the relaxation and the cut
-// corners, min scaled Jacobian 0.30 with 4 and 0.36 with 8.
+// The repair's corner power (UntangleOptions::corner_power): a template has no other mesh's angles to keep, so its
+// repair weighs the worst corners heavily, which raises the minimum scaled Jacobian, the bound a solver cares about.
 constexpr double kRepairCornerPower = 8;
 
 TemplateResult build_template(const VolumeMesh& reference, const ConstraintSet& reference_set,

@@ -34,8 +34,8 @@ struct TemplateOptions {
   double cell_size = 0;    // mm along the face; 0: the reference's mean soft-tissue thickness / layers (cube-like)
   int curve_samples = 96;  // points per curve when measuring arc lengths
   // After the mapping, every vertex slides along the reference (side and feature vertices on their side or feature)
-  // towards ideal cells: on the bundled CT, mean shape 0.772 -> 0.812, min shape 0.17 -> 0.34. false: the grid as laid
-  // out (its vertices exactly at their grid values), then the repair.
+  // towards ideal cells, which raises both the mean and the minimum cell shape. false: the grid as laid out (its
+  // vertices exactly at their grid values), then the repair.
   bool relax = true;
   // Where the reference's sides meet at a sharp corner (a thin fin of tissue between a cut and the bone), the cells
   // there cannot reach the repair's bound with their side vertices on the sides: the last polish then moves those

@@ -256,8 +256,8 @@ void throw_if_crashed(const Child& child) {
                               ") on this surface; it probably has nearly intersecting or degenerate triangles");
 }
 
-// The self-intersection check and the quality mesh run at the same time, in two processes (on the bundled CT's
-// surface 1.0 and 2.2 s); a surface found intersecting stops the mesh, whose refinement could loop forever on it.
+// The self-intersection check and the quality mesh run at the same time, in two processes, so the check adds no wall
+// time when a core is free; a surface found intersecting stops the mesh, whose refinement could loop forever on it.
 RawMesh run_tetgen(tetgenio& in, const TetrahedralizeOptions& options) {
   Child diagnose = spawn([&](int fd) { diagnose_child(fd, in); });
   Child mesh_run;

@@ -18,7 +18,7 @@ void keep_freed_memory_for_reuse() {
   mallopt(M_TRIM_THRESHOLD, INT_MAX);
   mallopt(M_ARENA_MAX, 1);
 #if defined(MADV_HUGEPAGE)
-  // Grow the heap by kHugePageHeap of address space now (a block from the heap, freed at once and not trimmed; its
+  // Grow the heap by kHugePageHeap of address space up front (a block from the heap, freed at once and not trimmed; its
   // untouched pages cost nothing) and ask for transparent huge pages there.
   constexpr std::uintptr_t kHugePage = std::uintptr_t(2) << 20;
   void* block = std::malloc(static_cast<size_t>(kHugePageHeap));

@@ -6,13 +6,12 @@ namespace facehex {
 // Makes glibc's malloc serve every allocation, from every thread, from its one main heap and never give freed memory
 // back to the system (mallopt: M_MMAP_MAX = 0, M_TRIM_THRESHOLD = max, M_ARENA_MAX = 1). By default, blocks over
 // 128 kB (triplet lists, factors, gradient fields) get fresh pages from the kernel on each allocation, and each
-// thread allocates in an arena of its own; every fresh page then costs a fault on first touch, which on the virtual
-// machines we measured cost a third of a transfer's time (docs/benchmarks.md). The peak resident size does not
+// thread allocates in an arena of its own; every fresh page then costs a fault on first touch, which is expensive on
+// virtual machines, and the engine allocates and frees such blocks step after step. The peak resident size does not
 // change: the heap keeps what the largest step needed and reuses it.
 // Where the kernel offers transparent huge pages on request (madvise, Debian's default), the first kHugePageHeap
 // bytes of the heap ask for them (as glibc's tunable glibc.malloc.hugetlb=1 would): first touches then fault once per
-// 2 MB instead of once per 4 kB (a 55k-tet transfer: 13,600 instead of 28,000 faults; the bundled 557k-tet patient's
-// parameterization 6.6 s instead of 8.0). No effect elsewhere.
+// 2 MB page rather than once per 4 kB page. No effect elsewhere.
 constexpr long kHugePageHeap = 1L << 30;
 void keep_freed_memory_for_reuse();
 
