@@ -10,6 +10,15 @@
 #include "core/util/resources.h"
 
 namespace facehex::cli {
+namespace {
+
+// The thresholds and cuts a CT was segmented with, and the options that change them, on stderr.
+void print_segmentation(const CtSegmentation& segmentation) {
+  std::cerr << "segmentation: " << segmentation_summary(segmentation)
+            << "\n  (change with --skin, --bone, --top-cut, --bottom-cut, --posterior-cut, --mid-plane)\n";
+}
+
+}  // namespace
 
 void add_field_options(Args& args) {
   args.option("iterations", "orthogonality-improvement iterations (paper: 6)", "6")
@@ -106,8 +115,7 @@ void check_transfer_options(const Args& args) {
   transfer_options(args);
   segment_options(args);
   find_standard(args.get("standard"));
-  if (!is_standard_domain_kind(args.get("standard-domain")))
-    throw Error("--standard-domain", "expects closed or auxiliary, got '" + args.get("standard-domain") + "'");
+  check_standard_domain_kind(args.get("standard-domain"));
 }
 
 StandardSetup standard_setup(const Args& args) {
@@ -115,20 +123,20 @@ StandardSetup standard_setup(const Args& args) {
   return load_standard(args.get("standard"), args.get("standard-constraints"), args.get("standard-domain"));
 }
 
-void print_segmentation(const CtSegmentation& segmentation) {
-  std::cerr << "segmentation: " << segmentation_summary(segmentation)
-            << "\n  (change with --skin, --bone, --top-cut, --bottom-cut, --posterior-cut, --mid-plane)\n";
+PatientTetModel read_patient_model(const std::string& path, const SegmentOptions& segment) {
+  if (is_ct_input(path)) std::cerr << "segmenting the facial soft tissue from the CT " << path << "\n";
+  TerminalProgress progress;
+  PatientTetModel model = load_patient_model(path, segment, progress.callback());
+  progress.finish();
+  if (model.segmentation) print_segmentation(*model.segmentation);
+  if (model.check.reoriented) std::cerr << "note: " << path << ": all tets were negatively oriented; flipped\n";
+  return model;
 }
 
 PatientSetup cli_patient(const std::string& path, const SegmentOptions& segment, const std::string& constraints_file,
                          const ConstraintSet& standard_constraints) {
-  if (is_ct_input(path)) std::cerr << "segmenting the facial soft tissue from the CT " << path << "\n";
   const std::map<std::string, double> values = feature_values(standard_constraints);
-  TerminalProgress progress;
-  PatientSetup p = load_patient(path, segment, constraints_file, &values, progress.callback());
-  progress.finish();
-  if (p.segmentation) print_segmentation(*p.segmentation);
-  if (p.reoriented) std::cerr << "note: " << path << ": all tets were negatively oriented; flipped\n";
+  PatientSetup p = setup_patient(read_patient_model(path, segment), path, constraints_file, &values);
   if (!p.features_problem.empty())
     throw Error(path, "the facial feature constraints cannot be placed (" + p.features_problem +
                           "); give the patient's constraint set with --constraints");

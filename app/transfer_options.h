@@ -24,8 +24,9 @@ StandardSetup standard_setup(const Args& args);
 // Parses every transfer option and finds the standard, so that a bad option fails before any output is made.
 void check_transfer_options(const Args& args);
 
-// The thresholds and cuts a CT was segmented with, and the options that change them, on stderr.
-void print_segmentation(const CtSegmentation& segmentation);
+// The patient model of `path` (core/segment/patient_input.h), a CT segmented with its steps on the terminal, its
+// segmentation and a reorientation noted on stderr.
+PatientTetModel read_patient_model(const std::string& path, const SegmentOptions& segment);
 
 // The patient of `path` (a CT segmented with its steps on the terminal) with its constraints (core/workflow/
 // patient_setup.h: `constraints_file`, else a file beside a mesh, else automatic), the choice and the landmarks

@@ -160,12 +160,18 @@ bool TransferController::openDemo(const QString& standardName) {
 bool TransferController::computeFields() {
   struct Input {
     Role role;
-    StandardSetup model;  // the standard's, or the patient's domain and constraints
+    std::string path;  // the mesh file, or empty for a model made in memory
+    TetDomain domain;
+    ConstraintSet set;
+    std::string source;
     quint64 revision;
   };
   std::vector<Input> inputs;
   for (Role r : kRoles)
-    if (session_->hasModel(r)) inputs.push_back({r, standard_setup(session_->model(r)), session_->revision(r)});
+    if (session_->hasModel(r)) {
+      const LoadedModel& m = session_->model(r);
+      inputs.push_back({r, m.path.toStdString(), m.domain, m.constraints.set, m.source(), session_->revision(r)});
+    }
   if (inputs.empty()) {
     emit failed(tr("fields: open a model first"));
     return false;
@@ -178,11 +184,10 @@ bool TransferController::computeFields() {
       const Input& in = inputs[i];
       const double lo = double(i) / inputs.size(), hi = double(i + 1) / inputs.size();
       std::optional<ModelParameterization> cached;
-      if (in.role == Role::Standard && !in.model.path.empty()) cached = cached_parameterization(in.model, options);
+      if (!in.path.empty()) cached = cached_parameterization(in.path, in.domain, in.set, options);
       fromCache->push_back(cached.has_value());
-      const TetDomain& d = in.model.domain;
       results->push_back(cached ? std::move(*cached)
-                                : parameterize_model(d.V, d.T, d.side_mask, in.model.constraints, in.model.source(),
+                                : parameterize_model(in.domain.V, in.domain.T, in.domain.side_mask, in.set, in.source,
                                                      options, part(progress, roleName(in.role), lo, hi)));
     }
     return [inputs, results, fromCache](SessionModel& s) {

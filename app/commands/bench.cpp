@@ -115,7 +115,8 @@ BenchStandard bench_standard(const Args& args) {
   BenchStandard b;
   b.mesh = standard.mesh;
   b.fields = field_options(args);
-  std::optional<ModelParameterization> param = cached_parameterization(standard, b.fields);
+  std::optional<ModelParameterization> param =
+      cached_parameterization(standard.path, standard.domain, standard.constraints, b.fields);
   if (!param)
     param = parameterize_model(standard.domain.V, standard.domain.T, standard.domain.side_mask, standard.constraints,
                                standard.source(), b.fields);

@@ -4,7 +4,6 @@
 #include "app/commands/commands.h"
 #include "app/commands/compare.h"
 #include "app/mesh_output.h"
-#include "app/terminal_progress.h"
 #include "app/transfer_options.h"
 #include "core/io/mesh_io.h"
 #include "core/segment/patient_input.h"
@@ -31,10 +30,7 @@ int cmd_map(const Argv& argv) {
   if (args.get("method") == "mesh-matching") {
     // The baseline registers the surfaces: it needs no constraints, and the standard no parameterization domain.
     const BundledModel standard = find_standard(args.get("standard"));
-    TerminalProgress progress;
-    const PatientTetModel patient = load_patient_model(args.get("patient"), segment_options(args), progress.callback());
-    progress.finish();
-    if (patient.segmentation) print_segmentation(*patient.segmentation);
+    const PatientTetModel patient = read_patient_model(args.get("patient"), segment_options(args));
     MatchingOutputs out =
         execute_mesh_matching(read_volume_mesh(standard.mesh), standard.mesh, patient.mesh, args.get("patient"));
     const VolumeMesh hex = with_quality(out.result.hex);

@@ -3,7 +3,6 @@
 
 #include "app/cli_args.h"
 #include "app/commands/commands.h"
-#include "app/terminal_progress.h"
 #include "app/transfer_options.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh/sides.h"
@@ -26,11 +25,7 @@ int cmd_segment(const Argv& argv) {
   const SegmentOptions options = segment_options(args);
   if (!is_ct_input(args.get("CT")))
     throw Error(args.get("CT"), "not a CT volume (.mhd, .mha, .nii, .nii.gz, .nrrd, or a DICOM folder)");
-  std::cerr << "segmenting the facial soft tissue from the CT " << args.get("CT") << "\n";
-  TerminalProgress progress;
-  const PatientTetModel patient = load_patient_model(args.get("CT"), options, progress.callback());
-  progress.finish();
-  print_segmentation(*patient.segmentation);
+  const PatientTetModel patient = read_patient_model(args.get("CT"), options);
   const VolumeMesh& model = patient.mesh;
   write_volume_mesh(args.get("output"), model);
   const Eigen::VectorXi mask = side_mask_of(model);

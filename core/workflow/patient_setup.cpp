@@ -48,7 +48,11 @@ void choose_constraints(PatientSetup& patient, const std::string& constraints_fi
 
 PatientSetup load_patient(const std::string& path, const SegmentOptions& segment, const std::string& constraints_file,
                           const std::map<std::string, double>* feature_values, const ProgressCallback& progress) {
-  PatientTetModel model = load_patient_model(path, segment, progress);
+  return setup_patient(load_patient_model(path, segment, progress), path, constraints_file, feature_values);
+}
+
+PatientSetup setup_patient(PatientTetModel model, const std::string& path, const std::string& constraints_file,
+                           const std::map<std::string, double>* feature_values) {
   PatientSetup p;
   p.path = path;
   p.mesh = std::move(model.mesh);

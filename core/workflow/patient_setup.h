@@ -45,6 +45,10 @@ void choose_constraints(PatientSetup& patient, const std::string& constraints_fi
 PatientSetup load_patient(const std::string& path, const SegmentOptions& segment, const std::string& constraints_file,
                           const std::map<std::string, double>* feature_values, const ProgressCallback& progress = {});
 
+// load_patient's second half, on a model read (or segmented) beforehand from `path`.
+PatientSetup setup_patient(PatientTetModel model, const std::string& path, const std::string& constraints_file,
+                           const std::map<std::string, double>* feature_values);
+
 // A tet model made in memory (checked and oriented), constrained by choose_constraints without a file.
 PatientSetup patient_from_mesh(VolumeMesh mesh, const std::string& name,
                                const std::map<std::string, double>* feature_values);

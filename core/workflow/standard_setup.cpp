@@ -8,11 +8,13 @@
 
 namespace facehex {
 
-bool is_standard_domain_kind(const std::string& kind) { return kind == "closed" || kind == "auxiliary"; }
+void check_standard_domain_kind(const std::string& kind) {
+  if (kind != "closed" && kind != "auxiliary")
+    throw Error("--standard-domain", "expects closed or auxiliary, got '" + kind + "'");
+}
 
 TetDomain standard_domain(const VolumeMesh& hex, const std::string& kind) {
-  if (!is_standard_domain_kind(kind))
-    throw Error("--standard-domain", "expects closed or auxiliary, got '" + kind + "'");
+  check_standard_domain_kind(kind);
   return kind == "closed" ? closed_domain(hex) : auxiliary_domain(hex);
 }
 
@@ -31,11 +33,12 @@ StandardSetup load_standard(const std::string& name_or_path, const std::string& 
   return s;
 }
 
-std::optional<ModelParameterization> cached_parameterization(const StandardSetup& standard,
+std::optional<ModelParameterization> cached_parameterization(const std::string& mesh_path, const TetDomain& domain,
+                                                             const ConstraintSet& constraints,
                                                              const HarmonicFieldsOptions& options, std::string* note) {
   std::string why_not;
-  std::optional<ModelParameterization> cached = read_parameterization_cache(
-      parameterization_cache_path(standard.path), standard.domain, standard.constraints, options, &why_not);
+  std::optional<ModelParameterization> cached =
+      read_parameterization_cache(parameterization_cache_path(mesh_path), domain, constraints, options, &why_not);
   if (note) *note = why_not;
   return cached;
 }

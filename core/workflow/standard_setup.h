@@ -27,7 +27,8 @@ struct StandardSetup {
 // The tet domain a hex standard is parameterized on: "closed" (its openings filled, core/standard/closed_domain.h)
 // or "auxiliary" (the paper's: its cells split into tets). Throws facehex::Error("--standard-domain", ...) otherwise.
 TetDomain standard_domain(const VolumeMesh& hex, const std::string& kind);
-bool is_standard_domain_kind(const std::string& kind);
+// Throws the same facehex::Error as standard_domain for a kind it does not know, without building a domain.
+void check_standard_domain_kind(const std::string& kind);
 
 // A bundled standard by name or a mesh file (core/util/resources.h find_standard), with `constraints_file` or else its
 // own constraint set, on the `domain_kind` domain. Throws facehex::Error naming the file when the mesh is no
@@ -35,10 +36,11 @@ bool is_standard_domain_kind(const std::string& kind);
 StandardSetup load_standard(const std::string& name_or_path, const std::string& constraints_file = "",
                             const std::string& domain_kind = "closed");
 
-// The standard's parameterization from the cache beside its mesh file (core/standard/parameterization_cache.h) when it
-// was made from this domain, constraint set and options; else nullopt, and *note (when given) says why when a cache
-// exists but does not fit (it is then computed instead).
-std::optional<ModelParameterization> cached_parameterization(const StandardSetup& standard,
+// The parameterization cached beside a model's mesh file (core/standard/parameterization_cache.h; the bundled
+// standards have one) when it was made from this domain, constraint set and options; else nullopt, and *note (when
+// given) says why when a cache exists but does not fit (it is then computed instead).
+std::optional<ModelParameterization> cached_parameterization(const std::string& mesh_path, const TetDomain& domain,
+                                                             const ConstraintSet& constraints,
                                                              const HarmonicFieldsOptions& options,
                                                              std::string* note = nullptr);
 

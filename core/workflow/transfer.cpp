@@ -25,7 +25,8 @@ void attach_fields(VolumeMesh& mesh, const ModelParameterization& p) {
 TransferResult transfer(const StandardSetup& standard, const PatientSetup& patient, const TransferOptions& options,
                         const ProgressCallback& progress) {
   TransferResult r;
-  const std::optional<ModelParameterization> cached = cached_parameterization(standard, options.fields, &r.cache_note);
+  const std::optional<ModelParameterization> cached =
+      cached_parameterization(standard.path, standard.domain, standard.constraints, options.fields, &r.cache_note);
   r.run = run_transfer(standard.mesh, standard.domain, standard.constraints, standard.source(), patient.mesh,
                        patient.constraints, patient.source(), options, sub_progress(progress, 0.0, 0.97),
                        cached ? &*cached : nullptr);

@@ -114,9 +114,9 @@ TEST_F(Workflow, AStandardMustBeHexDominantAndItsDomainKindKnown) {
   EXPECT_THROW(load_standard(path("tets.vtu")), Error);
   const VolumeMesh hex = test::hex_box(3, 2, 3, 30, 10, 30);
   EXPECT_THROW(standard_domain(hex, "open"), Error);
-  EXPECT_TRUE(is_standard_domain_kind("closed"));
-  EXPECT_TRUE(is_standard_domain_kind("auxiliary"));
-  EXPECT_FALSE(is_standard_domain_kind("open"));
+  EXPECT_NO_THROW(check_standard_domain_kind("closed"));
+  EXPECT_NO_THROW(check_standard_domain_kind("auxiliary"));
+  EXPECT_THROW(check_standard_domain_kind("open"), Error);
   const TetDomain aux = standard_domain(hex, "auxiliary");
   EXPECT_EQ(aux.hex_vertices, hex.num_vertices());
 }
