@@ -166,6 +166,7 @@ std::vector<int> select_vertices(const Selection& selection, const Eigen::Matrix
     out.erase(std::unique(out.begin(), out.end()), out.end());
     return out;
   }
+  if (!selection.side && !selection.plane) return out;  // an empty id list selects nothing
   auto on_side = [&](int v, Side s) { return (side_mask(v) & side_bit(s)) != 0; };
   const bool needs_mask =
       selection.side ||

@@ -34,7 +34,8 @@ ParamHealth parameterization_health(const Eigen::MatrixXi& T, const Eigen::Matri
       if (h.inverted_tets.size() < 100) h.inverted_tets.push_back(t);
     }
   }
-  for (Eigen::Index i = 0; i < uvw.size(); ++i) h.outside_cube += uvw(i) < -1e-9 || uvw(i) > 1 + 1e-9;
+  for (Eigen::Index v = 0; v < uvw.rows(); ++v)
+    h.outside_cube += (uvw.row(v).array() < -1e-9).any() || (uvw.row(v).array() > 1 + 1e-9).any();
   return h;
 }
 

@@ -1,9 +1,8 @@
-// Integration tests on the real standard mesh (../shared; skipped when absent) and the bundled resources.
+// Integration tests on the real standard mesh and the other bundled resources.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstdio>
-#include <filesystem>
 #include <map>
 
 #include "core/face/automatic_constraints.h"
@@ -21,11 +20,9 @@
 namespace facehex {
 namespace {
 
-const std::string kRefFace = std::string(FACEHEX_SHARED_DIR) + "/data/standard/artisynth-refface/newface.elem";
-
 TEST(RealStandard, SidesOfTheArtisynthFaceAreFoundFromItsStructure) {
-  if (!std::filesystem::exists(kRefFace)) GTEST_SKIP() << "shared data not present";
-  const VolumeMesh m = read_volume_mesh(kRefFace);
+  // The bundled copy of the ArtiSynth face (its ANSYS files converted: the same nodes and cells).
+  const VolumeMesh m = read_volume_mesh(find_standard("artisynth-refface").mesh);
   const ShellSides sides = label_shell_sides(m, default_shell_frame(m.V));
   // Outer and inner sides pair up face for face through the element layers.
   EXPECT_EQ(sides.faces_per_side[W0], sides.faces_per_side[W1]);

@@ -32,7 +32,11 @@ std::string write_small_mhd(const std::filesystem::path& dir) {
   return (dir / "small.mhd").string();
 }
 
-std::filesystem::path scratch() { return std::filesystem::temp_directory_path() / "facehex_ct_volume_test"; }
+// A folder of the running test's own: ctest runs each test as a process of its own, several at once.
+std::filesystem::path scratch() {
+  return std::filesystem::temp_directory_path() /
+         ("facehex_ct_volume_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+}
 
 TEST(CtVolume, ReadsMetaImageWithSpacingAndOrigin) {
   const CtVolume ct = read_ct_volume(write_small_mhd(scratch()));

@@ -4,7 +4,6 @@
 
 #include <Eigen/Geometry>
 #include <array>
-#include <filesystem>
 #include <functional>
 #include <map>
 #include <set>
@@ -13,6 +12,7 @@
 
 #include "core/mesh/sides.h"
 #include "core/util/error.h"
+#include "core/util/resources.h"
 #include "tests/core/segment/phantom.h"
 
 namespace facehex {
@@ -99,9 +99,8 @@ TEST(SoftTissue, PhantomGivesOneShellWithSixSides) {
 }
 
 TEST(SoftTissue, RealCtMakesASixSidedModel) {
-  const std::string path = std::string(FACEHEX_SHARED_DIR) + "/data/ct/headsq.mhd";
-  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is not available";
-  const PatientModel m = build_patient_model(read_ct_volume(path));
+  // The bundled headsq CT (resources/ct/headsq).
+  const PatientModel m = build_patient_model(read_ct_volume(default_ct()));
   // The data's README: skin at about 500, bone at about 1150 (file units).
   EXPECT_NEAR(m.thresholds.skin, 550, 150);
   EXPECT_NEAR(m.thresholds.bone, 1150, 100);
