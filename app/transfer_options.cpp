@@ -134,23 +134,25 @@ PatientTetModel read_patient_model(const std::string& path, const SegmentOptions
 }
 
 PatientSetup cli_patient(const std::string& path, const SegmentOptions& segment, const std::string& constraints_file,
-                         const ConstraintSet& standard_constraints) {
+                         const ConstraintSet& standard_constraints, const std::string& constraints_hint) {
   const std::map<std::string, double> values = feature_values(standard_constraints);
   PatientSetup p = setup_patient(read_patient_model(path, segment), path, constraints_file, &values);
   if (!p.features_problem.empty())
     throw Error(path, "the facial feature constraints cannot be placed (" + p.features_problem +
-                          "); give the patient's constraint set with --constraints");
+                          "); give the patient's constraint set with " + constraints_hint);
   std::cerr << p.constraints_note << "\n";
   if (p.landmarks) std::cerr << landmarks_text(*p.landmarks, "  ");
   return p;
 }
 
-CliTransfer cli_transfer(const Args& args, const std::string& patient, const std::string& patient_constraints) {
+CliTransfer cli_transfer(const Args& args, const std::string& patient, const std::string& patient_constraints,
+                         const std::string& constraints_hint) {
   const TransferOptions options = transfer_options(args);
   CliTransfer t;
   t.standard = standard_setup(args);
   std::cerr << "reading the patient " << patient << "\n";
-  t.patient = cli_patient(patient, segment_options(args), patient_constraints, t.standard.constraints);
+  t.patient =
+      cli_patient(patient, segment_options(args), patient_constraints, t.standard.constraints, constraints_hint);
   TerminalProgress progress;
   t.result = transfer(t.standard, t.patient, options, progress.callback());
   progress.finish();

@@ -32,9 +32,9 @@ PatientTetModel read_patient_model(const std::string& path, const SegmentOptions
 // patient_setup.h: `constraints_file`, else a file beside a mesh, else automatic), the choice and the landmarks
 // printed on stderr. Without a constraint file the facial features are required: a transfer without them lands the
 // standard's eyes, nose and mouth anywhere, so a model where they cannot be found is an error naming the option that
-// helps.
+// helps, `constraints_hint` (e.g. "--constraints FILE").
 PatientSetup cli_patient(const std::string& path, const SegmentOptions& segment, const std::string& constraints_file,
-                         const ConstraintSet& standard_constraints);
+                         const ConstraintSet& standard_constraints, const std::string& constraints_hint);
 
 struct CliTransfer {
   StandardSetup standard;
@@ -42,7 +42,9 @@ struct CliTransfer {
   TransferResult result;
 };
 
-// The whole transfer as run, map, compare and bench do it (options parsed by add_transfer_options).
-CliTransfer cli_transfer(const Args& args, const std::string& patient, const std::string& patient_constraints);
+// The whole transfer as run, map, compare and bench do it (options parsed by add_transfer_options);
+// `constraints_hint`: how the command takes a patient's constraint set, for the error of cli_patient.
+CliTransfer cli_transfer(const Args& args, const std::string& patient, const std::string& patient_constraints,
+                         const std::string& constraints_hint);
 
 }  // namespace facehex::cli

@@ -77,7 +77,7 @@ int ct_bench(const Args& args) {
     write_ct_volume(tmp, CtVolume{resample(ct.intensity, target), "resampled"});
   }
   Stopwatch clock;
-  const CliTransfer out = cli_transfer(args, tmp, "");
+  const CliTransfer out = cli_transfer(args, tmp, "", "(none for a resampled CT: its face must be found)");
   const double total = clock.lap();
   std::filesystem::remove(tmp);
   std::map<std::string, double> stages = out.result.run.seconds;
@@ -209,7 +209,8 @@ int cmd_bench(const Argv& argv) {
   args.option("sizes", "approximate tet counts", "10000,50000,200000,1000000")
       .option("patient",
               "instead: time these patients, as run takes them (tet models, closed surfaces or CTs, segmented first "
-              "and not timed; comma-separated; constraints: PATIENT.json beside one, else automatic)")
+              "and not timed; comma-separated; constraints: NAME.json or constraints.json beside a mesh file, else "
+              "automatic)")
       .option("ct", "instead: time the whole run on the bundled CT resampled to NX,NY,NZ voxels (e.g. 512,512,300)")
       .flag("json", "print JSON");
   add_transfer_options(args);

@@ -361,11 +361,13 @@ std::string mesh_matching_summary_text(const MatchingOutputs& out) {
 }
 
 int cmd_compare(const Argv& argv) {
-  Args args("compare",
-            "The paper's comparison (section 4): for each patient (default: the bundled ones), the harmonic transfer "
-            "and the mesh-matching baseline, measured against the standard. OUT/ gets report.md, report.json and per "
-            "patient PNG histograms of the dihedral-angle distortion, the element shape and the gradient angles. A "
-            "patient's constraints: PATIENT.json beside it if present, else automatic (sides + landmark features).");
+  Args args(
+      "compare",
+      "The paper's comparison (section 4): for each patient (default: the bundled ones), the harmonic transfer "
+      "and the mesh-matching baseline, measured against the standard. OUT/ gets report.md, report.json and per "
+      "patient PNG histograms of the dihedral-angle distortion, the element shape and the gradient angles. A "
+      "patient's constraints: NAME.json or constraints.json beside a mesh file if present, else automatic (sides + "
+      "landmark features).");
   args.positional("PATIENT", "patient tet models, closed surfaces or CTs (several allowed)", false)
       .option("output", "output folder");
   add_transfer_options(args);
@@ -385,7 +387,7 @@ int cmd_compare(const Argv& argv) {
     const PatientInput& in = inputs[i];
     const std::string step = "[" + std::to_string(i + 1) + "/" + std::to_string(inputs.size()) + "] " + in.name;
     std::cerr << step << ": harmonic transfer\n";
-    const CliTransfer t = cli_transfer(args, in.path, "");
+    const CliTransfer t = cli_transfer(args, in.path, "", "a file NAME.json or constraints.json beside the model");
     const TransferResult& h = t.result;
     std::cerr << step << ": mesh matching\n";
     const std::string& standard_source = t.standard.path;

@@ -41,7 +41,8 @@ int cmd_map(const Argv& argv) {
   }
   if (args.get("method") != "harmonic")
     throw Error("--method", "expects harmonic or mesh-matching, got '" + args.get("method") + "'");
-  const CliTransfer t = cli_transfer(args, args.get("patient"), args.get("patient-constraints"));
+  const CliTransfer t =
+      cli_transfer(args, args.get("patient"), args.get("patient-constraints"), "--patient-constraints");
   const TransferResult& r = t.result;
   write_volume_mesh(args.get("output"), r.patient_hex, write_options(args));
   if (args.has("report"))

@@ -40,7 +40,7 @@ int cmd_run(const Argv& argv) {
   OutputFolder folder(args.get("output"));
   const fs::path& out_dir = folder.path();
 
-  const CliTransfer t = cli_transfer(args, input, constraints);
+  const CliTransfer t = cli_transfer(args, input, constraints, "--constraints");
   const TransferResult& r = t.result;
   write_volume_mesh((out_dir / "patient_model.vtu").string(), parameterized_tet_mesh(r.run.patient, &t.patient.mesh),
                     parameterized_model_writing());

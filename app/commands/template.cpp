@@ -48,7 +48,7 @@ int cmd_template(const Argv& argv) {
 
   const PatientSetup reference_setup =
       cli_patient(input, segment_options(args), args.get("constraints"),
-                  read_constraint_set(find_standard(args.get("standard")).constraints));
+                  read_constraint_set(find_standard(args.get("standard")).constraints), "--constraints");
   const VolumeMesh& reference = reference_setup.mesh;
   const ConstraintSet& reference_set = reference_setup.constraints;
   TemplateOptions options;

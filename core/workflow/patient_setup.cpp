@@ -24,9 +24,12 @@ void choose_constraints(PatientSetup& patient, const std::string& constraints_fi
     return;
   }
   patient.constraints_path.clear();
-  if (patient.domain.side_mask.size() == 0)
-    throw Error(patient.path,
-                "no constraint set given and the model has no \"side_mask\" array (give a constraint file)");
+  if (patient.domain.side_mask.size() == 0) {
+    patient.constraints = ConstraintSet();
+    patient.features_problem = "the model has no \"side_mask\" array: no sides to constrain and no face to find";
+    patient.constraints_note = "no constraints (" + patient.features_problem + ")";
+    return;
+  }
   patient.constraints = side_constraints();
   patient.constraints_note = "the six sides";
   if (!feature_values) {

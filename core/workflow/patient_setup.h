@@ -24,8 +24,8 @@ struct PatientSetup {
   ConstraintSet constraints;
   std::string constraints_path;            // the file the constraints came from, or empty when placed automatically
   std::optional<FaceLandmarks> landmarks;  // where the automatic feature constraints were placed
-  std::string features_problem;            // why no feature constraints were placed (then only the six sides), or empty
-  std::string constraints_note;            // one line for the user: which constraints, from where
+  std::string features_problem;  // why no feature constraints were placed (then only the six sides, or none), or empty
+  std::string constraints_note;  // one line for the user: which constraints, from where
 
   // What error messages about this patient name: its constraint file, else its model file.
   std::string source() const { return constraints_path.empty() ? path : constraints_path; }
@@ -34,8 +34,8 @@ struct PatientSetup {
 // The one constraint policy: `constraints_file` when given; else, for a model with side labels, its six sides and the
 // facial feature constraints at its landmarks valued as the standard's (`feature_values`,
 // core/face/automatic_constraints.h) or, when no values are given or the landmarks cannot be found, its six sides
-// alone (features_problem says why). Throws facehex::Error naming the model when it has neither a constraint file
-// nor side labels.
+// alone (features_problem says why); a model with neither a constraint file nor side labels gets no constraints
+// (features_problem says so), for the user to place them.
 void choose_constraints(PatientSetup& patient, const std::string& constraints_file,
                         const std::map<std::string, double>* feature_values);
 

@@ -372,6 +372,21 @@ TEST_F(Cli, CompareOnTinyMeshesWritesTheReportAndMapRunsTheBaseline) {
   EXPECT_LT(mm["transfer"]["side_vertex_distance_mm"]["max"].get<double>(), 0.5);
 }
 
+// A patient whose constraints cannot be placed (no side labels, no file): one line naming the model and the option of
+// the command that takes its constraint set, and no output.
+TEST_F(Cli, APatientWithoutConstraintsNamesTheOptionThatGivesThem) {
+  const std::string tets = std::string(FACEHEX_TEST_DATA_DIR) + "/io/tets1.node";
+  Result r = run("map --patient " + tets + " -o " + path("hex.vtu"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("error: " + tets + ": "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--patient-constraints"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(path("hex.vtu")));
+  r = run("run " + tets + " -o " + path("out"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("with --constraints"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(path("out")));
+}
+
 TEST_F(Cli, CompareAndMapRejectBadInputsWithOneLineErrors) {
   write_tiny_models(dir_);
   Result r = run("compare " + path("missing.vtu") + " -o " + path("out"));
