@@ -1,6 +1,8 @@
 // The facehex command line as a user runs it: the demo end to end, and bad inputs.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +13,7 @@
 #include "core/fields/constraint_set.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh/hex_to_tets.h"
+#include "core/quality/hex_quality.h"
 #include "core/segment/ct_volume.h"
 #include "core/util/resources.h"
 #include "tests/core/test_meshes.h"
@@ -370,6 +373,42 @@ TEST_F(Cli, CompareOnTinyMeshesWritesTheReportAndMapRunsTheBaseline) {
   std::ifstream(path("mm.json")) >> mm;
   EXPECT_EQ(mm["method"], "mesh-matching");
   EXPECT_LT(mm["transfer"]["side_vertex_distance_mm"]["max"].get<double>(), 0.5);
+}
+
+// The tiny standard onto a slab bent into a ring of 300 degrees (about the y axis, so the skin side stays in front):
+// the baseline's registration folds cells there and writes them as they are, the harmonic transfer mends its folds.
+// `map` exits 3 exactly when the mesh it wrote has unusable cells (README), whichever method made it.
+TEST_F(Cli, MapExitsThreeExactlyWhenTheResultHasUnusableCells) {
+  using namespace facehex;
+  write_tiny_models(dir_);
+  const VolumeMesh fine = test::hex_box(24, 3, 10, 40, 10, 50);
+  Eigen::MatrixXd V = fine.V;
+  for (int v = 0; v < V.rows(); ++v) {
+    const double a = fine.V(v, 0) / 40 * 300 * M_PI / 180, r = 10 + fine.V(v, 2);
+    V.row(v) << r * std::cos(a), fine.V(v, 1), -r * std::sin(a);
+  }
+  VolumeMesh ring = VolumeMesh::from_tets(V, split_into_tets(fine).T);
+  ring.point_data = fine.point_data;
+  for (int t = 0; t < ring.num_cells(); ++t) {  // the patient itself is valid
+    const auto c = ring.C.row(t);
+    const Eigen::Vector3d a = V.row(c(0)), b = V.row(c(1)), d = V.row(c(2)), e = V.row(c(3));
+    ASSERT_GT((b - a).dot((d - a).cross(e - a)), 0) << t;
+  }
+  write_volume_mesh(path("ring.vtu"), ring);
+  write("ring.json", to_json(side_constraints()));
+
+  int exit_three = 0;
+  for (const std::string method : {"mesh-matching", "harmonic"}) {
+    const Result r = run("map --method " + method + " --patient " + path("ring.vtu") + " --standard " +
+                         path("std.vtu") + " -o " + path(method + ".vtu"));
+    ASSERT_TRUE(r.status == 0 || r.status == 3) << method << ": " << r.output;
+    ASSERT_TRUE(fs::exists(path(method + ".vtu"))) << r.output;
+    const VolumeMesh hex = read_volume_mesh(path(method + ".vtu"));
+    const QualitySummary q = summarize(hex, element_quality(hex));
+    EXPECT_EQ(r.status, q.inverted + q.degenerate > 0 ? 3 : 0) << method << ": " << r.output;
+    exit_three += r.status == 3;
+  }
+  EXPECT_EQ(exit_three, 1);  // the baseline's folds; the harmonic transfer's result is whole
 }
 
 // A patient whose constraints cannot be placed (no side labels, no file): one line naming the model and the option of
