@@ -51,8 +51,10 @@ bool Args::parse(const std::vector<std::string>& argv) {
     }
     if (next_positional < positionals.size())
       values_[positionals[next_positional++]->name] = a;
-    else
+    else if (last_repeats_ && !positionals.empty())
       rest_.push_back(a);
+    else
+      throw Error(subject, "unexpected argument '" + a + "' (see --help)");
   }
   for (const auto* p : positionals)
     if (p->required && !values_.count(p->name)) throw Error(subject, "missing " + p->name + " (see --help)");

@@ -14,9 +14,15 @@ class Args {
   Args& positional(const std::string& name, const std::string& help, bool required = true);
   Args& option(const std::string& name, const std::string& help, const std::string& default_value = "");
   Args& flag(const std::string& name, const std::string& help);
+  // The last positional may be repeated: the values after the first are in rest(). Without this, a surplus
+  // positional is an error (a mistyped glob must not turn an input into an output).
+  Args& last_positional_repeats() {
+    last_repeats_ = true;
+    return *this;
+  }
 
   // Parses argv (without the program and command names). Returns false when --help was asked (usage printed);
-  // throws facehex::Error("facehex COMMAND", ...) on unknown options or missing values.
+  // throws facehex::Error("facehex COMMAND", ...) on unknown options, missing values or surplus positionals.
   bool parse(const std::vector<std::string>& argv);
 
   std::string usage() const;
@@ -34,7 +40,8 @@ class Args {
   std::string command_, summary_;
   std::vector<Spec> specs_;
   std::map<std::string, std::string> values_;
-  std::vector<std::string> rest_;  // extra positionals
+  std::vector<std::string> rest_;  // repeated last positional
+  bool last_repeats_ = false;
 };
 
 }  // namespace facehex::cli

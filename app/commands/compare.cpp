@@ -369,6 +369,7 @@ int cmd_compare(const Argv& argv) {
       "patient's constraints: NAME.json or constraints.json beside a mesh file if present, else automatic (sides + "
       "landmark features).");
   args.positional("PATIENT", "patient tet models, closed surfaces or CTs (several allowed)", false)
+      .last_positional_repeats()
       .option("output", "output folder");
   add_transfer_options(args);
   if (!args.parse(argv)) return 0;

@@ -285,64 +285,97 @@ class GmshReader {
 
 VolumeMesh read_gmsh(const std::string& path) { return GmshReader(path).read(); }
 
-void write_gmsh(const std::string& file, const VolumeMesh& mesh) {
-  const int nv = mesh.num_vertices(), nc = mesh.num_cells();
-  // One volume entity per physical tag: in 4.1 physical groups are attached to entities, not to elements.
-  std::vector<long> physical(nc, 0);
-  const auto given_physical = mesh.cell_data.find("gmsh_physical");
-  if (given_physical != mesh.cell_data.end()) {
-    for (int c = 0; c < nc; ++c) {
-      const double p = given_physical->second(c, 0);
-      if (p < 0 || p != std::floor(p)) throw Error(file, "cell data 'gmsh_physical' must hold non-negative integers");
-      physical[c] = static_cast<long>(p);
-    }
+namespace {
+
+// How a mesh is laid out in a Gmsh 4.1 file: physical tags, entities and element blocks.
+struct GmshLayout {
+  std::vector<long> physical;      // #C, each cell's physical volume tag (0: none)
+  std::vector<std::string> names;  // $PhysicalNames lines: dimension tag "name"
+  std::vector<int> surfaces;       // sides with faces: surface entity and physical tag s+1
+  std::map<long, int> entity_of;   // physical tag -> volume entity tag (1, 2, ...)
+  std::map<int, std::pair<Eigen::RowVector3d, Eigen::RowVector3d>> boxes;  // volume entity -> bounding box
+  std::vector<std::pair<int, int>> runs;  // element blocks of cells: [first, end), one entity and type each
+  struct FaceBlock {
+    int side, gmsh_type;
+    std::vector<std::vector<int>> faces;
+  };
+  std::vector<FaceBlock> face_blocks;  // boundary faces after the cells, one block per side and face size
+  size_t num_faces = 0;
+};
+
+std::vector<long> physical_tags(const std::string& file, const VolumeMesh& mesh) {
+  std::vector<long> physical(mesh.num_cells(), 0);
+  const auto given = mesh.cell_data.find("gmsh_physical");
+  if (given == mesh.cell_data.end()) return physical;
+  for (int c = 0; c < mesh.num_cells(); ++c) {
+    const double p = given->second(c, 0);
+    if (p < 0 || p != std::floor(p)) throw Error(file, "cell data 'gmsh_physical' must hold non-negative integers");
+    physical[c] = static_cast<long>(p);
   }
+  return physical;
+}
+
+GmshLayout gmsh_layout(const std::string& file, const VolumeMesh& mesh, const SideSets& sides) {
+  const int nc = mesh.num_cells();
+  GmshLayout g;
+  // One volume entity per physical tag: in 4.1 physical groups are attached to entities, not to elements.
+  g.physical = physical_tags(file, mesh);
   // Side surfaces (fe_sets.h) become physical surfaces s+1 named like the FE exports' surfaces; Gmsh tools keep only
   // elements in physical groups, so the volume then needs one too: physical volume 1 "ALL" unless given.
-  const SideSets sides = side_sets(mesh);
-  std::vector<std::string> names;  // $PhysicalNames lines: dimension tag "name"
-  std::vector<int> surfaces;       // sides with faces
   for (int s = 0; s < kNumSides; ++s) {
     if (sides.faces[s].empty()) continue;
-    surfaces.push_back(s);
-    names.push_back("2 " + std::to_string(s + 1) + " \"" + kSideSetNames[s] + kSurfaceSuffix + "\"");
+    g.surfaces.push_back(s);
+    g.names.push_back("2 " + std::to_string(s + 1) + " \"" + kSideSetNames[s] + kSurfaceSuffix + "\"");
   }
-  if (!surfaces.empty() && given_physical == mesh.cell_data.end()) {
-    physical.assign(nc, 1);
-    names.push_back(std::string("3 1 \"") + kAllElementsSet + "\"");
+  if (!g.surfaces.empty() && !mesh.cell_data.count("gmsh_physical")) {
+    g.physical.assign(nc, 1);
+    g.names.push_back(std::string("3 1 \"") + kAllElementsSet + "\"");
   }
-  std::map<long, int> entity_of;  // physical tag -> entity tag (1, 2, ...)
-  for (long p : physical) entity_of.emplace(p, 0);
-  std::map<int, std::pair<Eigen::RowVector3d, Eigen::RowVector3d>> boxes;
+  for (long p : g.physical) g.entity_of.emplace(p, 0);
   int next_entity = 1;
-  for (auto& [p, entity] : entity_of) {
+  for (auto& [p, entity] : g.entity_of) {
     entity = next_entity++;
-    boxes[entity] = {Eigen::RowVector3d::Constant(INFINITY), Eigen::RowVector3d::Constant(-INFINITY)};
+    g.boxes[entity] = {Eigen::RowVector3d::Constant(INFINITY), Eigen::RowVector3d::Constant(-INFINITY)};
   }
   for (int c = 0; c < nc; ++c) {
-    auto& [lo, hi] = boxes[entity_of[physical[c]]];
+    auto& [lo, hi] = g.boxes[g.entity_of[g.physical[c]]];
     for (int k = 0; k < node_count(mesh.types[c]); ++k) {
       lo = lo.cwiseMin(mesh.V.row(mesh.C(c, k)));
       hi = hi.cwiseMax(mesh.V.row(mesh.C(c, k)));
     }
   }
   // Element blocks are runs of consecutive cells of one entity and type, so cell order survives a round trip.
-  std::vector<std::pair<int, int>> runs;  // [first, end)
   for (int c = 0; c < nc; ++c) {
-    if (runs.empty() || mesh.types[c] != mesh.types[c - 1] || physical[c] != physical[c - 1]) runs.push_back({c, c});
-    runs.back().second = c + 1;
+    if (g.runs.empty() || mesh.types[c] != mesh.types[c - 1] || g.physical[c] != g.physical[c - 1])
+      g.runs.push_back({c, c});
+    g.runs.back().second = c + 1;
   }
+  // Boundary faces, outward, triangles (Gmsh type 2) and quads (3) apart.
+  for (int s : g.surfaces)
+    for (int size : {3, 4}) {
+      GmshLayout::FaceBlock block{s, size == 3 ? 2 : 3, {}};
+      for (const CellFace& cf : sides.faces[s])
+        if (cell_faces(mesh.types[cf.cell])[cf.face].size == size)
+          block.faces.push_back(face_vertices(mesh, cf.cell, cf.face));
+      g.num_faces += block.faces.size();
+      if (!block.faces.empty()) g.face_blocks.push_back(std::move(block));
+    }
+  return g;
+}
 
-  std::ofstream out(file);
-  if (!out) throw Error(file, "cannot open for writing");
-  out << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
-  if (!names.empty()) {
-    out << "$PhysicalNames\n" << names.size() << '\n';
-    for (const std::string& name : names) out << name << '\n';
+void write_box(std::ostream& out, const Eigen::RowVector3d& lo, const Eigen::RowVector3d& hi) {
+  for (int k = 0; k < 3; ++k) out << ' ' << format_double(lo[k]);
+  for (int k = 0; k < 3; ++k) out << ' ' << format_double(hi[k]);
+}
+
+void write_entities(std::ostream& out, const VolumeMesh& mesh, const SideSets& sides, const GmshLayout& g) {
+  if (!g.names.empty()) {
+    out << "$PhysicalNames\n" << g.names.size() << '\n';
+    for (const std::string& name : g.names) out << name << '\n';
     out << "$EndPhysicalNames\n";
   }
-  out << "$Entities\n0 0 " << surfaces.size() << ' ' << entity_of.size() << "\n";
-  for (int s : surfaces) {  // surface entity s+1 with physical tag s+1, no bounding curves
+  out << "$Entities\n0 0 " << g.surfaces.size() << ' ' << g.entity_of.size() << "\n";
+  for (int s : g.surfaces) {  // surface entity s+1 with physical tag s+1, no bounding curves
     Eigen::RowVector3d lo = Eigen::RowVector3d::Constant(INFINITY), hi = -lo;
     for (const CellFace& cf : sides.faces[s])
       for (int v : face_vertices(mesh, cf.cell, cf.face)) {
@@ -350,58 +383,32 @@ void write_gmsh(const std::string& file, const VolumeMesh& mesh) {
         hi = hi.cwiseMax(mesh.V.row(v));
       }
     out << s + 1;
-    for (int k = 0; k < 3; ++k) out << ' ' << format_double(lo[k]);
-    for (int k = 0; k < 3; ++k) out << ' ' << format_double(hi[k]);
+    write_box(out, lo, hi);
     out << " 1 " << s + 1 << " 0\n";
   }
-  for (const auto& [p, entity] : entity_of) {
-    const auto& [lo, hi] = boxes[entity];
+  for (const auto& [p, entity] : g.entity_of) {
     out << entity;
-    for (int k = 0; k < 3; ++k) out << ' ' << format_double(lo[k]);
-    for (int k = 0; k < 3; ++k) out << ' ' << format_double(hi[k]);
+    write_box(out, g.boxes.at(entity).first, g.boxes.at(entity).second);
     out << (p > 0 ? " 1 " + std::to_string(p) : std::string(" 0")) << " 0\n";
   }
   out << "$EndEntities\n";
-  // All nodes in one block, classified on the first volume entity.
-  out << "$Nodes\n1 " << nv << " 1 " << nv << "\n3 " << entity_of.begin()->second << " 0 " << nv << "\n";
-  for (int i = 0; i < nv; ++i) out << i + 1 << '\n';
-  for (int i = 0; i < nv; ++i) {
-    out << format_double(mesh.V(i, 0)) << ' ' << format_double(mesh.V(i, 1)) << ' ' << format_double(mesh.V(i, 2))
-        << '\n';
-  }
-  out << "$EndNodes\n";
-  // Boundary faces follow the cells, one block per side and face size (triangles 2, quads 3), outward.
-  struct FaceBlock {
-    int side, gmsh_type;
-    std::vector<std::vector<int>> faces;
-  };
-  std::vector<FaceBlock> face_blocks;
-  size_t num_faces = 0;
-  for (int s : surfaces)
-    for (int size : {3, 4}) {
-      FaceBlock block{s, size == 3 ? 2 : 3, {}};
-      for (const CellFace& cf : sides.faces[s])
-        if (cell_faces(mesh.types[cf.cell])[cf.face].size == size) {
-          block.faces.push_back(face_vertices(mesh, cf.cell, cf.face));
-        }
-      num_faces += block.faces.size();
-      if (!block.faces.empty()) face_blocks.push_back(std::move(block));
-    }
-  const size_t num_elements = nc + num_faces;
-  out << "$Elements\n" << runs.size() + face_blocks.size() << ' ' << num_elements << " 1 " << num_elements << "\n";
-  for (const auto& [first, end] : runs) {
+}
+
+void write_elements(std::ostream& out, const VolumeMesh& mesh, const GmshLayout& g) {
+  const size_t num_elements = mesh.num_cells() + g.num_faces;
+  out << "$Elements\n" << g.runs.size() + g.face_blocks.size() << ' ' << num_elements << " 1 " << num_elements << "\n";
+  for (const auto& [first, end] : g.runs) {
     const CellType type = mesh.types[first];
-    out << "3 " << entity_of[physical[first]] << ' ' << gmsh_type_code(type) << ' ' << end - first << '\n';
+    out << "3 " << g.entity_of.at(g.physical[first]) << ' ' << gmsh_type_code(type) << ' ' << end - first << '\n';
     for (int c = first; c < end; ++c) {
       out << c + 1;
-      for (int k = 0; k < node_count(type); ++k) {
+      for (int k = 0; k < node_count(type); ++k)
         out << ' ' << mesh.C(c, type == CellType::Wedge ? kPrismToWedge[k] : k) + 1;
-      }
       out << '\n';
     }
   }
-  size_t tag = nc;
-  for (const FaceBlock& block : face_blocks) {
+  size_t tag = mesh.num_cells();
+  for (const GmshLayout::FaceBlock& block : g.face_blocks) {
     out << "2 " << block.side + 1 << ' ' << block.gmsh_type << ' ' << block.faces.size() << '\n';
     for (const std::vector<int>& face : block.faces) {
       out << ++tag;
@@ -410,6 +417,26 @@ void write_gmsh(const std::string& file, const VolumeMesh& mesh) {
     }
   }
   out << "$EndElements\n";
+}
+
+}  // namespace
+
+void write_gmsh(const std::string& file, const VolumeMesh& mesh) {
+  const int nv = mesh.num_vertices();
+  const SideSets sides = side_sets(mesh);
+  const GmshLayout layout = gmsh_layout(file, mesh, sides);
+  std::ofstream out(file);
+  if (!out) throw Error(file, "cannot open for writing");
+  out << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
+  write_entities(out, mesh, sides, layout);
+  // All nodes in one block, classified on the first volume entity.
+  out << "$Nodes\n1 " << nv << " 1 " << nv << "\n3 " << layout.entity_of.begin()->second << " 0 " << nv << "\n";
+  for (int i = 0; i < nv; ++i) out << i + 1 << '\n';
+  for (int i = 0; i < nv; ++i)
+    out << format_double(mesh.V(i, 0)) << ' ' << format_double(mesh.V(i, 1)) << ' ' << format_double(mesh.V(i, 2))
+        << '\n';
+  out << "$EndNodes\n";
+  write_elements(out, mesh, layout);
   out.flush();
   if (!out) throw Error(file, "write failed (disk full?)");
 }

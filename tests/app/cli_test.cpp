@@ -109,6 +109,16 @@ TEST_F(Cli, DemoRunsTheWholeChainFromTheBundledCt) {
             p["gradient_angles_before"]["mean_deviation_from_90_deg"].get<double>());
 }
 
+// A mistyped glob (`convert dir/*.vtu out.msh` with two .vtu files) must not overwrite an input.
+TEST_F(Cli, ASurplusArgumentIsAnErrorAndWritesNothing) {
+  const std::string tets = std::string(FACEHEX_TEST_DATA_DIR) + "/io/tets1.node";
+  const Result r = run("convert " + tets + " " + path("a.vtu") + " " + path("b.vtu"));
+  EXPECT_NE(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("unexpected argument '" + path("b.vtu") + "'"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(path("a.vtu")));
+  EXPECT_FALSE(fs::exists(path("b.vtu")));
+}
+
 TEST_F(Cli, BadInputsGiveOneLineErrorsNamingTheFileAndNoOutput) {
   Result r = run("info " + path("missing.vtu"));
   EXPECT_NE(r.status, 0);
