@@ -67,7 +67,41 @@ ConstraintPanel::ConstraintPanel(SessionModel* session, const QList<QAction*>& a
   modelChoice_->addItem(tr("Standard"), static_cast<int>(Role::Standard));
   modelChoice_->setToolTip(tr("The model the cutting plane and the constraint list act on"));
 
-  // The cutting plane.
+  QGroupBox* planeBox = buildPlaneBox();
+  QGroupBox* addBox = buildNewConstraintBox();
+  buildTable();
+  QGridLayout* buttons = buildListButtons(actions);
+
+  auto* top = new QHBoxLayout;
+  top->addWidget(new QLabel(tr("Model:"), this));
+  top->addWidget(modelChoice_, 1);
+  auto* layout = new QVBoxLayout(this);
+  layout->addLayout(top);
+  layout->addWidget(planeBox);
+  layout->addWidget(addBox);
+  layout->addWidget(new QLabel(tr("Constraints:"), this));
+  layout->addWidget(table_, 1);
+  layout->addLayout(buttons);
+
+  connect(modelChoice_, qOverload<int>(&QComboBox::currentIndexChanged), this,
+          [this](int i) { session_->setActiveRole(static_cast<Role>(modelChoice_->itemData(i).toInt())); });
+  connect(session_, &SessionModel::activeRoleChanged, this, [this] {
+    refreshModelChoice();
+    refreshList();
+  });
+  connect(session_, &SessionModel::modelChanged, this, &ConstraintPanel::refreshModelChoice);
+  connect(session_, &SessionModel::constraintsChanged, this, [this](Role r) {
+    if (r == session_->activeRole()) refreshList();
+  });
+  connect(session_, &SessionModel::planeChanged, this, &ConstraintPanel::refreshPlane);
+  connect(session_, &SessionModel::planeSelectionChanged, this, &ConstraintPanel::refreshPlane);
+  refreshModelChoice();
+  refreshPlane();
+  refreshList();
+}
+
+// The cutting plane: its normal, band, region and what it selects.
+QGroupBox* ConstraintPanel::buildPlaneBox() {
   band_ = new QDoubleSpinBox(this);
   band_->setObjectName("bandWidth");
   band_->setRange(0.01, 50);
@@ -112,7 +146,11 @@ ConstraintPanel::ConstraintPanel(SessionModel* session, const QList<QAction*>& a
     editPlane([&r](PlanePose& p) { p.region = r; });
   });
 
-  // A new constraint from the selection.
+  return planeBox;
+}
+
+// A new constraint from the plane's selection.
+QGroupBox* ConstraintPanel::buildNewConstraintBox() {
   name_ = new QLineEdit(this);
   name_->setObjectName("constraintName");
   name_->setPlaceholderText(tr("e.g. mid-sagittal, eyebrow"));
@@ -138,7 +176,11 @@ ConstraintPanel::ConstraintPanel(SessionModel* session, const QList<QAction*>& a
   addForm->addRow(tr("Field:"), fieldValue);
   addForm->addRow(add_);
 
-  // The list.
+  return addBox;
+}
+
+// The constraint list.
+void ConstraintPanel::buildTable() {
   table_ = new QTableWidget(0, kColumns, this);
   table_->setObjectName("constraintTable");
   table_->setHorizontalHeaderLabels({"", tr("Name"), tr("Field"), tr("Value"), tr("Vertices"), tr("Selection")});
@@ -149,6 +191,10 @@ ConstraintPanel::ConstraintPanel(SessionModel* session, const QList<QAction*>& a
   table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
   table_->horizontalHeader()->setSectionResizeMode(kSelection, QHeaderView::Stretch);
   connect(table_, &QTableWidget::cellChanged, this, &ConstraintPanel::onCellChanged);
+}
+
+// Under the list: delete, the six sides and the given actions (facial features, load, save ...).
+QGridLayout* ConstraintPanel::buildListButtons(const QList<QAction*>& actions) {
   remove_ = new QPushButton(tr("Delete"), this);
   remove_->setObjectName("deleteConstraint");
   connect(remove_, &QPushButton::clicked, this, [this] {
@@ -170,32 +216,7 @@ ConstraintPanel::ConstraintPanel(SessionModel* session, const QList<QAction*>& a
     buttons->addWidget(b, (i + 2) / 3, (i + 2) % 3);
   }
 
-  auto* top = new QHBoxLayout;
-  top->addWidget(new QLabel(tr("Model:"), this));
-  top->addWidget(modelChoice_, 1);
-  auto* layout = new QVBoxLayout(this);
-  layout->addLayout(top);
-  layout->addWidget(planeBox);
-  layout->addWidget(addBox);
-  layout->addWidget(new QLabel(tr("Constraints:"), this));
-  layout->addWidget(table_, 1);
-  layout->addLayout(buttons);
-
-  connect(modelChoice_, qOverload<int>(&QComboBox::currentIndexChanged), this,
-          [this](int i) { session_->setActiveRole(static_cast<Role>(modelChoice_->itemData(i).toInt())); });
-  connect(session_, &SessionModel::activeRoleChanged, this, [this] {
-    refreshModelChoice();
-    refreshList();
-  });
-  connect(session_, &SessionModel::modelChanged, this, &ConstraintPanel::refreshModelChoice);
-  connect(session_, &SessionModel::constraintsChanged, this, [this](Role r) {
-    if (r == session_->activeRole()) refreshList();
-  });
-  connect(session_, &SessionModel::planeChanged, this, &ConstraintPanel::refreshPlane);
-  connect(session_, &SessionModel::planeSelectionChanged, this, &ConstraintPanel::refreshPlane);
-  refreshModelChoice();
-  refreshPlane();
-  refreshList();
+  return buttons;
 }
 
 void ConstraintPanel::refreshModelChoice() {

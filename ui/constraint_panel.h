@@ -10,6 +10,8 @@
 class QAction;
 class QComboBox;
 class QDoubleSpinBox;
+class QGridLayout;
+class QGroupBox;
 class QLabel;
 class QLineEdit;
 class QPushButton;
@@ -25,6 +27,10 @@ class ConstraintPanel : public QWidget {
   ConstraintPanel(SessionModel* session, const QList<QAction*>& actions, QWidget* parent = nullptr);
 
  private:
+  QGroupBox* buildPlaneBox();
+  QGroupBox* buildNewConstraintBox();
+  void buildTable();
+  QGridLayout* buildListButtons(const QList<QAction*>& actions);
   void refreshModelChoice();
   void refreshPlane();
   void refreshList();

@@ -180,7 +180,88 @@ struct ModelView::Pipeline {
   Ptr<vtkImplicitPlaneWidget2> planeWidget = make<vtkImplicitPlaneWidget2>();
 
   bool hexShown = false;
+
+  void setUpSurface();     // the model's surface, cut at the plane, coloured by a field, with iso-lines
+  void setUpHexDisplay();  // the hex cells under the quality threshold, the rest as a faint context
+  void setUpScalarBar();
+  void setUpGlyphs();  // gradient arrows
 };
+
+void ModelView::Pipeline::setUpSurface() {
+  // Whole cells behind the plane: no new points on the cut, so every surface point is a model vertex.
+  cut->SetImplicitFunction(plane);
+  cut->ExtractInsideOn();
+  cut->ExtractBoundaryCellsOn();
+  normals->SetInputConnection(surface->GetOutputPort());
+  normals->SplittingOff();  // smooth shading across the tets' facets
+  surfaceMapper->SetInputData(surfacePoly);
+  surfaceMapper->SetLookupTable(fieldLut);
+  surfaceMapper->SetScalarModeToUsePointFieldData();
+  surfaceActor->SetMapper(surfaceMapper);
+  surfaceActor->GetProperty()->SetEdgeColor(0.55, 0.42, 0.35);
+  iso->SetInputData(surfacePoly);
+  iso->GenerateValues(9, 0.1, 0.9);
+  auto isoMapper = make<vtkPolyDataMapper>();
+  isoMapper->SetInputConnection(iso->GetOutputPort());
+  isoMapper->ScalarVisibilityOff();
+  isoActor->SetMapper(isoMapper);
+  isoActor->GetProperty()->SetColor(0.08, 0.08, 0.08);
+  isoActor->GetProperty()->SetLineWidth(3);
+  isoActor->GetProperty()->SetRenderLinesAsTubes(true);
+}
+
+void ModelView::Pipeline::setUpHexDisplay() {
+  threshold->SetThresholdFunction(vtkThreshold::THRESHOLD_BETWEEN);
+  threshold->SetLowerThreshold(-2.0);  // quality is at least -1: only the upper end moves
+  hexSurface->SetInputConnection(threshold->GetOutputPort());
+  hexMapper->SetInputConnection(hexSurface->GetOutputPort());
+  hexMapper->SetLookupTable(qualityLut);
+  hexMapper->SetScalarModeToUseCellData();
+  hexMapper->UseLookupTableScalarRangeOn();
+  hexActor->SetMapper(hexMapper);
+  hexActor->GetProperty()->EdgeVisibilityOn();
+  hexActor->GetProperty()->SetEdgeColor(0.15, 0.15, 0.15);
+  auto contextMapper = make<vtkPolyDataMapper>();
+  contextMapper->SetInputConnection(contextSurface->GetOutputPort());
+  contextMapper->ScalarVisibilityOff();
+  contextActor->SetMapper(contextMapper);
+  contextActor->GetProperty()->SetColor(0.85, 0.85, 0.85);
+  contextActor->GetProperty()->SetOpacity(0.15);
+}
+
+void ModelView::Pipeline::setUpScalarBar() {
+  // Horizontal, under the model: long titles ("scaled Jacobian") fit, and the model keeps the view's width.
+  scalarBar->SetOrientationToHorizontal();
+  scalarBar->SetTextPositionToPrecedeScalarBar();  // labels under the bar, the title over it
+  scalarBar->SetNumberOfLabels(6);
+  scalarBar->SetLabelFormat("%.1f");
+  scalarBar->SetPosition(0.25, 0.02);
+  scalarBar->SetWidth(0.5);
+  scalarBar->SetHeight(0.1);
+  scalarBar->UnconstrainedFontSizeOn();
+  scalarBar->GetTitleTextProperty()->SetFontSize(16);
+  scalarBar->GetLabelTextProperty()->SetFontSize(13);
+  scalarBar->GetTitleTextProperty()->ShadowOff();
+  scalarBar->GetLabelTextProperty()->ShadowOff();
+  scalarBar->GetLabelTextProperty()->ItalicOff();
+  scalarBar->GetTitleTextProperty()->ItalicOff();
+}
+
+void ModelView::Pipeline::setUpGlyphs() {
+  auto arrow = make<vtkArrowSource>();
+  arrow->SetTipResolution(8);
+  arrow->SetShaftResolution(8);
+  glyphs->SetSourceConnection(arrow->GetOutputPort());
+  glyphs->SetInputData(glyphSeeds);
+  glyphs->SetVectorModeToUseVector();
+  glyphs->SetScaleModeToScaleByVector();
+  glyphs->SetColorModeToColorByScalar();
+  glyphs->OrientOn();
+  auto glyphMapper = make<vtkPolyDataMapper>();
+  glyphMapper->SetInputConnection(glyphs->GetOutputPort());
+  glyphMapper->SetColorModeToDirectScalars();
+  glyphActor->SetMapper(glyphMapper);
+}
 
 ModelView::ModelView(SessionModel* session, Role role, QWidget* parent)
     : QWidget(parent), session_(session), role_(role), p_(std::make_unique<Pipeline>()) {
@@ -222,74 +303,10 @@ ModelView::ModelView(SessionModel* session, Role role, QWidget* parent)
   style->AddObserver(vtkCommand::InteractionEvent, this, &ModelView::onCameraInteraction);
   p.renderer->AddObserver(vtkCommand::StartEvent, this, &ModelView::onRenderStart);
 
-  // Whole cells behind the plane: no new points on the cut, so every surface point is a model vertex.
-  p.cut->SetImplicitFunction(p.plane);
-  p.cut->ExtractInsideOn();
-  p.cut->ExtractBoundaryCellsOn();
-  p.normals->SetInputConnection(p.surface->GetOutputPort());
-  p.normals->SplittingOff();  // smooth shading across the tets' facets
-  p.surfaceMapper->SetInputData(p.surfacePoly);
-  p.surfaceMapper->SetLookupTable(p.fieldLut);
-  p.surfaceMapper->SetScalarModeToUsePointFieldData();
-  p.surfaceActor->SetMapper(p.surfaceMapper);
-  p.surfaceActor->GetProperty()->SetEdgeColor(0.55, 0.42, 0.35);
-  p.iso->SetInputData(p.surfacePoly);
-  p.iso->GenerateValues(9, 0.1, 0.9);
-  auto isoMapper = make<vtkPolyDataMapper>();
-  isoMapper->SetInputConnection(p.iso->GetOutputPort());
-  isoMapper->ScalarVisibilityOff();
-  p.isoActor->SetMapper(isoMapper);
-  p.isoActor->GetProperty()->SetColor(0.08, 0.08, 0.08);
-  p.isoActor->GetProperty()->SetLineWidth(3);
-  p.isoActor->GetProperty()->SetRenderLinesAsTubes(true);
-
-  p.threshold->SetThresholdFunction(vtkThreshold::THRESHOLD_BETWEEN);
-  p.threshold->SetLowerThreshold(-2.0);  // quality is at least -1: only the upper end moves
-  p.hexSurface->SetInputConnection(p.threshold->GetOutputPort());
-  p.hexMapper->SetInputConnection(p.hexSurface->GetOutputPort());
-  p.hexMapper->SetLookupTable(p.qualityLut);
-  p.hexMapper->SetScalarModeToUseCellData();
-  p.hexMapper->UseLookupTableScalarRangeOn();
-  p.hexActor->SetMapper(p.hexMapper);
-  p.hexActor->GetProperty()->EdgeVisibilityOn();
-  p.hexActor->GetProperty()->SetEdgeColor(0.15, 0.15, 0.15);
-  auto contextMapper = make<vtkPolyDataMapper>();
-  contextMapper->SetInputConnection(p.contextSurface->GetOutputPort());
-  contextMapper->ScalarVisibilityOff();
-  p.contextActor->SetMapper(contextMapper);
-  p.contextActor->GetProperty()->SetColor(0.85, 0.85, 0.85);
-  p.contextActor->GetProperty()->SetOpacity(0.15);
-
-  // Horizontal, under the model: long titles ("scaled Jacobian") fit, and the model keeps the view's width.
-  p.scalarBar->SetOrientationToHorizontal();
-  p.scalarBar->SetTextPositionToPrecedeScalarBar();  // labels under the bar, the title over it
-  p.scalarBar->SetNumberOfLabels(6);
-  p.scalarBar->SetLabelFormat("%.1f");
-  p.scalarBar->SetPosition(0.25, 0.02);
-  p.scalarBar->SetWidth(0.5);
-  p.scalarBar->SetHeight(0.1);
-  p.scalarBar->UnconstrainedFontSizeOn();
-  p.scalarBar->GetTitleTextProperty()->SetFontSize(16);
-  p.scalarBar->GetLabelTextProperty()->SetFontSize(13);
-  p.scalarBar->GetTitleTextProperty()->ShadowOff();
-  p.scalarBar->GetLabelTextProperty()->ShadowOff();
-  p.scalarBar->GetLabelTextProperty()->ItalicOff();
-  p.scalarBar->GetTitleTextProperty()->ItalicOff();
-
-  auto arrow = make<vtkArrowSource>();
-  arrow->SetTipResolution(8);
-  arrow->SetShaftResolution(8);
-  p.glyphs->SetSourceConnection(arrow->GetOutputPort());
-  p.glyphs->SetInputData(p.glyphSeeds);
-  p.glyphs->SetVectorModeToUseVector();
-  p.glyphs->SetScaleModeToScaleByVector();
-  p.glyphs->SetColorModeToColorByScalar();
-  p.glyphs->OrientOn();
-  auto glyphMapper = make<vtkPolyDataMapper>();
-  glyphMapper->SetInputConnection(p.glyphs->GetOutputPort());
-  glyphMapper->SetColorModeToDirectScalars();
-  p.glyphActor->SetMapper(glyphMapper);
-
+  p.setUpSurface();
+  p.setUpHexDisplay();
+  p.setUpScalarBar();
+  p.setUpGlyphs();
   for (vtkProp* prop :
        {static_cast<vtkProp*>(p.surfaceActor), static_cast<vtkProp*>(p.isoActor), static_cast<vtkProp*>(p.hexActor),
         static_cast<vtkProp*>(p.contextActor), static_cast<vtkProp*>(p.constraintActor),
@@ -308,6 +325,11 @@ ModelView::ModelView(SessionModel* session, Role role, QWidget* parent)
   p.planeWidget->SetCurrentRenderer(p.renderer);
   p.planeWidget->AddObserver(vtkCommand::InteractionEvent, this, &ModelView::onPlaneInteraction);
 
+  connectSession();
+  refresh();
+}
+
+void ModelView::connectSession() {
   connect(session_, &SessionModel::modelChanged, this, [this](Role r) {
     if (r == role_) onModelChanged();
   });
@@ -327,7 +349,6 @@ ModelView::ModelView(SessionModel* session, Role role, QWidget* parent)
     updatePlaneWidget();
     render();
   });
-  refresh();
 }
 
 ModelView::~ModelView() {

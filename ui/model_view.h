@@ -39,6 +39,7 @@ class ModelView : public QWidget {
 
  private:
   struct Pipeline;
+  void connectSession();
   void onModelChanged();
   void onResultsChanged();
   void refresh();
