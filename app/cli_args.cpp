@@ -40,12 +40,12 @@ bool Args::parse(const std::vector<std::string>& argv) {
       const std::string name = a == "-o" ? "output" : a.substr(2);
       const auto spec =
           std::find_if(specs_.begin(), specs_.end(), [&](const Spec& s) { return !s.positional && s.name == name; });
-      if (spec == specs_.end()) throw Error(subject, "unknown option " + a + " (see --help)");
+      if (spec == specs_.end()) throw UsageError(subject, "unknown option " + a + " (see --help)");
       if (spec->is_flag) {
         values_[name] = "1";
         continue;
       }
-      if (i + 1 >= argv.size()) throw Error(subject, "option " + a + " needs a value");
+      if (i + 1 >= argv.size()) throw UsageError(subject, "option " + a + " needs a value");
       values_[name] = argv[++i];
       continue;
     }
@@ -54,10 +54,10 @@ bool Args::parse(const std::vector<std::string>& argv) {
     else if (last_repeats_ && !positionals.empty())
       rest_.push_back(a);
     else
-      throw Error(subject, "unexpected argument '" + a + "' (see --help)");
+      throw UsageError(subject, "unexpected argument '" + a + "' (see --help)");
   }
   for (const auto* p : positionals)
-    if (p->required && !values_.count(p->name)) throw Error(subject, "missing " + p->name + " (see --help)");
+    if (p->required && !values_.count(p->name)) throw UsageError(subject, "missing " + p->name + " (see --help)");
   return true;
 }
 
@@ -92,13 +92,13 @@ double Args::number(const std::string& name) const {
     if (used != v.size()) throw std::invalid_argument(v);
     return x;
   } catch (const std::exception&) {
-    throw Error("facehex " + command_, "--" + name + " expects a number, got '" + v + "'");
+    throw UsageError("facehex " + command_, "--" + name + " expects a number, got '" + v + "'");
   }
 }
 
 int Args::integer(const std::string& name) const {
   const double x = number(name);
-  if (x != static_cast<int>(x)) throw Error("facehex " + command_, "--" + name + " expects an integer");
+  if (x != static_cast<int>(x)) throw UsageError("facehex " + command_, "--" + name + " expects an integer");
   return static_cast<int>(x);
 }
 

@@ -5,7 +5,15 @@
 #include <string>
 #include <vector>
 
+#include "core/util/error.h"
+
 namespace facehex::cli {
+
+// A command line that cannot be run as given (unknown or missing option, bad value): exit code 2, as the README says.
+class UsageError : public Error {
+ public:
+  using Error::Error;
+};
 
 class Args {
  public:

@@ -4,6 +4,7 @@
 #include <iostream>
 #include <map>
 
+#include "app/cli_args.h"
 #include "app/commands/commands.h"
 #include "core/util/allocator_tuning.h"
 #include "core/util/error.h"
@@ -64,6 +65,9 @@ int main(int argc, char** argv) {
   }
   try {
     return it->second.run(facehex::cli::Argv(argv + 2, argv + argc));
+  } catch (const facehex::cli::UsageError& e) {
+    std::cerr << "\nerror: " << e.what() << "\n";
+    return 2;
   } catch (const facehex::Error& e) {
     std::cerr << "\nerror: " << e.what() << "\n";
   } catch (const facehex::Cancelled&) {

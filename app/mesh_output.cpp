@@ -21,7 +21,7 @@ std::vector<std::string> export_formats(const std::string& list) {
   for (std::string f; std::getline(in, f, ',');) {
     if (f.empty()) continue;
     if (std::find(writable.begin(), writable.end(), "." + f) == writable.end())
-      throw Error("--export", "cannot write '" + f + "' (use feb, inp, msh, vtk or vtu)");
+      throw UsageError("--export", "cannot write '" + f + "' (use feb, inp, msh, vtk or vtu)");
     formats.push_back(f);
   }
   return formats;

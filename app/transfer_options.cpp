@@ -62,7 +62,7 @@ HarmonicFieldsOptions field_options(const Args& args) {
   o.orthogonality_iterations = args.integer("iterations");
   const std::string order = args.get("order");
   if (order.size() != 3 || std::set<char>(order.begin(), order.end()) != std::set<char>{'u', 'v', 'w'})
-    throw Error("--order", "expects a permutation of u, v, w such as wuv, got '" + order + "'");
+    throw UsageError("--order", "expects a permutation of u, v, w such as wuv, got '" + order + "'");
   for (int i = 0; i < 3; ++i) o.order[i] = order[i] - 'u';
   return o;
 }
@@ -77,12 +77,12 @@ SegmentOptions segment_options(const Args& args) {
   const auto finite = [&](const std::string& name) {
     const double x = args.number(name);
     if (!std::isfinite(x))
-      throw Error("--" + name, "expects a finite number of millimetres, got '" + args.get(name) + "'");
+      throw UsageError("--" + name, "expects a finite number of millimetres, got '" + args.get(name) + "'");
     return x;
   };
   const auto not_negative = [&](const std::string& name) {
     const double x = finite(name);
-    if (x < 0) throw Error("--" + name, "expects a distance of 0 mm or more, got '" + args.get(name) + "'");
+    if (x < 0) throw UsageError("--" + name, "expects a distance of 0 mm or more, got '" + args.get(name) + "'");
     return x;
   };
   FaceCutOptions& cuts = o.cuts;
@@ -91,7 +91,7 @@ SegmentOptions segment_options(const Args& args) {
   if (args.has("posterior-cut")) cuts.posterior_y = finite("posterior-cut");
   if (args.has("mid-plane")) cuts.centre_x = finite("mid-plane");
   cuts.face_height = not_negative("face-height");
-  if (cuts.face_height == 0) throw Error("--face-height", "expects a height above 0 mm");
+  if (cuts.face_height == 0) throw UsageError("--face-height", "expects a height above 0 mm");
   cuts.chin_clearance = not_negative("chin-clearance");
   cuts.ear_clearance = not_negative("ear-clearance");
   return o;
@@ -106,7 +106,7 @@ TransferOptions transfer_options(const Args& args) {
   if (o.shape_relaxation) {
     o.relaxation_towards_ideal = args.number("shape-relaxation");
     if (!(o.relaxation_towards_ideal >= 0 && o.relaxation_towards_ideal <= 1))
-      throw Error("--shape-relaxation", "expects off or a fraction from 0 to 1, got '" + relaxation + "'");
+      throw UsageError("--shape-relaxation", "expects off or a fraction from 0 to 1, got '" + relaxation + "'");
   }
   return o;
 }

@@ -44,7 +44,7 @@ std::vector<long> parse_counts(const std::string& option, const std::string& tex
     } catch (const std::exception&) {
       counts.push_back(0);
     }
-    if (counts.back() <= 0) throw Error(option, "expects comma-separated positive integers, got '" + text + "'");
+    if (counts.back() <= 0) throw UsageError(option, "expects comma-separated positive integers, got '" + text + "'");
   }
   return counts;
 }
@@ -61,7 +61,7 @@ double peak_memory_mb() {
 int ct_bench(const Args& args) {
   const std::vector<long> dims = parse_counts("--ct", args.get("ct"));
   if (dims.size() != 3 || *std::min_element(dims.begin(), dims.end()) < 2)
-    throw Error("--ct", "expects three voxel counts of at least 2, e.g. 512,512,300");
+    throw UsageError("--ct", "expects three voxel counts of at least 2, e.g. 512,512,300");
   const std::string tmp = (std::filesystem::temp_directory_path() / "facehex-bench-ct.mha").string();
   {
     const CtVolume ct = read_ct_volume(default_ct());

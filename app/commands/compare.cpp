@@ -373,7 +373,7 @@ int cmd_compare(const Argv& argv) {
       .option("output", "output folder");
   add_transfer_options(args);
   if (!args.parse(argv)) return 0;
-  if (!args.has("output")) throw Error("facehex compare", "missing -o OUTPUT_FOLDER");
+  if (!args.has("output")) throw UsageError("facehex compare", "missing -o OUTPUT_FOLDER");
   const std::vector<PatientInput> inputs = patient_inputs(args);
   OutputFolder folder(args.get("output"));
   const fs::path& out_dir = folder.path();

@@ -22,7 +22,7 @@ int cmd_constraints(const Argv& argv) {
       .option("band", "slab width (mm) selecting feature vertices", "2")
       .flag("own-values", "take the feature values from the model's own fields (for a standard)");
   if (!args.parse(argv)) return 0;
-  if (!args.has("output")) throw Error("facehex constraints", "missing -o OUTPUT");
+  if (!args.has("output")) throw UsageError("facehex constraints", "missing -o OUTPUT");
   const std::string path = args.get("MODEL");
   const VolumeMesh mesh = read_volume_mesh(path);
   const Eigen::VectorXi mask = side_mask_of(mesh);

@@ -24,7 +24,7 @@ int cmd_fields(const Argv& argv) {
       .option("standard-domain", "for a hex mesh: closed (openings filled) or auxiliary (split hexes only)", "closed");
   add_field_options(args);
   if (!args.parse(argv)) return 0;
-  if (!args.has("output")) throw Error("facehex fields", "missing -o OUTPUT");
+  if (!args.has("output")) throw UsageError("facehex fields", "missing -o OUTPUT");
   const std::string path = args.get("MODEL");
   MeshReadOptions ro;
   ro.target_edge_length = args.number("edge-length");

@@ -26,7 +26,7 @@ int cmd_map(const Argv& argv) {
       .flag("force-export", kForceExportHelp);
   add_transfer_options(args);
   if (!args.parse(argv)) return 0;
-  if (!args.has("patient") || !args.has("output")) throw Error("facehex map", "needs --patient and -o OUTPUT");
+  if (!args.has("patient") || !args.has("output")) throw UsageError("facehex map", "needs --patient and -o OUTPUT");
   if (args.get("method") == "mesh-matching") {
     // The baseline registers the surfaces: it needs no constraints, and the standard no parameterization domain.
     const BundledModel standard = find_standard(args.get("standard"));
@@ -40,7 +40,7 @@ int cmd_map(const Argv& argv) {
     return exit_code(out.metrics.quality.summary);
   }
   if (args.get("method") != "harmonic")
-    throw Error("--method", "expects harmonic or mesh-matching, got '" + args.get("method") + "'");
+    throw UsageError("--method", "expects harmonic or mesh-matching, got '" + args.get("method") + "'");
   const CliTransfer t =
       cli_transfer(args, args.get("patient"), args.get("patient-constraints"), "--patient-constraints");
   const TransferResult& r = t.result;

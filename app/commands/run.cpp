@@ -28,7 +28,7 @@ int cmd_run(const Argv& argv) {
       .flag("force-export", kForceExportHelp);
   add_transfer_options(args);
   if (!args.parse(argv)) return 0;
-  if (!args.has("output")) throw Error("facehex run", "missing -o OUTPUT_FOLDER");
+  if (!args.has("output")) throw UsageError("facehex run", "missing -o OUTPUT_FOLDER");
   const std::vector<std::string> exports = export_formats(args.get("export"));
   std::string input = args.get("INPUT");
   const std::string constraints = args.get("constraints");

@@ -21,7 +21,7 @@ int cmd_segment(const Argv& argv) {
   args.option("edge-length", "target mean edge length of the tets (mm)", "2");
   add_segment_options(args);
   if (!args.parse(argv)) return 0;
-  if (!args.has("output")) throw Error("facehex segment", "missing -o OUTPUT");
+  if (!args.has("output")) throw UsageError("facehex segment", "missing -o OUTPUT");
   const SegmentOptions options = segment_options(args);
   if (!is_ct_input(args.get("CT")))
     throw Error(args.get("CT"), "not a CT volume (.mhd, .mha, .nii, .nii.gz, .nrrd, or a DICOM folder)");

@@ -18,7 +18,7 @@ int cmd_sides(const Argv& argv) {
   args.positional("MESH", "hex-dominant mesh").option("output", "output .vtu");
   args.option("max-layers", "most element layers through the thickness", "8");
   if (!args.parse(argv)) return 0;
-  if (!args.has("output")) throw Error("facehex sides", "missing -o OUTPUT");
+  if (!args.has("output")) throw UsageError("facehex sides", "missing -o OUTPUT");
   VolumeMesh m = read_volume_mesh(args.get("MESH"));
   ShellFrame frame = default_shell_frame(m.V);
   frame.max_layers = args.integer("max-layers");

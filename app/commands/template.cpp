@@ -40,7 +40,7 @@ int cmd_template(const Argv& argv) {
   add_field_options(args);
   add_segment_options(args);
   if (!args.parse(argv)) return 0;
-  if (!args.has("output")) throw Error("facehex template", "missing -o OUTPUT_FOLDER");
+  if (!args.has("output")) throw UsageError("facehex template", "missing -o OUTPUT_FOLDER");
   std::string input = args.get("REFERENCE");
   if (input.empty()) input = default_ct();
   OutputFolder folder(args.get("output"));

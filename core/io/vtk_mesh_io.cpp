@@ -1,31 +1,66 @@
 #include "core/io/vtk_mesh_io.h"
 
+#include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkCellType.h>
 #include <vtkCellTypes.h>
+#include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkIdList.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkSmartPointer.h>
+#include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkUnstructuredGridReader.h>
 #include <vtkUnstructuredGridWriter.h>
 #include <vtkXMLUnstructuredGridReader.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+
 #include "core/io/io_util.h"
+#include "core/io/mesh_bytes.h"
 #include "core/io/vtk_util.h"
+#include "core/util/child_process.h"
 #include "core/util/error.h"
 
 namespace facehex::io {
 
 namespace {
 
+// The cell array's offsets must describe its connectivity (VTK's accessors trust them): one offset per cell and one
+// more, from 0, never decreasing, ending at the connectivity's length; one type per cell.
+void check_cell_array(const std::string& path, vtkUnstructuredGrid* grid) {
+  vtkCellArray* cells = grid->GetCells();
+  const vtkIdType nc = grid->GetNumberOfCells();
+  if (nc == 0) return;
+  vtkDataArray* offsets = cells ? cells->GetOffsetsArray() : nullptr;
+  vtkDataArray* connectivity = cells ? cells->GetConnectivityArray() : nullptr;
+  if (!offsets || !connectivity || offsets->GetNumberOfTuples() != nc + 1)
+    throw Error(path, "the cell offsets do not match the number of cells (a damaged file)");
+  if (!grid->GetCellTypesArray() || grid->GetCellTypesArray()->GetNumberOfTuples() != nc)
+    throw Error(path, "the cell types do not match the number of cells (a damaged file)");
+  double previous = 0;
+  for (vtkIdType i = 0; i <= nc; ++i) {
+    const double o = offsets->GetComponent(i, 0);
+    if ((i == 0 && o != 0) || o < previous || o > static_cast<double>(connectivity->GetNumberOfTuples()))
+      throw Error(path, "cell offset " + std::to_string(i) + " is out of order or range (a damaged file)");
+    previous = o;
+  }
+  if (previous != static_cast<double>(connectivity->GetNumberOfTuples()))
+    throw Error(path, "the cell offsets do not cover the connectivity (a damaged file)");
+}
+
 // VolumeMesh stores cells in VTK order already: conversion is a copy, no reordering.
 VolumeMesh from_grid(const std::string& path, vtkUnstructuredGrid* grid) {
   if (!grid || grid->GetNumberOfPoints() == 0) throw Error(path, "file holds no points (empty or not a mesh)");
+  check_cell_array(path, grid);
   VolumeMesh mesh;
   const vtkIdType nv = grid->GetNumberOfPoints();
   mesh.V.resize(nv, 3);
@@ -59,7 +94,13 @@ VolumeMesh from_grid(const std::string& path, vtkUnstructuredGrid* grid) {
       throw Error(path, "cell " + std::to_string(c) + " has " + std::to_string(ids->GetNumberOfIds()) + " nodes");
     }
     int nodes[8];
-    for (int k = 0; k < node_count(type); ++k) nodes[k] = static_cast<int>(ids->GetId(k));
+    for (int k = 0; k < node_count(type); ++k) {
+      const vtkIdType id = ids->GetId(k);  // 64-bit: an index past 2^31 must not wrap into a valid one
+      if (id < 0 || id >= nv)
+        throw Error(
+            path, "cell " + std::to_string(c) + " refers to point " + std::to_string(id) + " of " + std::to_string(nv));
+      nodes[k] = static_cast<int>(id);
+    }
     cells.add(type, nodes);
   }
   cells.finish(&mesh);
@@ -90,26 +131,73 @@ vtkSmartPointer<vtkUnstructuredGrid> to_grid(const VolumeMesh& mesh, const std::
   return grid;
 }
 
+// The sizes a VTK XML file declares, checked before VTK's reader trusts them (a count that is negative or past our
+// 32-bit indices, or a component count no mesh array has, sends it into a crash or a loop over billions): the XML
+// part before the appended data is scanned for NumberOfPoints, NumberOfCells and NumberOfComponents.
+void check_vtu_sizes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string xml;
+  char chunk[1 << 16];
+  size_t end = std::string::npos;
+  while (end == std::string::npos && in.read(chunk, sizeof chunk).gcount() > 0) {
+    xml.append(chunk, static_cast<size_t>(in.gcount()));
+    end = xml.find("<AppendedData");
+  }
+  if (end != std::string::npos) xml.resize(end);
+  for (const auto& [attribute, most] : {std::pair<std::string, double>{"NumberOfPoints", 2147483647.0},
+                                        {"NumberOfCells", 2147483647.0},
+                                        {"NumberOfComponents", 1000.0}}) {
+    const std::string key = attribute + "=\"";
+    for (size_t at = xml.find(key); at != std::string::npos; at = xml.find(key, at + 1)) {
+      const size_t from = at + key.size(), to = xml.find('"', from);
+      const std::string text = xml.substr(from, to == std::string::npos ? 0 : to - from);
+      char* stop = nullptr;
+      const double value = std::strtod(text.c_str(), &stop);
+      const double least = attribute == "NumberOfComponents" ? 1 : 0;
+      if (text.empty() || *stop != '\0' || !(value >= least && value <= most) || value != std::floor(value))
+        throw Error(path, attribute + "=\"" + text + "\" is not a count from " + std::to_string(int(least)) + " to " +
+                              std::to_string(static_cast<long long>(most)) + " (a damaged file)");
+    }
+  }
+}
+
+// VTK's readers trust the sizes a file declares: a damaged file can make them crash, loop or allocate without bound.
+// They run in a child process with a time and memory budget that grow with the file (core/util/child_process.h).
+VolumeMesh read_in_child(const std::string& path, const std::string& what, const std::function<VolumeMesh()>& read) {
+  const double megabytes = static_cast<double>(std::filesystem::file_size(path)) / (1 << 20);
+  ChildLimits limits;
+  limits.seconds = 60 + 2 * megabytes;
+  limits.memory_bytes = (size_t{2} << 30) + static_cast<size_t>(64 * megabytes) * (1 << 20);
+  return mesh_from_bytes(compute_in_child(
+                             path, what, [&] { return to_bytes(read()); }, limits),
+                         path);
+}
+
 }  // namespace
 
 VolumeMesh read_vtu(const std::string& path) {
   check_readable_file(path);
-  vtkNew<vtkXMLUnstructuredGridReader> reader;
-  reader->SetFileName(path.c_str());
-  run_vtk(path, "reading VTK XML", reader);
-  return from_grid(path, reader->GetOutput());
+  check_vtu_sizes(path);
+  return read_in_child(path, "reading VTK XML", [&] {
+    vtkNew<vtkXMLUnstructuredGridReader> reader;
+    reader->SetFileName(path.c_str());
+    run_vtk(path, "reading VTK XML", reader);
+    return from_grid(path, reader->GetOutput());
+  });
 }
 
 VolumeMesh read_legacy_vtk(const std::string& path) {
   check_readable_file(path);
-  vtkNew<vtkUnstructuredGridReader> reader;
-  reader->SetFileName(path.c_str());
-  reader->ReadAllScalarsOn();  // legacy files may hold several arrays per kind; keep them all
-  reader->ReadAllVectorsOn();
-  reader->ReadAllTensorsOn();
-  reader->ReadAllFieldsOn();
-  run_vtk(path, "reading legacy VTK", reader);
-  return from_grid(path, reader->GetOutput());
+  return read_in_child(path, "reading legacy VTK", [&] {
+    vtkNew<vtkUnstructuredGridReader> reader;
+    reader->SetFileName(path.c_str());
+    reader->ReadAllScalarsOn();  // legacy files may hold several arrays per kind; keep them all
+    reader->ReadAllVectorsOn();
+    reader->ReadAllTensorsOn();
+    reader->ReadAllFieldsOn();
+    run_vtk(path, "reading legacy VTK", reader);
+    return from_grid(path, reader->GetOutput());
+  });
 }
 
 void write_vtu(const std::string& file, const VolumeMesh& mesh, const std::set<std::string>& single_precision) {

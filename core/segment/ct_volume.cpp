@@ -17,12 +17,15 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cctype>
+#include <cstring>
 #include <filesystem>
 #include <functional>
 
 #include "core/io/vtk_util.h"
 #include "core/segment/dicom_series.h"
+#include "core/segment/metaimage_header.h"
 #include "core/util/atomic_file.h"
+#include "core/util/child_process.h"
 #include "core/util/error.h"
 
 namespace facehex {
@@ -45,7 +48,7 @@ std::pair<int, int> parse_axis(const std::string& text, const std::string& what)
 }
 
 // A volume file through VTK's readers (in the file's voxel axes).
-CtVolume read_volume_file(const std::string& path) {
+CtVolume read_volume_file_here(const std::string& path) {
   const std::string name = lower(path);
   vtkSmartPointer<vtkAlgorithm> reader;
   std::function<double(double)> rescale = [](double v) { return v; };
@@ -101,6 +104,50 @@ CtVolume read_volume_file(const std::string& path) {
   const auto* values = static_cast<const float*>(scalars->GetVoidPointer(0));
   for (size_t i = 0; i < g.size(); ++i) ct.intensity.data[i] = static_cast<float>(rescale(values[i * components]));
   return ct;
+}
+
+// The volume as bytes (geometry, then the voxels) between the reading child process and its parent.
+std::vector<char> volume_bytes(const CtVolume& ct) {
+  const GridGeometry& g = ct.intensity.geometry;
+  std::vector<char> bytes(sizeof g.dims + 6 * sizeof(double) + ct.intensity.data.size() * sizeof(float));
+  char* p = bytes.data();
+  std::memcpy(p, g.dims.data(), sizeof g.dims), p += sizeof g.dims;
+  std::memcpy(p, g.spacing.data(), 3 * sizeof(double)), p += 3 * sizeof(double);
+  std::memcpy(p, g.origin.data(), 3 * sizeof(double)), p += 3 * sizeof(double);
+  std::memcpy(p, ct.intensity.data.data(), ct.intensity.data.size() * sizeof(float));
+  return bytes;
+}
+
+CtVolume volume_from_bytes(const std::vector<char>& bytes, const std::string& path) {
+  CtVolume ct;
+  ct.source = path;
+  GridGeometry& g = ct.intensity.geometry;
+  const size_t header = sizeof g.dims + 6 * sizeof(double);
+  if (bytes.size() < header) throw Error(path, "incomplete volume from the reading process");
+  const char* p = bytes.data();
+  std::memcpy(g.dims.data(), p, sizeof g.dims), p += sizeof g.dims;
+  std::memcpy(g.spacing.data(), p, 3 * sizeof(double)), p += 3 * sizeof(double);
+  std::memcpy(g.origin.data(), p, 3 * sizeof(double)), p += 3 * sizeof(double);
+  if (bytes.size() != header + g.size() * sizeof(float))
+    throw Error(path, "incomplete volume from the reading process");
+  ct.intensity.data.resize(g.size());
+  std::memcpy(ct.intensity.data.data(), p, g.size() * sizeof(float));
+  return ct;
+}
+
+// VTK's image readers trust the sizes a file declares; a MetaImage header is checked first, and the reading runs in
+// a child process with a time and memory budget that grow with the file (core/util/child_process.h).
+CtVolume read_volume_file(const std::string& path) {
+  const std::string name = lower(path);
+  if (ends_with(name, ".mhd") || ends_with(name, ".mha")) check_metaimage_header(path);
+  const double megabytes = static_cast<double>(std::filesystem::file_size(path)) / (1 << 20);
+  ChildLimits limits;
+  limits.seconds = 60 + 2 * megabytes;
+  limits.memory_bytes = (size_t{4} << 30) + static_cast<size_t>(64 * megabytes) * (1 << 20);
+  return volume_from_bytes(
+      compute_in_child(
+          path, "reading the CT", [&] { return volume_bytes(read_volume_file_here(path)); }, limits),
+      path);
 }
 
 }  // namespace

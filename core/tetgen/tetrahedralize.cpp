@@ -8,8 +8,8 @@
 // terminatetetgen() frees the mesh and throws, then the unwinding frees it again (double free: the process dies before
 // any catch), some inputs trip internal assert()s (abort), and a self-intersecting surface can make the refinement
 // loop forever (hence the -d self-intersection check, in a second child at the same time, which stops the first when
-// it finds one). The children send their results back through pipes; a child that dies becomes a facehex::Error. POSIX
-// only, like the rest of the Debian toolchain this builds on.
+// it finds one). The children (core/util/child_process.h) send their results back through pipes and die with their
+// parent; a child that dies becomes a facehex::Error.
 #include "core/tetgen/tetrahedralize.h"
 
 #include <fcntl.h>
@@ -34,6 +34,7 @@
 #include "core/mesh/side_mask.h"
 #include "core/mesh/sides.h"
 #include "core/mesh/tet_topology.h"
+#include "core/util/child_process.h"
 #include "core/util/error.h"
 
 namespace facehex {
@@ -103,20 +104,10 @@ struct RawMesh {
 // Child -> parent message: a Status, a count, then (for kOk) the four arrays, each as a size and its elements.
 enum Status : std::int32_t { kOk = 0, kSelfIntersecting = 1, kFailed = 2 };
 
-void write_all(int fd, const void* data, size_t bytes) {
-  const char* p = static_cast<const char*>(data);
-  while (bytes > 0) {
-    const ssize_t n = ::write(fd, p, bytes);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) ::_exit(3);  // the parent is gone: nothing to report to
-    p += n, bytes -= static_cast<size_t>(n);
-  }
-}
-
 template <class T>
 void write_array(int fd, const T* data, std::int64_t count) {
-  write_all(fd, &count, sizeof count);
-  if (count > 0) write_all(fd, data, static_cast<size_t>(count) * sizeof(T));
+  write_to_parent(fd, &count, sizeof count);
+  if (count > 0) write_to_parent(fd, data, static_cast<size_t>(count) * sizeof(T));
 }
 
 // The children. Each runs TetGen once, writes its message to fd and ends; TetGen's assert() messages would only
@@ -136,10 +127,10 @@ void silence_output() {
     tetgenio found;
     ::tetrahedralize(&diagnose, &in, &found);
     const std::int32_t message[2] = {found.numberoftrifaces > 0 ? kSelfIntersecting : kOk, found.numberoftrifaces};
-    write_all(fd, message, sizeof message);
+    write_to_parent(fd, message, sizeof message);
   } catch (int code) {
     const std::int32_t message[2] = {kFailed, code};
-    write_all(fd, message, sizeof message);
+    write_to_parent(fd, message, sizeof message);
   }
   ::_exit(0);
 }
@@ -163,7 +154,7 @@ void silence_output() {
     ::tetrahedralize(&behavior, &in, &out);
 
     const std::int32_t message[2] = {kOk, 0};
-    write_all(fd, message, sizeof message);
+    write_to_parent(fd, message, sizeof message);
     write_array(fd, out.pointlist, 3 * static_cast<std::int64_t>(out.numberofpoints));
     std::vector<int> tets(4 * static_cast<size_t>(out.numberoftetrahedra));
     for (int t = 0; t < out.numberoftetrahedra; ++t)
@@ -178,7 +169,7 @@ void silence_output() {
     write_array(fd, markers.data(), static_cast<std::int64_t>(markers.size()));
   } catch (int code) {  // only reached where TetGen threw before building its mesh
     const std::int32_t message[2] = {kFailed, code};
-    write_all(fd, message, sizeof message);
+    write_to_parent(fd, message, sizeof message);
   }
   ::_exit(0);
 }
@@ -197,93 +188,39 @@ bool read_array(const std::vector<char>& buffer, size_t& at, std::vector<T>& out
   return true;
 }
 
-// A forked child running `body` with the write end of a pipe, whose other end the parent reads.
-struct Child {
-  pid_t pid = -1;
-  int fd = -1;
-  std::vector<char> buffer;
-  int status = 0;
-};
-
-template <class Body>
-Child spawn(Body body) {
-  int fds[2];
-  if (::pipe(fds) != 0) throw Error("tetgen", std::string("cannot create a pipe: ") + std::strerror(errno));
-  Child child;
-  child.pid = ::fork();
-  if (child.pid < 0) {
-    ::close(fds[0]), ::close(fds[1]);
-    throw Error("tetgen", std::string("cannot start TetGen's process: ") + std::strerror(errno));
-  }
-  if (child.pid == 0) {
-    ::close(fds[0]);
-    body(fds[1]);
-  }
-  ::close(fds[1]);
-  child.fd = fds[0];
-  return child;
-}
-
-// Reads what is there; closes the pipe at its end. False once it is closed.
-bool read_some(Child& child) {
-  char chunk[1 << 16];
-  const ssize_t n = ::read(child.fd, chunk, sizeof chunk);
-  if (n < 0 && errno == EINTR) return true;
-  if (n <= 0) {
-    ::close(child.fd);
-    child.fd = -1;
-    return false;
-  }
-  child.buffer.insert(child.buffer.end(), chunk, chunk + n);
-  return true;
-}
-
-void reap(Child& child) {
-  if (child.fd >= 0) ::close(child.fd), child.fd = -1;
-  while (::waitpid(child.pid, &child.status, 0) < 0 && errno == EINTR) {
-  }
-}
-
-std::array<std::int32_t, 2> message_of(const Child& child) {
+std::array<std::int32_t, 2> message_of(const ChildProcess& child) {
   std::array<std::int32_t, 2> message = {-1, 0};
-  if (child.buffer.size() >= sizeof message) std::memcpy(message.data(), child.buffer.data(), sizeof message);
+  if (child.output().size() >= sizeof message) std::memcpy(message.data(), child.output().data(), sizeof message);
   return message;
 }
 
-void throw_if_crashed(const Child& child) {
-  if (WIFSIGNALED(child.status))
-    throw Error("tetgen", "TetGen crashed (" + std::string(strsignal(WTERMSIG(child.status))) +
+void throw_if_crashed(const ChildProcess& child) {
+  if (child.crashed())
+    throw Error("tetgen", "TetGen crashed (" + child.signal_name() +
                               ") on this surface; it probably has nearly intersecting or degenerate triangles");
 }
 
 // The self-intersection check and the quality mesh run at the same time, in two processes, so the check adds no wall
 // time when a core is free; a surface found intersecting stops the mesh, whose refinement could loop forever on it.
 RawMesh run_tetgen(tetgenio& in, const TetrahedralizeOptions& options) {
-  Child diagnose = spawn([&](int fd) { diagnose_child(fd, in); });
-  Child mesh_run;
-  try {
-    mesh_run = spawn([&](int fd) { mesh_child(fd, in, options); });
-  } catch (...) {
-    ::kill(diagnose.pid, SIGKILL);
-    reap(diagnose);
-    throw;
-  }
-  while (diagnose.fd >= 0 || mesh_run.fd >= 0) {
-    std::array<pollfd, 2> watch = {pollfd{diagnose.fd, POLLIN, 0}, pollfd{mesh_run.fd, POLLIN, 0}};
+  ChildProcess diagnose = ChildProcess::spawn("tetgen", [&](int fd) { diagnose_child(fd, in); });
+  ChildProcess mesh_run = ChildProcess::spawn("tetgen", [&](int fd) { mesh_child(fd, in, options); });
+  while (diagnose.fd() >= 0 || mesh_run.fd() >= 0) {
+    std::array<pollfd, 2> watch = {pollfd{diagnose.fd(), POLLIN, 0}, pollfd{mesh_run.fd(), POLLIN, 0}};
     if (::poll(watch.data(), watch.size(), -1) < 0) {
       if (errno == EINTR) continue;
-      ::kill(diagnose.pid, SIGKILL);  // cannot wait on the pipes: stop both rather than wait for them blindly
-      ::kill(mesh_run.pid, SIGKILL);
+      diagnose.kill();  // cannot wait on the pipes: stop both rather than wait for them blindly
+      mesh_run.kill();
       break;
     }
-    if (diagnose.fd >= 0 && watch[0].revents != 0 && !read_some(diagnose) && message_of(diagnose)[0] != kOk) {
-      ::kill(mesh_run.pid, SIGKILL);  // the surface is bad (or the check failed): the mesh is not wanted
+    if (diagnose.fd() >= 0 && watch[0].revents != 0 && !diagnose.read_some() && message_of(diagnose)[0] != kOk) {
+      mesh_run.kill();  // the surface is bad (or the check failed): the mesh is not wanted
       break;
     }
-    if (mesh_run.fd >= 0 && watch[1].revents != 0) read_some(mesh_run);
+    if (mesh_run.fd() >= 0 && watch[1].revents != 0) mesh_run.read_some();
   }
-  reap(diagnose);
-  reap(mesh_run);
+  diagnose.reap();
+  mesh_run.reap();
 
   throw_if_crashed(diagnose);
   const auto check = message_of(diagnose);
@@ -295,9 +232,9 @@ RawMesh run_tetgen(tetgenio& in, const TetrahedralizeOptions& options) {
   if (message[0] == kFailed) throw Error("tetgen", tetgen_failure(message[1]));
   RawMesh mesh;
   size_t at = sizeof message;
-  if (message[0] != kOk || !read_array(mesh_run.buffer, at, mesh.points) ||
-      !read_array(mesh_run.buffer, at, mesh.tets) || !read_array(mesh_run.buffer, at, mesh.faces) ||
-      !read_array(mesh_run.buffer, at, mesh.markers) || mesh.faces.size() != 3 * mesh.markers.size())
+  if (message[0] != kOk || !read_array(mesh_run.output(), at, mesh.points) ||
+      !read_array(mesh_run.output(), at, mesh.tets) || !read_array(mesh_run.output(), at, mesh.faces) ||
+      !read_array(mesh_run.output(), at, mesh.markers) || mesh.faces.size() != 3 * mesh.markers.size())
     throw Error("tetgen", "TetGen's process ended without a result");
   return mesh;
 }

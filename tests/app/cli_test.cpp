@@ -2,7 +2,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
-
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -109,12 +108,26 @@ TEST_F(Cli, DemoRunsTheWholeChainFromTheBundledCt) {
             p["gradient_angles_before"]["mean_deviation_from_90_deg"].get<double>());
 }
 
-// A mistyped glob (`convert dir/*.vtu out.msh` with two .vtu files) must not overwrite an input.
-TEST_F(Cli, ASurplusArgumentIsAnErrorAndWritesNothing) {
+// Usage errors exit 2 (README), with one line naming the command or the option, and write nothing. Among them a
+// surplus argument: a mistyped glob (`convert dir/*.vtu out.msh` with two .vtu files) must not overwrite an input.
+TEST_F(Cli, UsageErrorsExitTwoAndWriteNothing) {
   const std::string tets = std::string(FACEHEX_TEST_DATA_DIR) + "/io/tets1.node";
-  const Result r = run("convert " + tets + " " + path("a.vtu") + " " + path("b.vtu"));
-  EXPECT_NE(r.status, 0) << r.output;
-  EXPECT_NE(r.output.find("unexpected argument '" + path("b.vtu") + "'"), std::string::npos) << r.output;
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"convert " + tets + " " + path("a.vtu") + " " + path("b.vtu"), "unexpected argument '" + path("b.vtu") + "'"},
+      {"info " + tets + " extra", "unexpected argument 'extra'"},
+      {"convert " + tets, "missing OUT"},
+      {"convert " + tets + " " + path("a.vtu") + " --no-such-option", "unknown option --no-such-option"},
+      {"convert " + tets + " " + path("a.vtu") + " --edge-length", "option --edge-length needs a value"},
+      {"convert " + tets + " " + path("a.vtu") + " --edge-length two", "--edge-length expects a number"},
+      {"run " + tets, "missing -o"},
+      {"map --patient " + tets + " -o " + path("a.vtu") + " --method other", "--method: expects harmonic"},
+  };
+  for (const auto& [args, needle] : cases) {
+    const Result r = run(args);
+    EXPECT_EQ(r.status, 2) << args << ": " << r.output;
+    EXPECT_NE(r.output.find("error: "), std::string::npos) << args << ": " << r.output;
+    EXPECT_NE(r.output.find(needle), std::string::npos) << args << ": " << r.output;
+  }
   EXPECT_FALSE(fs::exists(path("a.vtu")));
   EXPECT_FALSE(fs::exists(path("b.vtu")));
 }
@@ -141,7 +154,7 @@ TEST_F(Cli, BadInputsGiveOneLineErrorsNamingTheFileAndNoOutput) {
 
   for (const char* bad : {"--ct 512,512", "--ct 512,x,300", "--ct 1,512,300", "--sizes 100,-5"}) {
     r = run(std::string("bench ") + bad);
-    EXPECT_EQ(r.status, 1) << bad << ": " << r.output;
+    EXPECT_EQ(r.status, 2) << bad << ": " << r.output;  // a usage error
     EXPECT_NE(r.output.find(std::string(bad).substr(0, std::string(bad).find(' '))), std::string::npos) << r.output;
   }
 }
@@ -158,7 +171,7 @@ TEST_F(Cli, SegmentTakesTheCutsGivenAndRejectsBadOnes) {
 
   for (const char* bad : {"--ear-clearance -1", "--face-height 0", "--top-cut nan", "--chin-clearance x"}) {
     r = run("segment " + ct + " " + bad + " -o " + path("bad.vtu"));
-    EXPECT_EQ(r.status, 1) << bad << ": " << r.output;
+    EXPECT_EQ(r.status, 2) << bad << ": " << r.output;  // a usage error
     EXPECT_NE(r.output.find(std::string(bad).substr(0, std::string(bad).find(' '))), std::string::npos) << r.output;
   }
   r = run("segment " + ct + " --top-cut 40 --bottom-cut 35 -o " + path("bad.vtu"));

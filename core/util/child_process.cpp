@@ -1,0 +1,237 @@
+#include "core/util/child_process.h"
+
+#include <poll.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <new>
+
+#include "core/util/error.h"
+
+namespace facehex {
+namespace {
+
+double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+// The child's present address-space size, from /proc/self/statm (in pages).
+std::size_t address_space_bytes() {
+  std::FILE* f = std::fopen("/proc/self/statm", "r");
+  unsigned long pages = 0;
+  if (f) {
+    if (std::fscanf(f, "%lu", &pages) != 1) pages = 0;
+    std::fclose(f);
+  }
+  return static_cast<std::size_t>(pages) * static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
+}
+
+[[noreturn]] void run_child(int fd, pid_t parent, const std::function<void(int)>& body, const ChildLimits& limits) {
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (::getppid() != parent) ::_exit(3);  // the parent died before the line above
+  if (limits.memory_bytes > 0) {
+    const rlim_t cap = static_cast<rlim_t>(address_space_bytes() + limits.memory_bytes);
+    const rlimit limit{cap, cap};
+    ::setrlimit(RLIMIT_AS, &limit);
+  }
+  try {
+    body(fd);
+  } catch (...) {
+    ::_exit(ChildProcess::kThrew);
+  }
+  ::_exit(0);
+}
+
+// compute_in_child's message: a kind, then the result or the error's subject and problem.
+enum Kind : std::uint8_t { kResult = 0, kError = 1, kOutOfMemory = 2 };
+
+void send(int fd, Kind kind, const std::vector<char>& payload) {
+  const std::uint64_t size = payload.size();
+  write_to_parent(fd, &kind, sizeof kind);
+  write_to_parent(fd, &size, sizeof size);
+  if (size > 0) write_to_parent(fd, payload.data(), payload.size());
+}
+
+std::vector<char> error_payload(const std::string& subject, const std::string& problem) {
+  std::vector<char> p(subject.begin(), subject.end());
+  p.push_back('\0');
+  p.insert(p.end(), problem.begin(), problem.end());
+  return p;
+}
+
+std::string gigabytes(std::size_t bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f GB", static_cast<double>(bytes) / (1 << 30));
+  return text;
+}
+
+}  // namespace
+
+ChildProcess ChildProcess::spawn(const std::string& subject, const std::function<void(int)>& body,
+                                 const ChildLimits& limits) {
+  int fds[2];
+  if (::pipe(fds) != 0) throw Error(subject, std::string("cannot create a pipe: ") + std::strerror(errno));
+  const pid_t parent = ::getpid();
+  ChildProcess child;
+  child.limits_ = limits;
+  child.started_ = now();
+  child.pid_ = ::fork();
+  if (child.pid_ < 0) {
+    ::close(fds[0]), ::close(fds[1]);
+    throw Error(subject, std::string("cannot start a process: ") + std::strerror(errno));
+  }
+  if (child.pid_ == 0) {
+    ::close(fds[0]);
+    run_child(fds[1], parent, body, limits);
+  }
+  ::close(fds[1]);
+  child.fd_ = fds[0];
+  return child;
+}
+
+ChildProcess::ChildProcess(ChildProcess&& o) noexcept { *this = std::move(o); }
+
+ChildProcess& ChildProcess::operator=(ChildProcess&& o) noexcept {
+  std::swap(pid_, o.pid_);
+  std::swap(fd_, o.fd_);
+  std::swap(status_, o.status_);
+  std::swap(timed_out_, o.timed_out_);
+  std::swap(started_, o.started_);
+  std::swap(limits_, o.limits_);
+  std::swap(output_, o.output_);
+  return *this;
+}
+
+ChildProcess::~ChildProcess() {
+  if (pid_ > 0) {
+    kill();
+    reap();
+  }
+}
+
+bool ChildProcess::read_some() {
+  if (fd_ < 0) return false;
+  char chunk[1 << 16];
+  const ssize_t n = ::read(fd_, chunk, sizeof chunk);
+  if (n < 0 && errno == EINTR) return true;
+  if (n <= 0) {
+    ::close(fd_);
+    fd_ = -1;
+    return false;
+  }
+  output_.insert(output_.end(), chunk, chunk + n);
+  return true;
+}
+
+void ChildProcess::read_all() {
+  while (fd_ >= 0) {
+    int wait_ms = -1;
+    if (limits_.seconds > 0) {
+      const double left = started_ + limits_.seconds - now();
+      if (left <= 0) {
+        timed_out_ = true;
+        kill();
+        ::close(fd_);
+        fd_ = -1;
+        return;
+      }
+      wait_ms = static_cast<int>(std::ceil(left * 1000));
+    }
+    pollfd watch{fd_, POLLIN, 0};
+    const int ready = ::poll(&watch, 1, wait_ms);
+    if (ready < 0 && errno != EINTR) {
+      kill();
+      ::close(fd_);
+      fd_ = -1;
+      return;
+    }
+    if (ready > 0) read_some();
+  }
+}
+
+void ChildProcess::kill() {
+  if (pid_ > 0) ::kill(pid_, SIGKILL);
+}
+
+void ChildProcess::reap() {
+  if (fd_ >= 0) ::close(fd_), fd_ = -1;
+  if (pid_ <= 0) return;
+  while (::waitpid(pid_, &status_, 0) < 0 && errno == EINTR) {
+  }
+  pid_ = -1;
+}
+
+bool ChildProcess::crashed() const { return WIFSIGNALED(status_); }
+
+std::string ChildProcess::signal_name() const { return crashed() ? strsignal(WTERMSIG(status_)) : ""; }
+
+int ChildProcess::exit_code() const { return WIFEXITED(status_) ? WEXITSTATUS(status_) : -1; }
+
+void write_to_parent(int fd, const void* data, std::size_t bytes) {
+  const char* p = static_cast<const char*>(data);
+  while (bytes > 0) {
+    const ssize_t n = ::write(fd, p, bytes);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) ::_exit(3);  // the parent is gone: nothing to report to
+    p += n, bytes -= static_cast<std::size_t>(n);
+  }
+}
+
+std::vector<char> compute_in_child(const std::string& subject, const std::string& what,
+                                   const std::function<std::vector<char>()>& work, const ChildLimits& limits) {
+  ChildProcess child = ChildProcess::spawn(
+      subject,
+      [&](int fd) {
+        try {
+          send(fd, kResult, work());
+        } catch (const Error& e) {
+          const std::string message = e.what();
+          const std::string prefix = e.subject().empty() ? "" : e.subject() + ": ";
+          send(fd, kError, error_payload(e.subject(), message.substr(prefix.size())));
+        } catch (const std::bad_alloc&) {
+          send(fd, kOutOfMemory, {});
+        } catch (const std::length_error&) {  // "cannot create std::vector larger than max_size()"
+          send(fd, kOutOfMemory, {});
+        } catch (const std::exception& e) {
+          send(fd, kError, error_payload(subject, what + " failed: " + e.what()));
+        }
+      },
+      limits);
+  child.read_all();
+  child.reap();
+  if (child.timed_out())
+    throw Error(subject, what + " did not finish within " + std::to_string(static_cast<int>(limits.seconds)) +
+                             " s (a damaged file?); stopped");
+  if (child.crashed())
+    throw Error(subject, what + " crashed (" + child.signal_name() + "): the file is damaged or not what it claims");
+  const std::vector<char>& out = child.output();
+  std::uint8_t kind = 0;
+  std::uint64_t size = 0;
+  if (child.exit_code() != 0 || out.size() < sizeof kind + sizeof size)
+    throw Error(subject, what + " ended without a result (exit code " + std::to_string(child.exit_code()) + ")");
+  std::memcpy(&kind, out.data(), sizeof kind);
+  std::memcpy(&size, out.data() + sizeof kind, sizeof size);
+  const std::size_t header = sizeof kind + sizeof size;
+  if (out.size() != header + size) throw Error(subject, what + " sent an incomplete result");
+  std::vector<char> payload(out.begin() + static_cast<std::ptrdiff_t>(header), out.end());
+  if (kind == kOutOfMemory)
+    throw Error(subject, what + " needs more than " + gigabytes(limits.memory_bytes) +
+                             " of memory (a damaged file, or sizes it does not hold?)");
+  if (kind == kError) {
+    const auto nul = std::find(payload.begin(), payload.end(), '\0');
+    const std::string error_subject(payload.begin(), nul);
+    const std::string problem(nul == payload.end() ? nul : nul + 1, payload.end());
+    throw Error(error_subject, problem);
+  }
+  return payload;
+}
+
+}  // namespace facehex

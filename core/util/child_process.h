@@ -1,0 +1,72 @@
+#pragma once
+// Work in a forked child process, for third-party code that can crash, hang or exhaust memory on bad input (TetGen,
+// VTK's readers): whatever it does, the parent gets an answer or a facehex::Error. The child writes its result to a
+// pipe that the parent reads while it runs; it dies with its parent (PR_SET_PDEATHSIG), may get an address-space budget
+// on top of what it inherited (RLIMIT_AS) and a wall-time limit after which the parent kills it. Linux only, like the
+// rest of the Debian toolchain this builds on. The child must not start OpenMP work: GNU OpenMP's threads do not
+// survive a fork.
+#include <sys/types.h>
+
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace facehex {
+
+struct ChildLimits {
+  double seconds = 0;            // wall time after which the parent kills the child; 0: none
+  std::size_t memory_bytes = 0;  // address space the child may add to what it inherited; 0: no limit
+};
+
+class ChildProcess {
+ public:
+  // Starts body(fd) in a child, fd being the write end of the pipe; the child ends with _exit(0) when body returns
+  // and with _exit(kThrew) if it throws. Throws Error(subject, ...) if no process can be started.
+  static ChildProcess spawn(const std::string& subject, const std::function<void(int fd)>& body,
+                            const ChildLimits& limits = {});
+  static constexpr int kThrew = 4;
+
+  ChildProcess(ChildProcess&& other) noexcept;
+  ChildProcess& operator=(ChildProcess&& other) noexcept;
+  ChildProcess(const ChildProcess&) = delete;
+  ChildProcess& operator=(const ChildProcess&) = delete;
+  ~ChildProcess();  // a child still running is killed and reaped
+
+  pid_t pid() const { return pid_; }  // -1 once reaped
+  int fd() const { return fd_; }      // the read end, -1 once the child closed it
+  // Reads what the child wrote so far (blocks until something comes); false once the pipe is closed.
+  bool read_some();
+  // Reads until the child closes the pipe; kills it when its time is up (timed_out()).
+  void read_all();
+  void kill();
+  void reap();  // closes the pipe and waits for the child to end
+
+  const std::vector<char>& output() const { return output_; }
+  bool timed_out() const { return timed_out_; }
+  bool crashed() const;             // ended by a signal (after reap())
+  std::string signal_name() const;  // of the signal that ended it
+  int exit_code() const;            // -1 if it did not exit normally
+  const ChildLimits& limits() const { return limits_; }
+
+ private:
+  ChildProcess() = default;
+  pid_t pid_ = -1;
+  int fd_ = -1;
+  int status_ = 0;
+  bool timed_out_ = false;
+  double started_ = 0;  // monotonic seconds
+  ChildLimits limits_;
+  std::vector<char> output_;
+};
+
+// Writes all bytes to the parent, or ends the child if the parent is gone.
+void write_to_parent(int fd, const void* data, std::size_t bytes);
+
+// Runs work() in a child and returns its result. A facehex::Error thrown there is thrown here as it was; running
+// out of its memory budget, crashing, or running out of time become an Error(subject, ...) that names `what` ("reading
+// VTK XML") and the limit.
+std::vector<char> compute_in_child(const std::string& subject, const std::string& what,
+                                   const std::function<std::vector<char>()>& work, const ChildLimits& limits);
+
+}  // namespace facehex
