@@ -1,6 +1,7 @@
 #include "app/cli_args.h"
 
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <sstream>
 
@@ -98,8 +99,25 @@ double Args::number(const std::string& name) const {
 
 int Args::integer(const std::string& name) const {
   const double x = number(name);
-  if (x != static_cast<int>(x)) throw UsageError("facehex " + command_, "--" + name + " expects an integer");
+  if (!(std::abs(x) < 2147483647.0) || x != std::floor(x))
+    throw UsageError("facehex " + command_, "--" + name + " expects an integer, got '" + get(name) + "'");
   return static_cast<int>(x);
+}
+
+double Args::number(const std::string& name, double least, double most) const {
+  const double x = number(name);
+  if (!(x >= least && x <= most)) {
+    std::ostringstream range;
+    range << least << " to " << most;
+    throw UsageError("facehex " + command_,
+                     "--" + name + " expects a number from " + range.str() + ", got '" + get(name) + "'");
+  }
+  return x;
+}
+
+int Args::integer(const std::string& name, int least, int most) const {
+  number(name, least, most);
+  return integer(name);
 }
 
 }  // namespace facehex::cli

@@ -38,6 +38,9 @@ class Args {
   std::string get(const std::string& name) const;
   double number(const std::string& name) const;
   int integer(const std::string& name) const;
+  // The same, checked to lie in [least, most] (options that scale the work: a typo must not start a run for days).
+  double number(const std::string& name, double least, double most) const;
+  int integer(const std::string& name, int least, int most) const;
   const std::vector<std::string>& rest() const { return rest_; }
 
  private:

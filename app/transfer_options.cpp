@@ -59,7 +59,7 @@ void add_transfer_options(Args& args) {
 
 HarmonicFieldsOptions field_options(const Args& args) {
   HarmonicFieldsOptions o;
-  o.orthogonality_iterations = args.integer("iterations");
+  o.orthogonality_iterations = args.integer("iterations", 0, 100);
   const std::string order = args.get("order");
   if (order.size() != 3 || std::set<char>(order.begin(), order.end()) != std::set<char>{'u', 'v', 'w'})
     throw UsageError("--order", "expects a permutation of u, v, w such as wuv, got '" + order + "'");
@@ -73,7 +73,7 @@ SegmentOptions segment_options(const Args& args) {
   if (args.has("bone")) o.bone_threshold = args.number("bone");
   o.orientation.anterior = args.get("anterior");
   o.orientation.superior = args.get("superior");
-  o.tets.target_edge_length = args.number("edge-length");
+  o.tets.target_edge_length = args.number("edge-length", kLeastEdgeLength, kMostEdgeLength);
   const auto finite = [&](const std::string& name) {
     const double x = args.number(name);
     if (!std::isfinite(x))

@@ -8,6 +8,9 @@
 
 namespace facehex::cli {
 
+// The range --edge-length accepts (mm): below it a head has tens of millions of tets, above it no face is left.
+constexpr double kLeastEdgeLength = 0.5, kMostEdgeLength = 50;
+
 // --iterations, --order.
 void add_field_options(Args& args);
 // --skin, --bone, --anterior, --superior, the cut planes and their automatic distances.

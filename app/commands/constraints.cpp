@@ -28,9 +28,9 @@ int cmd_constraints(const Argv& argv) {
   const Eigen::VectorXi mask = side_mask_of(mesh);
   FaceLandmarks landmarks;
   const std::map<std::string, double> values =
-      args.has("own-values") ? own_feature_values(mesh, args.number("band"), path)
+      args.has("own-values") ? own_feature_values(mesh, args.number("band", 0.01, 50), path)
                              : feature_values(read_constraint_set(find_standard(args.get("standard")).constraints));
-  const ConstraintSet set = automatic_constraints(mesh.V, mask, values, args.number("band"), &landmarks);
+  const ConstraintSet set = automatic_constraints(mesh.V, mask, values, args.number("band", 0.01, 50), &landmarks);
   write_constraint_set(args.get("output"), set);
   std::cout << "mid-sagittal plane x = " << landmarks.x_mid << " mm\n";
   std::cout << landmarks_text(landmarks, "");

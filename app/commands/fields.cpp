@@ -27,7 +27,8 @@ int cmd_fields(const Argv& argv) {
   if (!args.has("output")) throw UsageError("facehex fields", "missing -o OUTPUT");
   const std::string path = args.get("MODEL");
   MeshReadOptions ro;
-  ro.target_edge_length = args.number("edge-length");
+  ro.target_edge_length = args.number("edge-length", kLeastEdgeLength, kMostEdgeLength);
+  const HarmonicFieldsOptions field_opts = field_options(args);
   VolumeMesh mesh = read_volume_mesh(path, ro);
   TetDomain domain;
   if (mesh.is_tet_mesh()) {
@@ -42,7 +43,7 @@ int cmd_fields(const Argv& argv) {
   TerminalProgress progress;
   const ModelParameterization p = parameterize_model(domain.V, domain.T, domain.side_mask, set,
                                                      args.has("constraints") ? args.get("constraints") : path,
-                                                     field_options(args), progress.callback());
+                                                     field_opts, progress.callback());
   progress.finish();
   VolumeMesh out = parameterized_tet_mesh(p, &mesh);
   if (domain.side_mask.size() == p.V.rows()) out.point_data[kSideMaskArray] = domain.side_mask.cast<double>();

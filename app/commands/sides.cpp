@@ -19,9 +19,10 @@ int cmd_sides(const Argv& argv) {
   args.option("max-layers", "most element layers through the thickness", "8");
   if (!args.parse(argv)) return 0;
   if (!args.has("output")) throw UsageError("facehex sides", "missing -o OUTPUT");
+  const int max_layers = args.integer("max-layers", 1, 64);
   VolumeMesh m = read_volume_mesh(args.get("MESH"));
   ShellFrame frame = default_shell_frame(m.V);
-  frame.max_layers = args.integer("max-layers");
+  frame.max_layers = max_layers;
   const ShellSides sides = label_shell_sides(m, frame);
   for (int s = 0; s < kNumSides; ++s)
     if (sides.faces_per_side[s] == 0)

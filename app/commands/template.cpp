@@ -52,8 +52,8 @@ int cmd_template(const Argv& argv) {
   const VolumeMesh& reference = reference_setup.mesh;
   const ConstraintSet& reference_set = reference_setup.constraints;
   TemplateOptions options;
-  options.layers = args.integer("layers");
-  options.cell_size = args.number("cell-size");
+  options.layers = args.integer("layers", 1, 32);
+  options.cell_size = args.number("cell-size", 0.5, 50);
   options.cut_sharp_corners = !args.has("keep-sharp-corners");
   TransferOptions transfer;
   transfer.fields = field_options(args);

@@ -99,7 +99,7 @@ MetaImageHeader check_metaimage_header(const std::string& path) {
   const std::string data_file = field("ElementDataFile");
   const bool compressed = h.fields.count("CompressedData") && (h.fields["CompressedData"] == "True");
   const bool list = data_file.rfind("LIST", 0) == 0 || data_file.find('%') != std::string::npos;
-  if (compressed || list || h.fields.count("HeaderSize")) return h;  // sizes checked by the reader (in a child)
+  if (list || h.fields.count("HeaderSize")) return h;  // sizes checked by the reader (in a child)
   long long present = 0;
   if (data_file == "LOCAL") {
     present = static_cast<long long>(fs::file_size(path)) - h.header_bytes;
@@ -109,6 +109,15 @@ MetaImageHeader check_metaimage_header(const std::string& path) {
     const auto size = fs::file_size(data, ec);
     if (ec) throw Error(path, "its data file '" + data.string() + "' cannot be read: " + ec.message());
     present = static_cast<long long>(size);
+  }
+  if (compressed) {
+    const auto declared = h.fields.find("CompressedDataSize");
+    if (declared == h.fields.end())
+      throw Error(path, "compressed data without a CompressedDataSize: its completeness cannot be checked");
+    if (numbers(path, "CompressedDataSize", declared->second, 1)[0] != static_cast<double>(present))
+      throw Error(path, "CompressedDataSize " + declared->second + " does not match the " + std::to_string(present) +
+                            " bytes of compressed data present (a truncated or mismatched file)");
+    return h;
   }
   if (present != bytes)
     throw Error(path, "DimSize " + field("DimSize") + " of " + field("ElementType") + " needs " +

@@ -48,6 +48,41 @@ FaceKey sorted_key(int a, int b, int c) {
   return k;
 }
 
+// TetGen's tets per volume of a regular tet of the target edge: TetGen's quality meshes of segmented faces.
+constexpr double kTetsPerRegularVolume = 1.8;
+// Memory of the whole pipeline per tet (TetGen, the Laplacian's factorization, the locator, the outputs), with margin.
+constexpr double kPipelineBytesPerTet = 3 * 1024;
+
+double enclosed_volume(const SurfaceMesh& s) {
+  double six_v = 0;
+  for (int f = 0; f < s.F.rows(); ++f) {
+    const Eigen::Vector3d a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
+    six_v += a.dot(b.cross(c));
+  }
+  return std::abs(six_v) / 6;
+}
+
+std::string count_text(double n) {
+  char text[32];
+  std::snprintf(text, sizeof text, n >= 1e6 ? "%.1f million" : "%.0f", n >= 1e6 ? n / 1e6 : n);
+  return text;
+}
+
+// A surface that would make more tets than the budget is refused up front, with the estimate, instead of failing after
+// minutes (or exhausting the machine).
+void check_tet_budget(const SurfaceMesh& surface, const TetrahedralizeOptions& options) {
+  const double budget = options.max_tets > 0 ? options.max_tets : max_tets_for_memory();
+  const double predicted = predicted_tet_count(enclosed_volume(surface), options);
+  if (predicted > budget) {
+    char edge[32];
+    std::snprintf(edge, sizeof edge, "%.3g", options.target_edge_length);
+    throw Error("tetgen", "at an edge length of " + std::string(edge) + " mm the model would have about " +
+                              count_text(predicted) + " tets, more than " +
+                              (options.max_tets > 0 ? "the limit of " : "this machine's memory allows, about ") +
+                              count_text(budget) + "; raise --edge-length");
+  }
+}
+
 // Every undirected edge must be used by exactly two faces, once in each direction: closed, manifold along edges and
 // consistently oriented (TetGen itself would mesh an open surface's convex hull or fail obscurely).
 void check_closed(const SurfaceMesh& s) {
@@ -241,9 +276,21 @@ RawMesh run_tetgen(tetgenio& in, const TetrahedralizeOptions& options) {
 
 }  // namespace
 
+double predicted_tet_count(double volume, const TetrahedralizeOptions& options) {
+  const double regular = std::pow(options.target_edge_length, 3) / (6.0 * std::sqrt(2.0));
+  return kTetsPerRegularVolume * volume / regular;
+}
+
+double max_tets_for_memory() {
+  const double bytes = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGESIZE));
+  return bytes / kPipelineBytesPerTet;
+}
+
 TetrahedralizeResult tetrahedralize(const SurfaceMesh& surface, const TetrahedralizeOptions& options) {
-  if (!(options.target_edge_length > 0)) throw Error("tetgen", "the target edge length must be positive");
+  if (!(options.target_edge_length > 0) || !std::isfinite(options.target_edge_length))
+    throw Error("tetgen", "the target edge length must be a positive number of millimetres");
   check_closed(surface);
+  check_tet_budget(surface, options);
 
   // Only the vertices the faces use go to TetGen: an unused one would become an isolated interior/exterior point.
   std::vector<int> to_tetgen(surface.V.rows(), -1);

@@ -12,7 +12,16 @@ struct TetrahedralizeOptions {
   double max_radius_edge_ratio = 1.5;  // TetGen -q quality bound
   double min_dihedral_deg = 10.0;      // TetGen -q/… second bound
   bool preserve_surface = false;       // TetGen -Y: no Steiner points on the boundary
+  // Refuse, before TetGen starts, a surface whose predicted tet count (predicted_tet_count) is above this; 0: the
+  // count this machine's memory can carry through the whole pipeline (max_tets_for_memory).
+  double max_tets = 0;
 };
+
+// About how many tets TetGen makes in `volume` mm^3 at these options (quality meshes pack fewer, larger-than-ideal
+// tets near the bound, and more near the surface; the factor is calibrated on segmented faces).
+double predicted_tet_count(double volume, const TetrahedralizeOptions& options);
+// How many tets a transfer can handle with this machine's physical memory.
+double max_tets_for_memory();
 
 struct TetrahedralizeResult {
   VolumeMesh mesh;                  // positively oriented tets (see mesh.h)
@@ -29,7 +38,8 @@ class SelfIntersectingSurface : public Error {
 
 // Tetrahedralizes a closed, manifold, outward-oriented triangle surface. Face labels of the surface (if any,
 // values >= 1) are carried to the boundary triangles of the result. Throws facehex::Error("tetgen", ...) when the
-// surface is not closed or TetGen fails, SelfIntersectingSurface when it intersects itself.
+// surface is not closed, would give more tets than options.max_tets, or TetGen fails, SelfIntersectingSurface when it
+// intersects itself.
 TetrahedralizeResult tetrahedralize(const SurfaceMesh& surface, const TetrahedralizeOptions& options = {});
 
 // As tetrahedralize(), for a surface whose labels are Side + 1 per face (0: on no side, sides.h): also sets the

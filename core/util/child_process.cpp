@@ -1,5 +1,6 @@
 #include "core/util/child_process.h"
 
+#include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
 #include <sys/prctl.h>
@@ -190,6 +191,10 @@ std::vector<char> compute_in_child(const std::string& subject, const std::string
   ChildProcess child = ChildProcess::spawn(
       subject,
       [&](int fd) {
+        // Third-party chatter (MetaIO prints its complaints to stderr) would come before the one-line error the
+        // parent reports: the child's result and error go through the pipe only.
+        const int devnull = ::open("/dev/null", O_WRONLY);
+        if (devnull >= 0) ::dup2(devnull, STDOUT_FILENO), ::dup2(devnull, STDERR_FILENO);
         try {
           send(fd, kResult, work());
         } catch (const Error& e) {

@@ -121,6 +121,13 @@ TEST_F(Cli, UsageErrorsExitTwoAndWriteNothing) {
       {"convert " + tets + " " + path("a.vtu") + " --edge-length two", "--edge-length expects a number"},
       {"run " + tets, "missing -o"},
       {"map --patient " + tets + " -o " + path("a.vtu") + " --method other", "--method: expects harmonic"},
+      // Options that scale the work have a range: a typo must not start a run for days or exhaust the machine.
+      {"convert " + tets + " " + path("a.vtu") + " --edge-length 0.05",
+       "--edge-length expects a number from 0.5 to 50"},
+      {"segment " + tets + " -o " + path("a.vtu") + " --edge-length inf", "--edge-length expects a number from"},
+      {"fields " + tets + " -o " + path("a.vtu") + " --iterations 1e9", "--iterations expects a number from 0 to 100"},
+      {"sides " + tets + " -o " + path("a.vtu") + " --max-layers 1e12", "--max-layers expects a number from 1 to 64"},
+      {"fields " + tets + " -o " + path("a.vtu") + " --iterations 2.5", "--iterations expects an integer"},
   };
   for (const auto& [args, needle] : cases) {
     const Result r = run(args);

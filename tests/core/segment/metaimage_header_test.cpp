@@ -98,6 +98,14 @@ TEST_F(MetaImageHeaderTest, ATruncatedDataFileIsRefused) {
   EXPECT_NE(error_of(path).find("cannot be read"), std::string::npos) << error_of(path);
 }
 
+TEST_F(MetaImageHeaderTest, CompressedDataMustHaveItsDeclaredSize) {
+  const std::string path = (dir_ / "c.mha").string();
+  std::ofstream(path) << "ObjectType = Image\nNDims = 3\nDimSize = 4 4 4\nElementType = MET_SHORT\n"
+                         "CompressedData = True\nCompressedDataSize = 100\nElementDataFile = LOCAL\n0123456789";
+  EXPECT_NE(error_of(path).find("CompressedDataSize 100 does not match the 10 bytes"), std::string::npos)
+      << error_of(path);
+}
+
 TEST_F(MetaImageHeaderTest, TextThatIsNotAHeaderIsRefused) {
   const std::string path = (dir_ / "text.mhd").string();
   std::ofstream(path) << "this is not\na header\n";

@@ -209,5 +209,32 @@ TEST(Tetrahedralize, RejectsBadLabelCount) {
   expect_tetgen_error(s, "labels");
 }
 
+// The prediction is within a factor of two of what TetGen makes, and a surface over the budget is refused before
+// TetGen starts, with the estimate and the option that changes it.
+TEST(Tetrahedralize, ATetCountOverTheBudgetIsRefusedUpFront) {
+  const SurfaceMesh s = box(40, 30, 20);
+  TetrahedralizeOptions opt;
+  opt.target_edge_length = 2.0;
+  const double predicted = predicted_tet_count(40.0 * 30 * 20, opt);
+  const int made = tetrahedralize(s, opt).mesh.num_cells();
+  EXPECT_GT(predicted, made / 2.0);
+  EXPECT_LT(predicted, made * 2.0);
+  EXPECT_GT(max_tets_for_memory(), 1e5);
+
+  opt.max_tets = predicted / 2;
+  try {
+    tetrahedralize(s, opt);
+    FAIL() << "over the budget, yet meshed";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("at an edge length of 2 mm the model would have about"), std::string::npos) << m;
+    EXPECT_NE(m.find("raise --edge-length"), std::string::npos) << m;
+  }
+  opt.target_edge_length = 0.02;  // a typo of 2: refused by the machine's own budget
+  opt.max_tets = 0;
+  EXPECT_THROW(tetrahedralize(s, opt), Error);
+  expect_no_process_left();
+}
+
 }  // namespace
 }  // namespace facehex
