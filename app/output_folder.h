@@ -4,7 +4,9 @@
 // no empty or half-filled folder behind. A folder that existed before is never removed (each file in it is written
 // atomically, core/atomic_file.h).
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 namespace facehex::cli {
 
@@ -20,6 +22,13 @@ class OutputFolder {
   const std::filesystem::path& path() const { return folder_; }
   // The command succeeded: the folder stays.
   void keep() { created_.clear(); }
+
+  // Removes the files of these names that an earlier command left here and this one will not write again (an
+  // export format not asked for this time), so that the folder holds one run's outputs only. Returns the removed.
+  std::vector<std::string> remove_stale(const std::vector<std::string>& names) const;
+  // What a finished command wrote, for its report (written last): {"complete": true, "files": [{"name", "bytes",
+  // "sha256"}]}; a folder whose report lacks it, or whose files do not match it, is not a finished run's.
+  nlohmann::json completion_record(const std::vector<std::string>& names) const;
 
  private:
   std::filesystem::path folder_;

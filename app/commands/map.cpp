@@ -1,3 +1,4 @@
+#include <filesystem>
 #include <iostream>
 
 #include "app/cli_args.h"
@@ -12,6 +13,22 @@
 #include "core/workflow/transfer.h"
 
 namespace facehex::cli {
+namespace {
+
+// The mesh and, with --report, its report: both or neither (a report that cannot be written takes the mesh back).
+void write_with_report(const Args& args, const VolumeMesh& hex, const nlohmann::json& report) {
+  write_volume_mesh(args.get("output"), hex, write_options(args));
+  if (!args.has("report")) return;
+  try {
+    write_json(args.get("report"), report);
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove(args.get("output"), ignored);
+    throw;
+  }
+}
+
+}  // namespace
 
 int cmd_map(const Argv& argv) {
   Args args("map",
@@ -33,9 +50,7 @@ int cmd_map(const Argv& argv) {
     const PatientTetModel patient = read_patient_model(args.get("patient"), segment_options(args));
     MatchingOutputs out =
         execute_mesh_matching(read_volume_mesh(standard.mesh), standard.mesh, patient.mesh, args.get("patient"));
-    const VolumeMesh hex = with_quality(out.result.hex);
-    write_volume_mesh(args.get("output"), hex, write_options(args));
-    if (args.has("report")) write_json(args.get("report"), mesh_matching_report(out));
+    write_with_report(args, with_quality(out.result.hex), mesh_matching_report(out));
     std::cout << mesh_matching_summary_text(out) << "wrote " << args.get("output") << "\n";
     return exit_code(out.metrics.quality.summary);
   }
@@ -44,10 +59,8 @@ int cmd_map(const Argv& argv) {
   const CliTransfer t =
       cli_transfer(args, args.get("patient"), args.get("patient-constraints"), "--patient-constraints");
   const TransferResult& r = t.result;
-  write_volume_mesh(args.get("output"), r.patient_hex, write_options(args));
-  if (args.has("report"))
-    write_json(args.get("report"),
-               run_report(r.run, r.standard_quality, r.plain_mapping_quality, r.patient_quality, r.distance));
+  write_with_report(args, r.patient_hex,
+                    run_report(r.run, r.standard_quality, r.plain_mapping_quality, r.patient_quality, r.distance));
   std::cout << run_summary_text(r.run, r.standard_quality, r.plain_mapping_quality, r.patient_quality, r.distance)
             << "wrote " << args.get("output") << "\n";
   return exit_code(r.patient_quality.summary);

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 
@@ -39,6 +40,13 @@ int cmd_run(const Argv& argv) {
   check_transfer_options(args);  // option errors before any folder
   OutputFolder folder(args.get("output"));
   const fs::path& out_dir = folder.path();
+  // A report only once the run is complete; the exports of an earlier run that this one does not make are removed.
+  std::vector<std::string> stale = {"report.json"};
+  for (const char* ext : {"feb", "inp", "msh", "vtk"})
+    if (std::find(exports.begin(), exports.end(), ext) == exports.end())
+      stale.push_back(std::string("patient_hex.") + ext);
+  for (const std::string& name : folder.remove_stale(stale))
+    if (name != "report.json") std::cerr << "removed " << (out_dir / name).string() << " of an earlier run\n";
 
   const CliTransfer t = cli_transfer(args, input, constraints, "--constraints");
   const TransferResult& r = t.result;
@@ -46,18 +54,21 @@ int cmd_run(const Argv& argv) {
                     parameterized_model_writing());
   write_volume_mesh((out_dir / "standard_hex.vtu").string(), standard_with_fields(t.standard.mesh, r.run.standard));
   write_volume_mesh((out_dir / "patient_hex.vtu").string(), r.patient_hex);
-  nlohmann::json report = run_report(r.run, r.standard_quality, r.plain_mapping_quality, r.patient_quality, r.distance);
-  report["inputs"] = {
-      {"patient", input}, {"patient_constraints", t.patient.constraints_path}, {"standard", t.standard.name}};
-  write_json((out_dir / "report.json").string(), report);
-  std::cout << run_summary_text(r.run, r.standard_quality, r.plain_mapping_quality, r.patient_quality, r.distance)
-            << "outputs in " << out_dir.string()
-            << "/: patient_model.vtu, standard_hex.vtu, patient_hex.vtu, report.json\n";
+  std::vector<std::string> written = {"patient_model.vtu", "standard_hex.vtu", "patient_hex.vtu"};
   for (const std::string& ext : exports) {
     const std::string path = (out_dir / ("patient_hex." + ext)).string();
     write_volume_mesh(path, r.patient_hex, write_options(args));
-    std::cout << "exported " << path << "\n";
+    written.push_back("patient_hex." + ext);
   }
+  nlohmann::json report = run_report(r.run, r.standard_quality, r.plain_mapping_quality, r.patient_quality, r.distance);
+  report["inputs"] = {
+      {"patient", input}, {"patient_constraints", t.patient.constraints_path}, {"standard", t.standard.name}};
+  report["outputs"] = folder.completion_record(written);
+  write_json((out_dir / "report.json").string(), report);
+  std::cout << run_summary_text(r.run, r.standard_quality, r.plain_mapping_quality, r.patient_quality, r.distance)
+            << "outputs in " << out_dir.string() << "/: patient_model.vtu, standard_hex.vtu, patient_hex.vtu";
+  for (const std::string& ext : exports) std::cout << ", patient_hex." << ext;
+  std::cout << ", report.json (written last: its \"outputs\" record lists every file with its SHA-256)\n";
   folder.keep();
   const QualitySummary& q = r.patient_quality.summary;
   if (exit_code(q) != 0)

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -26,9 +27,15 @@ struct Result {
 };
 
 // env: assignments put before the command, e.g. "FACEHEX_RESOURCES=/tmp/r".
+Result run_shell(const std::string& command);
+
 Result run(const std::string& args, const std::string& env = "") {
-  const std::string command = env + (env.empty() ? "" : " ") + std::string(FACEHEX_CLI) + " " + args + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
+  return run_shell(env + (env.empty() ? "" : " ") + std::string(FACEHEX_CLI) + " " + args);
+}
+
+// A shell command's output and exit status.
+Result run_shell(const std::string& command) {
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
   std::string out;
   char buffer[4096];
   while (pipe && fgets(buffer, sizeof buffer, pipe)) out += buffer;
@@ -439,6 +446,50 @@ TEST_F(Cli, MapExitsThreeExactlyWhenTheResultHasUnusableCells) {
     exit_three += r.status == 3;
   }
   EXPECT_EQ(exit_three, 1);  // the baseline's folds; the harmonic transfer's result is whole
+}
+
+// A finished run's report is written last and lists every output with its size and SHA-256; a second run into the
+// same folder removes the exports of the first that it does not make, so the folder holds one run only.
+TEST_F(Cli, RunWritesItsReportLastWithEveryOutputAndRemovesStaleExports) {
+  write_tiny_models(dir_);
+  const std::string args = "run " + path("box.vtu") + " --standard " + path("std.vtu") + " -o " + path("out");
+  Result r = run(args + " --export inp,feb");
+  ASSERT_EQ(r.status, 0) << r.output;
+  nlohmann::json report;
+  std::ifstream(path("out/report.json")) >> report;
+  const auto& outputs = report["outputs"];
+  EXPECT_TRUE(outputs["complete"].get<bool>());
+  std::set<std::string> names;
+  for (const auto& f : outputs["files"]) {
+    const std::string name = f["name"];
+    names.insert(name);
+    EXPECT_EQ(f["bytes"].get<uintmax_t>(), fs::file_size(path("out/" + name))) << name;
+    const Result sum = run_shell("sha256sum " + path("out/" + name));
+    EXPECT_EQ(sum.output.substr(0, 64), f["sha256"].get<std::string>()) << name;
+  }
+  EXPECT_EQ(names, (std::set<std::string>{"patient_model.vtu", "standard_hex.vtu", "patient_hex.vtu", "patient_hex.inp",
+                                          "patient_hex.feb"}));
+
+  r = run(args);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("removed " + path("out/patient_hex.inp") + " of an earlier run"), std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(path("out/patient_hex.inp")));
+  EXPECT_FALSE(fs::exists(path("out/patient_hex.feb")));
+  std::ifstream(path("out/report.json")) >> report;
+  EXPECT_EQ(report["outputs"]["files"].size(), 3u);
+}
+
+// map writes its mesh and its report, or neither: a report that cannot be written takes the mesh back.
+TEST_F(Cli, MapLeavesNoMeshWhenItsReportCannotBeWritten) {
+  write_tiny_models(dir_);
+  for (const std::string method : {"harmonic", "mesh-matching"}) {
+    const Result r = run("map --method " + method + " --patient " + path("box.vtu") + " --standard " + path("std.vtu") +
+                         " -o " + path("hex.vtu") + " --report " + path("missing/folder/r.json"));
+    EXPECT_EQ(r.status, 1) << method << ": " << r.output;
+    EXPECT_NE(r.output.find("missing/folder/r.json"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(path("hex.vtu"))) << method;
+  }
 }
 
 // A patient whose constraints cannot be placed (no side labels, no file): one line naming the model and the option of
