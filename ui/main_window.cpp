@@ -6,6 +6,7 @@
 #include <QDragEnterEvent>
 #include <QFileDialog>
 #include <QFileInfo>
+#include <QGuiApplication>
 #include <QLabel>
 #include <QMenuBar>
 #include <QMessageBox>
@@ -13,11 +14,13 @@
 #include <QPainter>
 #include <QProgressBar>
 #include <QPushButton>
+#include <QScreen>
 #include <QSettings>
 #include <QSplitter>
 #include <QStatusBar>
 #include <QTabWidget>
 #include <QToolBar>
+#include <QUndoGroup>
 #include <QUndoStack>
 
 #include "core/io/mesh_io.h"
@@ -101,7 +104,12 @@ MainWindow::MainWindow(QWidget* parent)
   connect(session_, &SessionModel::constraintsChanged, this, &MainWindow::updateActions);
   updateSizes();
   updateActions();
-  resize(1500, 950);
+  // As large as the design's layout where the screen has room, else the screen's free area (a laptop's 1366 x 768):
+  // every dock and the progress bar stay on the screen.
+  QSize size(1500, 950);
+  if (const QScreen* screen = QGuiApplication::primaryScreen())
+    size = size.boundedTo(screen->availableGeometry().size());
+  resize(size);
 }
 
 MainWindow::~MainWindow() = default;
@@ -140,10 +148,17 @@ void MainWindow::createActions() {
   export_ = action(tr("&Export hex mesh..."), QKeySequence(tr("Ctrl+E")), &MainWindow::exportDialog);
   screenshot_ = action(tr("Save screens&hot..."), QKeySequence(), &MainWindow::screenshotDialog);
   quit_ = action(tr("&Quit"), QKeySequence::Quit, &QWidget::close);
-  undo_ = session_->undoStack()->createUndoAction(this, tr("&Undo"));
+  // Undo and redo through a group whose stack is taken away while a job runs: an edit then would be thrown away
+  // with the job's result (its inputs changed), so none can be made.
+  undoGroup_ = new QUndoGroup(this);
+  undoGroup_->addStack(session_->undoStack());
+  undoGroup_->setActiveStack(session_->undoStack());
+  undo_ = undoGroup_->createUndoAction(this, tr("&Undo"));
+  undo_->setObjectName("Undo");
   undo_->setShortcut(QKeySequence::Undo);
   undo_->setIconText(tr("Undo"));  // the toolbar keeps it short; the menu and tooltip say what is undone
-  redo_ = session_->undoStack()->createRedoAction(this, tr("&Redo"));
+  redo_ = undoGroup_->createRedoAction(this, tr("&Redo"));
+  redo_->setObjectName("Redo");
   redo_->setShortcut(QKeySequence::Redo);
   redo_->setIconText(tr("Redo"));
   computeFields_ = action(tr("Compute &fields"), QKeySequence(tr("F5")), [this] { controller_->computeFields(); });
@@ -274,9 +289,13 @@ void MainWindow::updateActions() {
   for (QAction* a : {openPatient_, openDicom_, openDemo_, openStandardFile_}) a->setEnabled(!busy);
   resegment_->setEnabled(!busy && session_->hasModel(Role::Patient) && session_->model(Role::Patient).segmentation);
   standardChoice_->setEnabled(!busy);
-  for (QAction* a : {loadConstraints_, mergeConstraints_, saveConstraints_}) a->setEnabled(active);
-  features_->setEnabled(active && session_->model(session_->activeRole()).domain.side_mask.size() > 0);
-  recover_->setEnabled(active && ConstraintAutosave::exists(session_->activeRole()));
+  // While a job runs the constraints stay as the job read them (see undoGroup_).
+  constraintPanel_->setEnabled(!busy);
+  undoGroup_->setActiveStack(busy ? nullptr : session_->undoStack());
+  for (QAction* a : {loadConstraints_, mergeConstraints_}) a->setEnabled(active && !busy);
+  saveConstraints_->setEnabled(active);
+  features_->setEnabled(!busy && active && session_->model(session_->activeRole()).domain.side_mask.size() > 0);
+  recover_->setEnabled(!busy && active && ConstraintAutosave::exists(session_->activeRole()));
   computeFields_->setEnabled(!busy && (session_->hasModel(Role::Standard) || session_->hasModel(Role::Patient)));
   transfer_->setEnabled(!busy && both);
   export_->setEnabled(!busy && session_->transfer());

@@ -14,6 +14,8 @@ class QMenu;
 class QProgressBar;
 class QPushButton;
 
+class QUndoGroup;
+
 namespace facehex::gui {
 
 class ConstraintAutosave;
@@ -84,6 +86,7 @@ class MainWindow : public QMainWindow {
   QAction *openPatient_, *resegment_, *openDicom_, *openDemo_, *openStandardFile_, *loadConstraints_,
       *mergeConstraints_, *saveConstraints_, *recover_, *export_, *screenshot_, *quit_, *undo_, *redo_, *computeFields_,
       *transfer_, *cancel_, *allowInverted_, *shapeRelaxation_, *features_, *about_;
+  QUndoGroup* undoGroup_ = nullptr;
   QMenu* recentMenu_ = nullptr;
   QComboBox* standardChoice_ = nullptr;
   QLabel* sizes_ = nullptr;

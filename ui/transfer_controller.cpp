@@ -234,6 +234,9 @@ bool TransferController::runTransfer() {
       s.setParameterization(Role::Standard, std::move(result->run.standard));
       s.setParameterization(Role::Patient, std::move(result->run.patient));
       s.setTransfer(std::move(*result));
+      DisplaySettings d = s.display();  // the result is what the user waited for: shown at once
+      d.showHex = true;
+      s.setDisplay(d);
       return text;
     };
   });

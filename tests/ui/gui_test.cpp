@@ -476,12 +476,24 @@ void GuiTest::scriptedFieldStatesShowTheModels() {
 
 void GuiTest::transfersExportsAndReloads() {
   QVERIFY2(openBoxes(), qPrintable(error_));
+  session()->removeConstraint(Role::Patient, 0);  // an edit to undo, and put back
+  session()->undoStack()->undo();
+  auto* undo = window_->findChild<QAction*>("Undo");
+  QVERIFY(undo && !undo->isEnabled() && window_->findChild<QAction*>("Redo")->isEnabled());
   QVERIFY(window_->controller()->runTransfer());
   QVERIFY(window_->controller()->busy());
+  // While it runs, the constraints stay as the transfer read them: no panel, no undo or redo, no features.
+  QVERIFY(!window_->findChild<QWidget*>("constraintPanel")->isEnabled());
+  QVERIFY(!window_->findChild<QAction*>("Redo")->isEnabled());
+  QVERIFY(!window_->findChild<QAction*>("Facial_features")->isEnabled());
   QVERIFY(window_->controller()->waitUntilIdle());
   QVERIFY2(error_.isEmpty(), qPrintable(error_));
+  QVERIFY(window_->findChild<QWidget*>("constraintPanel")->isEnabled());
+  QVERIFY(window_->findChild<QAction*>("Redo")->isEnabled());
   const TransferResult* r = session()->transfer();
   QVERIFY(r);
+  QVERIFY(session()->display().showHex);  // the result is shown at once
+  QCOMPARE(window_->view(Role::Patient)->drawnHexCells(), r->patient_hex.num_cells());
   QCOMPARE(r->patient_hex.num_cells(), session()->model(Role::Standard).mesh.num_cells());
 
   const QString path = dir_.filePath("patient_hex.vtu");
