@@ -256,7 +256,7 @@ void ConstraintPanel::refreshList() {
   table_->setRowCount(rows);
   for (int i = 0; i < rows; ++i) {
     const Constraint& c = session_->constraints(r).set.constraints[i];
-    auto* shown = new QTableWidgetItem(swatch(constraintColour(i)), "");
+    auto* shown = new QTableWidgetItem(swatch(constraintColour(c)), "");
     shown->setFlags(Qt::ItemIsEnabled | Qt::ItemIsUserCheckable | Qt::ItemIsSelectable);
     shown->setCheckState(session_->constraints(r).visible[i] ? Qt::Checked : Qt::Unchecked);
     table_->setItem(i, kShown, shown);

@@ -504,7 +504,7 @@ void ModelView::updateConstraints() {
     const ConstraintList& list = m.constraints;
     for (size_t i = 0; i < list.set.constraints.size(); ++i) {
       if (!list.visible[i]) continue;
-      const QColor colour = constraintColour(static_cast<int>(i));
+      const QColor colour = constraintColour(list.set.constraints[i]);
       const std::array<unsigned char, 3> painted = rgb(tint(colour));
       for (int v : session_->constraintVertices(role_, static_cast<int>(i))) {
         if (v < surfaceVertices && m.boundary[v])

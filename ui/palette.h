@@ -2,10 +2,13 @@
 // The colours the views and the widgets share, so a constraint's swatch in the list matches its vertices in 3D.
 #include <QColor>
 
+#include "core/fields/constraint_set.h"
+
 namespace facehex::gui {
 
-// A distinct colour per constraint (index into the list), cycling through a qualitative palette.
-QColor constraintColour(int index);
+// A constraint's colour, from what it is, not where it stands in the list (deleting or adding one recolours no
+// other): a side constraint by its side, an automatic feature by its feature, any other by its name.
+QColor constraintColour(const Constraint& constraint);
 // The colour of a field's gradient glyphs: u red, v green, w blue (the x, y, z convention of 3D axes).
 QColor fieldColour(int field);
 // The plane selection preview.

@@ -20,6 +20,7 @@
 #include <QStandardPaths>
 #include <QStatusBar>
 #include <QSurfaceFormat>
+#include <QTableWidget>
 #include <QTemporaryDir>
 #include <QTest>
 #include <QUndoStack>
@@ -220,6 +221,22 @@ void GuiTest::undoAndRedoAConstraintEdit() {
   QCOMPARE(constraintCount(), n - 1);
   undo->redo();
   QCOMPARE(constraintCount(), n);
+  // Colours follow the constraint, not its row: deleting the first recolours none of the others.
+  auto* table = window_->findChild<QTableWidget*>("constraintTable");
+  auto swatches = [&] {
+    std::map<std::string, QRgb> colours;
+    for (int row = 0; row < table->rowCount(); ++row)
+      colours[session()->constraints(Role::Patient).set.constraints.at(row).name] =
+          table->item(row, 0)->icon().pixmap(8, 8).toImage().pixel(4, 4);
+    return colours;
+  };
+  const std::map<std::string, QRgb> before = swatches();
+  QCOMPARE(before.size(), size_t(n));  // the names are distinct
+  session()->removeConstraint(Role::Patient, 0);
+  const std::map<std::string, QRgb> after = swatches();
+  QCOMPARE(after.size(), size_t(n - 1));
+  for (const auto& [name, colour] : after) QVERIFY2(before.at(name) == colour, name.c_str());
+  session()->undoStack()->undo();
   session()->removeConstraint(Role::Patient, last);
   QCOMPARE(constraintCount(), n - 1);
   // Every edit was autosaved.
