@@ -605,6 +605,13 @@ void GuiTest::badFilesGiveTheCoreMessageAndTheAppKeepsRunning() {
   QCOMPARE(takeError(), QString::fromStdString(cliMessage));
   QCOMPARE(session()->model(Role::Patient).mesh.num_vertices(), vertices);  // the old patient stays
 
+  // A tet model is a patient, not a standard: refused with the reason, the standard stays.
+  const int standardCells = session()->model(Role::Standard).mesh.num_cells();
+  QVERIFY(window_->controller()->openStandard(QString::fromStdString(default_patient().mesh)));
+  QVERIFY(window_->controller()->waitUntilIdle());
+  QVERIFY(takeError().contains("has no hexahedra: a standard is a hex-dominant mesh"));
+  QCOMPARE(session()->model(Role::Standard).mesh.num_cells(), standardCells);
+
   QVERIFY(!window_->controller()->loadConstraints(Role::Patient, garbage, false));
   QVERIFY(takeError().startsWith(garbage));
   QVERIFY(window_->controller()->openPatient(dir_.filePath("missing.vtu")));
