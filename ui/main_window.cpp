@@ -1,6 +1,7 @@
 #include "ui/main_window.h"
 
 #include <QAction>
+#include <QCloseEvent>
 #include <QComboBox>
 #include <QDockWidget>
 #include <QDragEnterEvent>
@@ -460,6 +461,17 @@ void MainWindow::rebuildRecentMenu() {
   for (const QString& path : QSettings().value(kRecentKey).toStringList())
     recentMenu_->addAction(QFileInfo(path).fileName(), this, [this, path] { openPatient(path); })->setToolTip(path);
   recentMenu_->setEnabled(!recentMenu_->isEmpty());
+}
+
+void MainWindow::closeEvent(QCloseEvent* event) {
+  if (session_->transfer() && !session_->transferExported() &&
+      QMessageBox::question(this, tr("Quit FaceHex"),
+                            tr("The transferred hex mesh has not been exported and will be lost. Quit anyway?"),
+                            QMessageBox::Yes | QMessageBox::No, QMessageBox::No) != QMessageBox::Yes) {
+    event->ignore();
+    return;
+  }
+  event->accept();
 }
 
 void MainWindow::dragEnterEvent(QDragEnterEvent* event) {

@@ -52,6 +52,8 @@ class MainWindow : public QMainWindow {
  protected:
   void dragEnterEvent(QDragEnterEvent* event) override;
   void dropEvent(QDropEvent* event) override;
+  // Quitting with a hex mesh that was never exported asks first: minutes of work are not lost to a stray Ctrl+Q.
+  void closeEvent(QCloseEvent* event) override;
 
  private:
   void createActions();

@@ -241,6 +241,7 @@ void SessionModel::setParameterization(Role role, ModelParameterization p) {
 
 void SessionModel::setTransfer(TransferResult result) {
   transfer_ = std::move(result);
+  transferExported_ = false;
   emit resultsChanged();
 }
 

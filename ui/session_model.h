@@ -126,6 +126,9 @@ class SessionModel : public QObject {
   void setParameterization(Role role, ModelParameterization p);
   const TransferResult* transfer() const { return transfer_ ? &*transfer_ : nullptr; }
   void setTransfer(TransferResult result);
+  // Whether the present transfer's hex mesh was written to a file (quitting without it asks first).
+  bool transferExported() const { return transferExported_; }
+  void markTransferExported() { transferExported_ = true; }
 
  signals:
   void modelChanged(facehex::gui::Role role);        // a model was loaded: everything about it changed
@@ -152,6 +155,7 @@ class SessionModel : public QObject {
   std::array<std::vector<QString>, 2> constraintProblems_;
   std::array<std::optional<ModelParameterization>, 2> parameterizations_;
   std::optional<TransferResult> transfer_;
+  bool transferExported_ = false;
   Role activeRole_ = Role::Patient;
   PlanePose plane_;
   std::vector<int> planeSelection_;

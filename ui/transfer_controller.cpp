@@ -289,6 +289,7 @@ bool TransferController::exportHex(const QString& path) {
   return reportErrors([&] {
     if (!session_->transfer()) throw Error(path.toStdString(), "no hex mesh to export yet: run the transfer first");
     write_volume_mesh(path.toStdString(), session_->transfer()->patient_hex);
+    session_->markTransferExported();
   });
 }
 

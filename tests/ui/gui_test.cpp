@@ -15,6 +15,7 @@
 #include <QDoubleSpinBox>
 #include <QFile>
 #include <QLineEdit>
+#include <QMessageBox>
 #include <QPushButton>
 #include <QSignalSpy>
 #include <QStandardPaths>
@@ -23,6 +24,7 @@
 #include <QTableWidget>
 #include <QTemporaryDir>
 #include <QTest>
+#include <QTimer>
 #include <QUndoStack>
 
 #include "core/face/automatic_constraints.h"
@@ -513,14 +515,28 @@ void GuiTest::transfersExportsAndReloads() {
   QCOMPARE(window_->view(Role::Patient)->drawnHexCells(), r->patient_hex.num_cells());
   QCOMPARE(r->patient_hex.num_cells(), session()->model(Role::Standard).mesh.num_cells());
 
+  // Quitting before the export asks; No keeps the window (and the result).
+  bool asked = false;
+  QTimer::singleShot(200, [&] {
+    if (auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget())) {
+      asked = box->text().contains("has not been exported");
+      box->button(QMessageBox::No)->click();
+    }
+  });
+  QVERIFY(!window_->close());
+  QVERIFY(asked);
+  QVERIFY(window_->isVisible() && session()->transfer());
+
   const QString path = dir_.filePath("patient_hex.vtu");
   QVERIFY(window_->controller()->exportHex(path));
+  QVERIFY(session()->transferExported());
   const VolumeMesh reloaded = read_volume_mesh(path.toStdString());
   QCOMPARE(reloaded.num_cells(), r->patient_hex.num_cells());
   QCOMPARE(reloaded.num_vertices(), r->patient_hex.num_vertices());
   QCOMPARE(summarize(reloaded, element_quality(reloaded)).inverted, 0);
   QVERIFY(reloaded.cell_data.count("scaled_jacobian"));
   QVERIFY((reloaded.V - r->patient_hex.V).cwiseAbs().maxCoeff() < 1e-9);
+  QVERIFY(window_->close());  // exported: quits without asking
 }
 
 // The same case through both front ends: the bundled patient opened in the application (the demo) and given to
