@@ -124,9 +124,11 @@ TransferRun run_transfer(const VolumeMesh& standard, const TetDomain& domain, co
   return run;
 }
 
-void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::string& patient_source,
-                       const TransferOptions& options, const ProgressCallback& progress) {
-  Stopwatch clock;
+namespace {
+
+// The patient's parameterization is usable for the mapping: folds within the accepted fraction, the same handedness.
+void check_patient_parameterization(const TransferRun& run, const std::string& patient_source,
+                                    const TransferOptions& options) {
   const ParamHealth& health = run.patient.health;
   const int folded = health.inverted + health.degenerate - health.flat_by_constraint;
   if (!options.allow_inverted_parameterization && folded > options.max_inverted_fraction * health.tets)
@@ -135,6 +137,167 @@ void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::
     throw Error(patient_source,
                 "the model frame has the opposite handedness to the standard's (mirrored scan?): swap the u0 and u1 "
                 "sides of its constraint set");
+}
+
+int unusable_after(const UntangleReport& r) { return r.inverted_after + r.degenerate_after; }
+
+// The repair of the cells the mapping and the relaxation left unusable (inverted or flat) or below their bound, in
+// passes that give the untangler more room each time (Repair::run). Its report accumulates in run.untangle.
+class Repair {
+ public:
+  Repair(TransferRun& run, const VolumeMesh& standard, const PatientMap& patient_map, const TransferOptions& options,
+         UntangleOptions shape, const ProgressCallback& progress)
+      : run_(run),
+        standard_(standard),
+        patient_map_(patient_map),
+        options_(options),
+        uvw_(hex_vertex_uvw(run, standard.num_vertices())),
+        pass_(std::move(shape)),
+        progress_(progress) {
+    if (pass_.reference_scaled_jacobian.size() == 0) {
+      pass_.reference_scaled_jacobian.resize(standard.num_cells());
+      for (int c = 0; c < standard.num_cells(); ++c)
+        pass_.reference_scaled_jacobian(c) = scaled_jacobian(standard.types[c], cell_nodes(standard, c));
+    }
+  }
+
+  void run(VertexPlacement& placement) {
+    run_.untangle = pass(placement, pass_);
+    widen_and_release(placement);
+    last_resort();
+    polish();
+    report_progress(progress_, "", 1.0);
+  }
+
+ private:
+  int remaining() const { return unusable_after(run_.untangle); }
+  bool on_side(int v) const {
+    return pinned_to_side(run_, uvw_, v, 0) || pinned_to_side(run_, uvw_, v, 1) || pinned_to_side(run_, uvw_, v, 2);
+  }
+
+  // Progress by passes (at most 1 + 3 + 8 + 1 of them; most runs need a few).
+  UntangleReport pass(VertexPlacement& moves, const UntangleOptions& o) {
+    report_progress(progress_, "", std::min(1.0, passes_++ / 13.0));
+    return untangle(run_.patient_hex, moves, o);
+  }
+
+  // The counts that describe the mesh after a pass (run.patient_hex as it then is).
+  void set_state(const UntangleReport& state) {
+    run_.untangle.inverted_after = state.inverted_after;
+    run_.untangle.degenerate_after = state.degenerate_after;
+    run_.untangle.bad_after = state.bad_after;
+    run_.untangle.min_scaled_jacobian_after = state.min_scaled_jacobian_after;
+  }
+
+  void take(const UntangleReport& again) {
+    set_state(again);
+    run_.untangle.free_vertices = std::max(run_.untangle.free_vertices, again.free_vertices);
+    run_.untangle.sweeps += again.sweeps;
+  }
+
+  // While unusable cells remain: widen the region that may move (a fold may need room beyond two rings; not after the
+  // relaxation, which moved every vertex already), then release the feature pins (never the sides) of the vertices of
+  // the cells still unusable: where the patient's anatomy squeezes a feature (a flat nose), a valid element matters
+  // more than an exact feature line.
+  void widen_and_release(VertexPlacement& placement) {
+    for (int attempt = options_.shape_relaxation ? 2 : 0; attempt < 3 && remaining() > 0; ++attempt) {
+      // The first two passes improved the bad cells around the folds; the later ones finish the untangling.
+      pass_.seed_unusable_only = attempt > 0;
+      if (attempt < 2) {
+        pass_.rings += 2;
+      } else {
+        for (int c : check_corner_jacobians(run_.patient_hex).unusable())
+          for (int i = 0; i < node_count(standard_.types[c]); ++i) {
+            const int v = standard_.C(c, i);
+            for (int f = 0; f < 3; ++f)
+              if (!pinned_to_side(run_, uvw_, v, f)) placement.movable[v](f, f) = 1;
+            ++run_.untangle.released_feature_vertices;
+          }
+      }
+      take(pass(placement, pass_));
+    }
+  }
+
+  // Last resort, in up to eight passes: the vertices of the cells still unusable, and of the cells within 1 to 8
+  // rings around them, move in space; side vertices only if they belong to an unusable cell, and along their side
+  // (to first order: they may leave it by a little, reported as side_vertex_distance). From the third pass on, the
+  // free vertices off the sides are first spread out (a collapsed cluster, which one-vertex-at-a-time steps cannot
+  // open). From the fifth, all vertices within the rings, side vertices too, move freely (where the standard's side
+  // meets a patient side far away, as the inner wall of the standard's nostrils the patient's bone), since a valid
+  // element matters more than an exact boundary there. Side vertices are never spread: spreading them too moves
+  // many of them by millimetres on a longer face, for no fewer inverted cells. Each spread starts the untangling from
+  // another configuration, so a pass can end with more folds than the one before; the best state is kept.
+  void last_resort() {
+    constexpr int kLastResortPasses = 8, kFirstFreePass = 5;
+    const int nv = standard_.num_vertices();
+    Eigen::MatrixXd best_V = run_.patient_hex.V;
+    UntangleReport best = run_.untangle;
+    for (int rings = 1; rings <= kLastResortPasses && remaining() > 0; ++rings) {
+      const bool free_pass = rings >= kFirstFreePass;
+      std::vector<char> in_cell(nv, 0);  // vertices of the unusable cells
+      for (int c : check_corner_jacobians(run_.patient_hex).unusable())
+        for (int i = 0; i < node_count(standard_.types[c]); ++i) in_cell[standard_.C(c, i)] = 1;
+      const std::vector<char> free = within_cell_rings(run_.patient_hex, in_cell, rings);
+      // Side vertices move only if they belong to an unusable cell, except in the free passes.
+      std::vector<char> fixed(nv);
+      int released = 0;
+      for (int v = 0; v < nv; ++v) {
+        fixed[v] = !free[v] || (!free_pass && on_side(v) && !in_cell[v]);
+        released += !fixed[v] && on_side(v);
+      }
+      run_.untangle.released_side_vertices = std::max(run_.untangle.released_side_vertices, released);
+      if (rings >= 3) {
+        std::vector<char> kept = fixed;  // side vertices are not spread
+        for (int v = 0; v < nv; ++v) kept[v] |= on_side(v);
+        spread_free_vertices(run_.patient_hex, kept);
+      }
+      VertexPlacement last =
+          free_pass ? spatial_placement(run_.patient_hex.V, fixed) : sliding_placement(run_, patient_map_, uvw_, fixed);
+      pass_.max_sweeps = 2 * options_.untangle_options.max_sweeps;  // few vertices: cheap, and a long way may remain
+      take(pass(last, pass_));
+      if (remaining() < unusable_after(best)) {
+        best_V = run_.patient_hex.V;
+        best = run_.untangle;
+      }
+    }
+    if (remaining() > unusable_after(best)) {
+      run_.patient_hex.V = best_V;
+      set_state(best);
+    }
+  }
+
+  // Polish: cells still below their bound (a cell next to a fold can come out of the untangling nearly flat, valid
+  // but useless to a solver) get one more pass in space, their vertices that are on no side and no feature free (all
+  // of them with options.polish_moves_sides). Nothing is inverted now, so the energy's regularization is off and its
+  // barrier against flat corners whole.
+  void polish() {
+    if (run_.untangle.bad_after == 0) return;
+    std::vector<char> fixed(standard_.num_vertices());
+    for (int v = 0; v < standard_.num_vertices(); ++v)
+      fixed[v] = !options_.polish_moves_sides && run_.standard.fixed.row(v).any();
+    VertexPlacement polish = spatial_placement(run_.patient_hex.V, fixed);
+    UntangleOptions last = pass_;
+    last.rings = 1;
+    last.seed_unusable_only = false;
+    take(pass(polish, last));
+  }
+
+  TransferRun& run_;
+  const VolumeMesh& standard_;
+  const PatientMap& patient_map_;
+  const TransferOptions& options_;
+  const Eigen::MatrixXd uvw_;  // the standard's hex vertex parameters
+  UntangleOptions pass_;
+  ProgressCallback progress_;
+  int passes_ = 0;
+};
+
+}  // namespace
+
+void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::string& patient_source,
+                       const TransferOptions& options, const ProgressCallback& progress) {
+  Stopwatch clock;
+  check_patient_parameterization(run, patient_source, options);
   const PatientMap patient_map(run.patient.V, run.patient.T, run.patient.fields.uvw);
   run.seconds["locator_build"] = clock.lap();
   run.patient_hex = transfer_hex_mesh(standard, hex_vertex_uvw(run, standard.num_vertices()), patient_map,
@@ -146,7 +309,7 @@ void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::
   // With the relaxation, the repair keeps the standard's shapes too (the same energy), else it aims at ideal cells.
   UntangleOptions shape = options.untangle_options;
   if (options.shape_relaxation) {
-    shape.target = options.relax_towards_ideal_cells ? nullptr : &standard;
+    shape.target = options.ideal_cell_targets ? nullptr : &standard;
     shape.target_towards_ideal = options.relaxation_towards_ideal;
     UntangleOptions relax = shape;
     relax.whole_mesh = true;
@@ -157,120 +320,10 @@ void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::
     run.relaxation = untangle(run.patient_hex, placement, relax);
     run.seconds["shape_relaxation"] = clock.lap();
   }
-  if (options.untangle) {
-    // While unusable (inverted or flat) cells remain: widen the region that may move (a fold may need room beyond two
-    // rings; not after the relaxation, which moved every vertex already), then release the feature pins (never the
-    // sides) of the vertices of the cells still unusable: where the patient's anatomy squeezes a feature (a flat
-    // nose), a valid element matters more than an exact feature line.
-    const Eigen::MatrixXd uvw = hex_vertex_uvw(run, standard.num_vertices());
-    // Progress by passes (at most 1 + 3 + 8 + 1 of them; most runs need a few).
-    const ProgressCallback repair_progress =
-        sub_progress(progress, options.shape_relaxation ? 0.8 : 0.05, 1.0, "repairing folded cells");
-    int passes = 0;
-    auto repair_pass = [&](VertexPlacement& moves, const UntangleOptions& o) {
-      report_progress(repair_progress, "", std::min(1.0, passes++ / 13.0));
-      return untangle(run.patient_hex, moves, o);
-    };
-    UntangleOptions pass = shape;
-    if (pass.reference_scaled_jacobian.size() == 0) {
-      pass.reference_scaled_jacobian.resize(standard.num_cells());
-      for (int c = 0; c < standard.num_cells(); ++c)
-        pass.reference_scaled_jacobian(c) = scaled_jacobian(standard.types[c], cell_nodes(standard, c));
-    }
-    run.untangle = repair_pass(placement, pass);
-    auto unusable_after = [](const UntangleReport& r) { return r.inverted_after + r.degenerate_after; };
-    auto remaining = [&] { return unusable_after(run.untangle); };
-    // The counts that describe the mesh after a pass (run.patient_hex as it then is).
-    auto set_state = [&](const UntangleReport& state) {
-      run.untangle.inverted_after = state.inverted_after;
-      run.untangle.degenerate_after = state.degenerate_after;
-      run.untangle.bad_after = state.bad_after;
-      run.untangle.min_scaled_jacobian_after = state.min_scaled_jacobian_after;
-    };
-    auto take = [&](const UntangleReport& again) {
-      set_state(again);
-      run.untangle.free_vertices = std::max(run.untangle.free_vertices, again.free_vertices);
-      run.untangle.sweeps += again.sweeps;
-    };
-    for (int attempt = options.shape_relaxation ? 2 : 0; attempt < 3 && remaining() > 0; ++attempt) {
-      // The first two passes improved the bad cells around the folds; the later ones finish the untangling.
-      pass.seed_unusable_only = attempt > 0;
-      if (attempt < 2) {
-        pass.rings += 2;
-      } else {
-        for (int c : check_corner_jacobians(run.patient_hex).unusable())
-          for (int i = 0; i < node_count(standard.types[c]); ++i) {
-            const int v = standard.C(c, i);
-            for (int f = 0; f < 3; ++f)
-              if (!pinned_to_side(run, uvw, v, f)) placement.movable[v](f, f) = 1;
-            ++run.untangle.released_feature_vertices;
-          }
-      }
-      take(repair_pass(placement, pass));
-    }
-    // Last resort, in up to eight passes: the vertices of the cells still unusable, and of the cells within 1 to 8
-    // rings around them, move in space; side vertices only if they belong to an unusable cell, and along their side
-    // (to first order: they may leave it by a little, reported as side_vertex_distance). From the third pass on, the
-    // free vertices off the sides are first spread out (a collapsed cluster, which one-vertex-at-a-time steps cannot
-    // open). From the fifth, all vertices within the rings, side vertices too, move freely (where the standard's side
-    // meets a patient side far away, as the inner wall of the standard's nostrils the patient's bone), since a valid
-    // element matters more than an exact boundary there. Side vertices are never spread: spreading them too moved 5 %
-    // of them by millimetres on a longer face (p95 2.5 mm instead of 0.4 mm), for no fewer inverted cells. Each
-    // spread starts the untangling from another configuration, so a pass can end with more folds than the one before
-    // (the bundled CT meshed at 3 mm: 4, 4, 1, 2, 1, 2, 0 folds after passes 1 to 7); the best state is kept.
-    auto on_side = [&](int v) {
-      return pinned_to_side(run, uvw, v, 0) || pinned_to_side(run, uvw, v, 1) || pinned_to_side(run, uvw, v, 2);
-    };
-    constexpr int kLastResortPasses = 8, kFirstFreePass = 5;
-    Eigen::MatrixXd best_V = run.patient_hex.V;
-    UntangleReport best = run.untangle;
-    for (int rings = 1; rings <= kLastResortPasses && remaining() > 0; ++rings) {
-      const bool free_pass = rings >= kFirstFreePass;
-      std::vector<char> in_cell(standard.num_vertices(), 0);  // vertices of the unusable cells
-      for (int c : check_corner_jacobians(run.patient_hex).unusable())
-        for (int i = 0; i < node_count(standard.types[c]); ++i) in_cell[standard.C(c, i)] = 1;
-      const std::vector<char> free = within_cell_rings(run.patient_hex, in_cell, rings);
-      // Side vertices move only if they belong to an unusable cell, except in the free passes.
-      std::vector<char> fixed(standard.num_vertices());
-      int released = 0;
-      for (int v = 0; v < standard.num_vertices(); ++v) {
-        fixed[v] = !free[v] || (!free_pass && on_side(v) && !in_cell[v]);
-        released += !fixed[v] && on_side(v);
-      }
-      run.untangle.released_side_vertices = std::max(run.untangle.released_side_vertices, released);
-      if (rings >= 3) {
-        std::vector<char> kept = fixed;  // side vertices are not spread
-        for (int v = 0; v < standard.num_vertices(); ++v) kept[v] |= on_side(v);
-        spread_free_vertices(run.patient_hex, kept);
-      }
-      VertexPlacement last =
-          free_pass ? spatial_placement(run.patient_hex.V, fixed) : sliding_placement(run, patient_map, uvw, fixed);
-      pass.max_sweeps = 2 * options.untangle_options.max_sweeps;  // few vertices: cheap, and a long way may remain
-      take(repair_pass(last, pass));
-      if (remaining() < unusable_after(best)) {
-        best_V = run.patient_hex.V;
-        best = run.untangle;
-      }
-    }
-    if (remaining() > unusable_after(best)) {
-      run.patient_hex.V = best_V;
-      set_state(best);
-    }
-    // Polish: cells still below their bound (a cell next to a fold can come out of the untangling nearly flat, valid
-    // but useless to a solver) get one more pass in space, their vertices that are on no side and no feature free
-    // (all of them with options.polish_moves_sides).
-    // Nothing is inverted now, so the energy's regularization is off and its barrier against flat corners whole.
-    if (run.untangle.bad_after > 0) {
-      std::vector<char> fixed(standard.num_vertices());
-      for (int v = 0; v < standard.num_vertices(); ++v)
-        fixed[v] = !options.polish_moves_sides && run.standard.fixed.row(v).any();
-      VertexPlacement polish = spatial_placement(run.patient_hex.V, fixed);
-      UntangleOptions last = pass;
-      last.rings = 1;
-      last.seed_unusable_only = false;
-      take(repair_pass(polish, last));
-    }
-    report_progress(repair_progress, "", 1.0);
+  if (options.repair_folds) {
+    Repair(run, standard, patient_map, options, shape,
+           sub_progress(progress, options.shape_relaxation ? 0.8 : 0.05, 1.0, "repairing folded cells"))
+        .run(placement);
     run.seconds["untangle"] = clock.lap();
   }
 }

@@ -24,7 +24,7 @@ struct TransferOptions {
   bool allow_inverted_parameterization = false;
   // After the mapping, cells that are inverted or below untangle_options.min_scaled_jacobian are repaired by moving
   // nearby vertices that are on no side and no feature (untangle.h).
-  bool untangle = true;
+  bool repair_folds = true;
   UntangleOptions untangle_options;
   // Before the repair, every vertex moves through its (u, v, w) (pinned coordinates stay: side and feature vertices
   // only slide along their side or feature) to bring each corner back to the standard's shape (untangle.h with the
@@ -32,13 +32,13 @@ struct TransferOptions {
   // between; this keeps the correspondence of sides and features and the standard's angles.
   bool shape_relaxation = true;
   // The relaxation's target corners: the standard's, moved towards the ideal cell's by this fraction of their
-  // distortion in the mapped mesh (UntangleOptions::target_towards_ideal). On the bundled patient (plain steps): 0
-  // keeps the standard's angles best (11.0 deg mean change) but leaves a mean shape 8 % below the standard's; 0.5
-  // gives 11.3 deg and a mean shape 1 % below it; 1 gives 12.0 deg and 5 % above it.
+  // distortion in the mapped mesh (UntangleOptions::target_towards_ideal): 0 keeps the standard's angles best but
+  // leaves cells less well shaped than the standard's; 1 shapes them better at some cost in angles (the trade-off is
+  // measured in docs/benchmarks.md).
   double relaxation_towards_ideal = 0.5;
   // The relaxation (and the repair after it) aims at the ideal cells instead of the standard's: for a template grid,
   // whose cells in parameter space are no shape to keep.
-  bool relax_towards_ideal_cells = false;
+  bool ideal_cell_targets = false;
   // The repair's last polish of the cells still below their bound moves side and feature vertices too, in space, off
   // the patient's surfaces: for a template, which may cut a corner of its reference where no cell there can reach the
   // bound (template_mesh.h).

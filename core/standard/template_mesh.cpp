@@ -220,7 +220,7 @@ TemplateResult build_template(const VolumeMesh& reference, const ConstraintSet& 
   // reference towards ideal cells, and the repair weighs the worst corners most (TemplateOptions).
   TransferOptions grid_transfer = transfer;
   grid_transfer.shape_relaxation = options.relax;
-  grid_transfer.relax_towards_ideal_cells = true;
+  grid_transfer.ideal_cell_targets = true;
   grid_transfer.untangle_options.corner_power = kRepairCornerPower;
   grid_transfer.polish_moves_sides = options.cut_sharp_corners;
   map_parameterized(run, grid, source, grid_transfer);

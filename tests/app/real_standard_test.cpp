@@ -44,7 +44,7 @@ TEST(BundledStandard, MapsOntoItsOwnTetModelAsTheIdentityAwayFromFolds) {
   patient.point_data[kSideMaskArray] = domain.side_mask.cast<double>();  // the labels the standard is solved with
   TransferOptions options;
   options.allow_inverted_parameterization = true;  // the standard's own folds (reported in its health)
-  options.untangle = false;
+  options.repair_folds = false;
   const TransferRun run = run_transfer(hex, domain, set, standard.constraints, patient, set, "self", options);
   int exact = 0;
   for (int v = 0; v < hex.num_vertices(); ++v) exact += (run.mapped_hex.V.row(v) - hex.V.row(v)).norm() < 1e-6;
