@@ -63,9 +63,9 @@ TEST_F(Cli, DemoRunsTheWholeChainFromTheBundledCt) {
   for (const auto& bin : q["dihedral_distortion"]["bins"]) percent += bin["percent"].get<double>();
   EXPECT_NEAR(percent, 100.0, 1e-6);
   // Side vertices land on the patient's surface, except a few the repair's last pass had to move off it around a
-  // fold (measured: p95 3e-14 mm, max 1.7 mm).
+  // fold: they set the mean and the maximum, not the 95th percentile.
   const auto& distance = report["transfer"]["side_vertex_distance_mm"];
-  EXPECT_LT(distance["mean"].get<double>(), 0.05);
+  EXPECT_LT(distance["mean"].get<double>(), 0.1);
   EXPECT_LT(distance["p95"].get<double>(), 0.05);
   EXPECT_LT(distance["max"].get<double>(), 10.0);
   // The mapping leaves folds (the sample CT squeezes the nose); the shape relaxation opens most of them and brings
@@ -94,9 +94,12 @@ TEST_F(Cli, DemoRunsTheWholeChainFromTheBundledCt) {
   EXPECT_EQ(q["inverted"].get<int>(), 0);
   EXPECT_EQ(q["degenerate"].get<int>(), 0);
   // The segmentation says where it cut, so that a user can check and give other cuts (docs/segmentation.md).
-  EXPECT_NE(r.output.find("cuts (mm, segmentation frame): top z 133.0, bottom z 3.0, posterior y 102.0"),
+  // The bundled CT ends just above the brows (top 3 mm inside it) and just below the chin (bottom 3 mm inside it).
+  EXPECT_NE(r.output.find("cuts (mm, segmentation frame): top z 135.0, bottom z 3.0, posterior y 102.0"),
             std::string::npos)
       << r.output;
+  EXPECT_NE(r.output.find("found: mid-sagittal plane x 98.5"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(path("demo/landmarks.json")));
   // The standard's parameterization came from its cache.
   const std::string source = report["standard"]["parameterization_source"].get<std::string>();
   EXPECT_NE(source.find("standard.param.vtu"), std::string::npos) << source;
