@@ -54,8 +54,9 @@ struct Profile {
     return std::nullopt;
   }
 
-  // The longest run of bins at most `depth` mm behind `front` (one missing bin allowed), as (lowest z, highest z), if
-  // it is at least `min_length` mm long: a flat plateau where the scan's field of view cut the face.
+  // The longest run of bins at most `depth` mm behind `front` (one bin behind it allowed; empty bins, between the
+  // mesh's vertices, unless three in a row), as (lowest z, highest z), if it is at least `min_length` mm long: a flat
+  // plateau where the scan's field of view cut the face.
   std::optional<std::pair<double, double>> clipped_run(double front, double depth, double min_length) const {
     std::optional<std::pair<double, double>> best;
     bool in_run = false;
@@ -67,8 +68,8 @@ struct Profile {
         run = in_run ? std::pair{run.first, z} : std::pair{z, z};
         in_run = true;
         gap = 0;
-      } else if (in_run && ++gap > 1) {
-        in_run = false;
+      } else if (in_run && (bins[b] ? ++gap > 1 : b + 1 < bins.size() && !bins[b + 1] && !bins[b - 1])) {
+        in_run = false;  // a second bin behind the plateau, or three empty bins in a row
       }
       if (in_run && (!best || run.second - run.first > best->second - best->first)) best = run;
     }
