@@ -32,13 +32,20 @@ void add_segment_options(Args& args) {
               "voxel axis the face looks to: +x -x +y -y +z -z (default: from a DICOM series' orientation, else +y)")
       .option("superior", "voxel axis towards the top of the head (default: from a DICOM series, else +z)")
       .option("top-cut",
-              "height z (mm, segmentation frame) of the top cut (default: --face-height above the bottom cut)")
-      .option("bottom-cut", "height z (mm) of the bottom cut (default: --chin-clearance below the chin's bone)")
-      .option("posterior-cut", "y (mm) of the posterior cut (default: --ear-clearance in front of the ears)")
-      .option("mid-plane", "x (mm) of the plane between the u0 and u1 ends (default: the head's mean x)")
-      .option("face-height", "mm from the bottom to the top cut when --top-cut is not given", "130")
-      .option("chin-clearance", "mm from the chin's bone down to the bottom cut", "10")
-      .option("ear-clearance", "mm from the front of the ears forward to the posterior cut", "10");
+              "height z (mm, segmentation frame) of the top cut (default: --brow-clearance above the glabella)")
+      .option("bottom-cut",
+              "height z (mm) of the bottom cut (default: --chin-clearance below the menton, the chin's lowest bone)")
+      .option("posterior-cut",
+              "y (mm) of the posterior cut (default: --ear-clearance in front of the ears' front, the tragi)")
+      .option("mid-plane", "x (mm) of the plane between the u0 and u1 ends (default: the face's mirror-symmetry plane)")
+      .option("brow-clearance", "mm from the glabella (brow ridge) up to the top cut", "15")
+      .option("chin-clearance", "mm from the menton (the chin's lowest bone) down to the bottom cut", "15")
+      .option("ear-clearance", "mm from the front of the ears forward to the posterior cut", "10")
+      .option("min-thickness", "mm below the skin always in the model", "3")
+      .option("max-depth", "mm below the skin beyond which nothing is in the model", "25")
+      .option("bone-gap", "mm: gaps in the bone narrower than twice this (teeth) still hide the tissue behind", "5")
+      .option("cavity-closing", "mm: openings (nostrils, lips, eyelids) narrower than twice this are closed", "4")
+      .option("smoothing", "mm, Gaussian blur of the model mask before its surface is taken", "1.5");
 }
 
 void add_transfer_options(Args& args) {
@@ -90,10 +97,15 @@ SegmentOptions segment_options(const Args& args) {
   if (args.has("bottom-cut")) cuts.bottom_z = finite("bottom-cut");
   if (args.has("posterior-cut")) cuts.posterior_y = finite("posterior-cut");
   if (args.has("mid-plane")) cuts.centre_x = finite("mid-plane");
-  cuts.face_height = not_negative("face-height");
-  if (cuts.face_height == 0) throw UsageError("--face-height", "expects a height above 0 mm");
+  cuts.brow_clearance = not_negative("brow-clearance");
   cuts.chin_clearance = not_negative("chin-clearance");
   cuts.ear_clearance = not_negative("ear-clearance");
+  o.min_thickness = not_negative("min-thickness");
+  o.max_depth = not_negative("max-depth");
+  if (o.max_depth == 0) throw UsageError("--max-depth", "expects a depth above 0 mm");
+  o.bone_gap_radius = not_negative("bone-gap");
+  o.cavity_closing_radius = not_negative("cavity-closing");
+  o.smoothing_sigma = not_negative("smoothing");
   return o;
 }
 
@@ -134,25 +146,28 @@ PatientTetModel read_patient_model(const std::string& path, const SegmentOptions
 }
 
 PatientSetup cli_patient(const std::string& path, const SegmentOptions& segment, const std::string& constraints_file,
-                         const ConstraintSet& standard_constraints, const std::string& constraints_hint) {
+                         const ConstraintSet& standard_constraints, const std::string& constraints_hint,
+                         const std::string& landmarks_file) {
   const std::map<std::string, double> values = feature_values(standard_constraints);
-  PatientSetup p = setup_patient(read_patient_model(path, segment), path, constraints_file, &values);
+  PatientSetup p = setup_patient(read_patient_model(path, segment), path, constraints_file, &values, landmarks_file);
   if (!p.features_problem.empty())
-    throw Error(path, "the facial feature constraints cannot be placed (" + p.features_problem +
-                          "); give the patient's constraint set with " + constraints_hint);
+    throw Error(landmarks_file.empty() ? path : landmarks_file,
+                "the facial feature constraints cannot be placed (" + p.features_problem +
+                    "); give the patient's landmarks with --landmarks FILE or its constraint set with " +
+                    constraints_hint);
   std::cerr << p.constraints_note << "\n";
   if (p.landmarks) std::cerr << landmarks_text(*p.landmarks, "  ");
   return p;
 }
 
 CliTransfer cli_transfer(const Args& args, const std::string& patient, const std::string& patient_constraints,
-                         const std::string& constraints_hint) {
+                         const std::string& constraints_hint, const std::string& landmarks_file) {
   const TransferOptions options = transfer_options(args);
   CliTransfer t;
   t.standard = standard_setup(args);
   std::cerr << "reading the patient " << patient << "\n";
-  t.patient =
-      cli_patient(patient, segment_options(args), patient_constraints, t.standard.constraints, constraints_hint);
+  t.patient = cli_patient(patient, segment_options(args), patient_constraints, t.standard.constraints, constraints_hint,
+                          landmarks_file);
   TerminalProgress progress;
   t.result = transfer(t.standard, t.patient, options, progress.callback());
   progress.finish();

@@ -37,7 +37,8 @@ PatientTetModel read_patient_model(const std::string& path, const SegmentOptions
 // standard's eyes, nose and mouth anywhere, so a model where they cannot be found is an error naming the option that
 // helps, `constraints_hint` (e.g. "--constraints FILE").
 PatientSetup cli_patient(const std::string& path, const SegmentOptions& segment, const std::string& constraints_file,
-                         const ConstraintSet& standard_constraints, const std::string& constraints_hint);
+                         const ConstraintSet& standard_constraints, const std::string& constraints_hint,
+                         const std::string& landmarks_file = "");
 
 struct CliTransfer {
   StandardSetup standard;
@@ -46,8 +47,9 @@ struct CliTransfer {
 };
 
 // The whole transfer as run, map, compare and bench do it (options parsed by add_transfer_options);
-// `constraints_hint`: how the command takes a patient's constraint set, for the error of cli_patient.
+// `constraints_hint`: how the command takes a patient's constraint set, for the error of cli_patient;
+// `landmarks_file`: the user's landmarks to place the feature constraints at (core/face/landmark_file.h), or empty.
 CliTransfer cli_transfer(const Args& args, const std::string& patient, const std::string& patient_constraints,
-                         const std::string& constraints_hint);
+                         const std::string& constraints_hint, const std::string& landmarks_file = "");
 
 }  // namespace facehex::cli

@@ -91,17 +91,17 @@ SegmentationDialog::SegmentationDialog(QWidget* parent) : QDialog(parent) {
       tr("Millimetres in the segmentation frame: the file's coordinates, axes swapped or negated so "
          "the face looks to +y and the top of the head is +z.");
   addNumber(TopCut, tr("Top cut z"), -1e4, 1e4, tr(" mm"), "segmentTopCut",
-            tr("Automatic: the face height above the bottom cut, within the CT. ") + frame);
+            tr("Automatic: the brow clearance above the glabella, within the CT. ") + frame);
   addNumber(BottomCut, tr("Bottom cut z"), -1e4, 1e4, tr(" mm"), "segmentBottomCut",
             tr("Automatic: the chin clearance below the chin's bone. ") + frame);
   addNumber(PosteriorCut, tr("Posterior cut y"), -1e4, 1e4, tr(" mm"), "segmentPosteriorCut",
             tr("Automatic: the ear clearance in front of the ears. ") + frame);
   addNumber(MidPlane, tr("Mid-plane x"), -1e4, 1e4, tr(" mm"), "segmentMidPlane",
             tr("Divides the posterior cut into the u0 and u1 ends; automatic: the head's mean x. ") + frame);
-  faceHeight_ = spinBox(20, 400, tr(" mm"), "segmentFaceHeight", this);
+  browClearance_ = spinBox(0, 100, tr(" mm"), "segmentBrowClearance", this);
   chinClearance_ = spinBox(0, 100, tr(" mm"), "segmentChinClearance", this);
   earClearance_ = spinBox(0, 100, tr(" mm"), "segmentEarClearance", this);
-  form->addRow(tr("Face height (automatic top cut)"), faceHeight_);
+  form->addRow(tr("Brow clearance (automatic top cut)"), browClearance_);
   form->addRow(tr("Chin clearance (automatic bottom cut)"), chinClearance_);
   form->addRow(tr("Ear clearance (automatic posterior cut)"), earClearance_);
   layout->addLayout(form);
@@ -133,7 +133,7 @@ void SegmentationDialog::setOptions(const SegmentOptions& o) {
   numbers_[BottomCut].set(o.cuts.bottom_z);
   numbers_[PosteriorCut].set(o.cuts.posterior_y);
   numbers_[MidPlane].set(o.cuts.centre_x);
-  faceHeight_->setValue(o.cuts.face_height);
+  browClearance_->setValue(o.cuts.brow_clearance);
   chinClearance_->setValue(o.cuts.chin_clearance);
   earClearance_->setValue(o.cuts.ear_clearance);
 }
@@ -149,7 +149,7 @@ SegmentOptions SegmentationDialog::options() const {
   o.cuts.bottom_z = numbers_[BottomCut].get();
   o.cuts.posterior_y = numbers_[PosteriorCut].get();
   o.cuts.centre_x = numbers_[MidPlane].get();
-  o.cuts.face_height = faceHeight_->value();
+  o.cuts.brow_clearance = browClearance_->value();
   o.cuts.chin_clearance = chinClearance_->value();
   o.cuts.ear_clearance = earClearance_->value();
   return o;

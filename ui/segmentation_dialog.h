@@ -39,7 +39,7 @@ class SegmentationDialog : public QDialog {
   enum Number { Skin, Bone, TopCut, BottomCut, PosteriorCut, MidPlane, kNumbers };
 
   QLabel* heading_;
-  QDoubleSpinBox *edgeLength_, *faceHeight_, *chinClearance_, *earClearance_;
+  QDoubleSpinBox *edgeLength_, *browClearance_, *chinClearance_, *earClearance_;
   QComboBox *anterior_, *superior_;
   std::array<OptionalNumber, kNumbers> numbers_;
 };

@@ -1,8 +1,10 @@
 #include <iostream>
+#include <optional>
 
 #include "app/cli_args.h"
 #include "app/commands/commands.h"
 #include "core/face/automatic_constraints.h"
+#include "core/face/landmark_file.h"
 #include "core/io/mesh_io.h"
 #include "core/standard/own_feature_values.h"
 #include "core/util/error.h"
@@ -20,6 +22,10 @@ int cmd_constraints(const Argv& argv) {
       .option("output", "output constraint-set JSON")
       .option("standard", "standard whose feature values to use", "artisynth-refface")
       .option("band", "slab width (mm) selecting feature vertices", "2")
+      .option("landmarks",
+              "facial landmarks (.json, or 3D Slicer .mrk.json) to place the features at instead of "
+              "those found")
+      .option("write-landmarks", "write the landmarks used to this file (.json, or 3D Slicer .mrk.json)")
       .flag("own-values", "take the feature values from the model's own fields (for a standard)");
   if (!args.parse(argv)) return 0;
   if (!args.has("output")) throw UsageError("facehex constraints", "missing -o OUTPUT");
@@ -27,16 +33,23 @@ int cmd_constraints(const Argv& argv) {
   const VolumeMesh mesh = read_volume_mesh(path);
   const Eigen::VectorXi mask = side_mask_of(mesh);
   FaceLandmarks landmarks;
+  const std::optional<FaceLandmarks> given =
+      args.has("landmarks") ? std::optional<FaceLandmarks>(
+                                  landmarks_from(read_landmark_file(args.get("landmarks")), args.get("landmarks")))
+                            : std::nullopt;
   const std::map<std::string, double> values =
       args.has("own-values") ? own_feature_values(mesh, args.number("band", 0.01, 50), path)
                              : feature_values(read_constraint_set(find_standard(args.get("standard")).constraints));
-  const ConstraintSet set = automatic_constraints(mesh.V, mask, values, args.number("band", 0.01, 50), &landmarks);
+  const ConstraintSet set =
+      automatic_constraints(mesh.V, mask, values, args.number("band", 0.01, 50), &landmarks, given ? &*given : nullptr);
   write_constraint_set(args.get("output"), set);
+  if (args.has("write-landmarks")) write_landmark_file(args.get("write-landmarks"), named_landmarks(landmarks));
   std::cout << "mid-sagittal plane x = " << landmarks.x_mid << " mm\n";
   std::cout << landmarks_text(landmarks, "");
   for (const auto& c : set.constraints)
     if (!c.select.side) std::cout << c.name << ": " << kFieldNames[c.field] << " = " << c.value << "\n";
-  std::cout << "wrote " << args.get("output") << "\n";
+  std::cout << "wrote " << args.get("output")
+            << (args.has("write-landmarks") ? " and " + args.get("write-landmarks") : "") << "\n";
   return 0;
 }
 

@@ -7,6 +7,7 @@
 #include "app/mesh_output.h"
 #include "app/output_folder.h"
 #include "app/transfer_options.h"
+#include "core/face/landmark_file.h"
 #include "core/io/mesh_io.h"
 #include "core/util/error.h"
 #include "core/util/resources.h"
@@ -25,6 +26,9 @@ int cmd_run(const Argv& argv) {
       .option("output", "output folder")
       .option("constraints",
               "constraint set of the patient (default: NAME.json or constraints.json beside it, else automatic)")
+      .option("landmarks",
+              "facial landmarks of the patient (.json, or 3D Slicer .mrk.json) to place the feature constraints at "
+              "instead of those found; the ones used are written to OUT/landmarks.json")
       .option("export", "also write OUT/patient_hex.EXT for each listed format, e.g. feb,inp,msh (docs/export.md)")
       .flag("force-export", kForceExportHelp);
   add_transfer_options(args);
@@ -48,7 +52,9 @@ int cmd_run(const Argv& argv) {
   for (const std::string& name : folder.remove_stale(stale))
     if (name != "report.json") std::cerr << "removed " << (out_dir / name).string() << " of an earlier run\n";
 
-  const CliTransfer t = cli_transfer(args, input, constraints, "--constraints");
+  const CliTransfer t = cli_transfer(args, input, constraints, "--constraints", args.get("landmarks"));
+  if (t.patient.landmarks)
+    write_landmark_file((out_dir / "landmarks.json").string(), named_landmarks(*t.patient.landmarks));
   const TransferResult& r = t.result;
   write_volume_mesh((out_dir / "patient_model.vtu").string(), parameterized_tet_mesh(r.run.patient, &t.patient.mesh),
                     parameterized_model_writing());

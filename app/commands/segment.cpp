@@ -4,6 +4,7 @@
 #include "app/cli_args.h"
 #include "app/commands/commands.h"
 #include "app/transfer_options.h"
+#include "core/face/face_landmarks.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh/sides.h"
 #include "core/segment/ct_volume.h"
@@ -19,6 +20,9 @@ int cmd_segment(const Argv& argv) {
             "and in front of the ears, six sides labelled (point data side_mask). See docs/segmentation.md.");
   args.positional("CT", "CT volume file or DICOM folder").option("output", "output tet model (.vtu)");
   args.option("edge-length", "target mean edge length of the tets (mm)", "2");
+  args.option("write-landmarks",
+              "find the facial landmarks on the model's skin, check them, and write them to this file (.json, or 3D "
+              "Slicer .mrk.json)");
   add_segment_options(args);
   if (!args.parse(argv)) return 0;
   if (!args.has("output")) throw UsageError("facehex segment", "missing -o OUTPUT");
@@ -35,6 +39,13 @@ int cmd_segment(const Argv& argv) {
       return (m & side_bit(static_cast<Side>(s))) != 0;
     });
   std::cout << "\nwrote " << args.get("output") << "\n";
+  if (args.has("write-landmarks")) {
+    const FaceLandmarks landmarks = find_face_landmarks(model.V, mask);
+    std::cout << landmarks_text(landmarks, "  ");
+    check_plausible(landmarks, "give them with --landmarks FILE to run or constraints");
+    write_landmark_file(args.get("write-landmarks"), named_landmarks(landmarks));
+    std::cout << "wrote " << args.get("write-landmarks") << "\n";
+  }
   return 0;
 }
 

@@ -10,8 +10,9 @@ std::map<std::string, double> feature_values(const ConstraintSet& standard) {
 
 ConstraintSet automatic_constraints(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
                                     const std::map<std::string, double>& values, double band,
-                                    FaceLandmarks* landmarks_out) {
-  const FaceLandmarks landmarks = find_face_landmarks(V, side_mask);
+                                    FaceLandmarks* landmarks_out, const FaceLandmarks* given) {
+  const FaceLandmarks landmarks = given ? *given : find_face_landmarks(V, side_mask);
+  check_plausible(landmarks, given ? "correct the landmark file" : "give the landmarks with --landmarks FILE");
   ConstraintSet set = side_constraints();
   for (auto& c : feature_constraints(landmarks, values, band).constraints) set.constraints.push_back(c);
   if (landmarks_out) *landmarks_out = landmarks;

@@ -18,10 +18,12 @@ constexpr double kFeatureBand = 2.0;  // mm, width of the slabs selecting featur
 std::map<std::string, double> feature_values(const ConstraintSet& standard);
 
 // The six sides plus the feature constraints at the landmarks of the model (V #V x 3, side_mask #V), with the given
-// feature values. Throws facehex::Error("landmarks", ...) when a landmark is not found, and
-// facehex::Error("feature constraints", ...) when a feature has no value.
+// feature values: at `given` landmarks (the user's), else at those find_face_landmarks finds. Either set must pass
+// check_plausible. Throws facehex::Error("landmarks", ...) when a landmark is not found or the set is implausible
+// (naming the landmark and --landmarks FILE), and facehex::Error("feature constraints", ...) when a feature has no
+// value.
 ConstraintSet automatic_constraints(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
                                     const std::map<std::string, double>& values, double band = kFeatureBand,
-                                    FaceLandmarks* landmarks_out = nullptr);
+                                    FaceLandmarks* landmarks_out = nullptr, const FaceLandmarks* given = nullptr);
 
 }  // namespace facehex

@@ -8,6 +8,7 @@
 
 #include "core/mesh/sides.h"
 #include "core/util/error.h"
+#include "core/util/mirror_symmetry.h"
 
 namespace facehex {
 namespace {
@@ -28,8 +29,34 @@ struct Profile {
     return best;
   }
 
-  // The longest run of bins at most `depth` mm behind `front` (one missing bin allowed), as (lowest z, highest z), if
-  // it is at least `min_length` mm long: a flat plateau where the scan's field of view cut the face.
+  // The middle (in z) of the bins with z in [lo, hi] within `tie` mm of the most anterior one: a flat brow's centre.
+  std::optional<Eigen::Vector3d> middle_of_front(double lo, double hi, double tie) const {
+    const std::optional<Eigen::Vector3d> front = extreme(lo, hi, true);
+    if (!front) return front;
+    double first = front->z(), last = front->z();
+    for (const auto& bin : bins)
+      if (bin && bin->z() >= lo && bin->z() <= hi && bin->y() >= front->y() - tie)
+        first = std::min(first, bin->z()), last = std::max(last, bin->z());
+    const double mid = 0.5 * (first + last);
+    for (double reach = 0.5; reach <= 0.5 * (last - first) + 0.5; reach += 1)  // the nearest bin holding a point
+      if (const auto p = extreme(mid - reach, mid + reach, true)) return p;
+    return front;
+  }
+
+  // Going down from z, the first bin that is the least anterior within 2 mm either side (a local minimum), within
+  // `reach` mm.
+  std::optional<Eigen::Vector3d> next_minimum_below(double z, double reach) const {
+    for (double at = z - 1; at >= z - reach; at -= 1) {
+      const std::optional<Eigen::Vector3d> here = extreme(at - 0.5, at + 0.5, false);
+      const std::optional<Eigen::Vector3d> around = extreme(at - 2.5, at + 2.5, false);
+      if (here && around && here->y() <= around->y()) return here;
+    }
+    return std::nullopt;
+  }
+
+  // The longest run of bins at most `depth` mm behind `front` (one bin behind it allowed; empty bins, between the
+  // mesh's vertices, unless three in a row), as (lowest z, highest z), if it is at least `min_length` mm long: a flat
+  // plateau where the scan's field of view cut the face.
   std::optional<std::pair<double, double>> clipped_run(double front, double depth, double min_length) const {
     std::optional<std::pair<double, double>> best;
     bool in_run = false;
@@ -41,8 +68,8 @@ struct Profile {
         run = in_run ? std::pair{run.first, z} : std::pair{z, z};
         in_run = true;
         gap = 0;
-      } else if (in_run && ++gap > 1) {
-        in_run = false;
+      } else if (in_run && (bins[b] ? ++gap > 1 : b + 1 < bins.size() && !bins[b + 1] && !bins[b - 1])) {
+        in_run = false;  // a second bin behind the plateau, or three empty bins in a row
       }
       if (in_run && (!best || run.second - run.first > best->second - best->first)) best = run;
     }
@@ -63,9 +90,39 @@ Profile skin_profile(const Eigen::MatrixXd& V, const std::vector<int>& skin, dou
   for (int v : skin) {
     if (std::abs(V(v, 0) - x_mid) > band) continue;
     auto& bin = p.bins[static_cast<size_t>(V(v, 2) - p.z0)];
-    if (!bin || V(v, 1) > bin->y()) bin = V.row(v).transpose();
+    if (!bin || V(v, 1) > bin->y()) bin = Eigen::Vector3d(x_mid, V(v, 1), V(v, 2));  // on the plane
   }
   return p;
+}
+
+// The skin's mirror plane: per 2 mm row of z in [zlo, zhi], the plane x = c that best mirrors the front (the most
+// anterior skin point of each 1 mm column; core/util/mirror_symmetry.h) within 45 mm of it; the median of the rows'
+// c. Searched within 30 mm of the most anterior point near the middle (`first`), whose x it is when no row is
+// wide enough.
+double mirror_plane(const Eigen::MatrixXd& V, const std::vector<int>& skin, const Eigen::Vector3d& first, double zlo,
+                    double zhi) {
+  constexpr double kColumn = 1.0, kRow = 2.0, kReach = 45.0, kSearch = 30.0;
+  const double x0 = first.x() - kSearch - kReach - 1;
+  const int columns = static_cast<int>(2 * (kSearch + kReach + 1) / kColumn) + 1;
+  const int rows = static_cast<int>((zhi - zlo) / kRow) + 1;
+  std::vector<std::vector<double>> front(rows, std::vector<double>(columns, std::numeric_limits<double>::quiet_NaN()));
+  for (int v : skin) {
+    const int i = static_cast<int>(std::lround((V(v, 0) - x0) / kColumn)), r = static_cast<int>((V(v, 2) - zlo) / kRow);
+    if (i < 0 || i >= columns || r < 0 || r >= rows || V(v, 2) < zlo) continue;
+    double& d = front[r][i];
+    if (std::isnan(d) || V(v, 1) > d) d = V(v, 1);
+  }
+  std::vector<double> centres;
+  for (auto& row : front) {
+    // A column between the mesh's vertices takes its neighbours' mean, so the front has no holes.
+    for (int i = 1; i + 1 < columns; ++i)
+      if (std::isnan(row[i]) && !std::isnan(row[i - 1]) && !std::isnan(row[i + 1]))
+        row[i] = 0.5 * (row[i - 1] + row[i + 1]);
+    if (const auto c = mirror_centre(row, x0, kColumn, first.x(), kSearch, kReach)) centres.push_back(*c);
+  }
+  if (centres.empty()) return first.x();
+  std::nth_element(centres.begin(), centres.begin() + centres.size() / 2, centres.end());
+  return centres[centres.size() / 2];
 }
 
 Eigen::Vector3d require(const std::optional<Eigen::Vector3d>& p, const std::string& name) {
@@ -76,32 +133,47 @@ Eigen::Vector3d require(const std::optional<Eigen::Vector3d>& p, const std::stri
   return *p;
 }
 
-// Landmarks of a profile whose front was cut flat by the scan's field of view over z in [cut.first, cut.second]
-// (from the nose down to the upper lip or nose): below the cut, the upper lip is the most anterior point, the
-// subnasale the least anterior one between it and the cut, the stomion the least anterior one below the upper lip
-// and the lower lip the most anterior one below that; the nose tip, nasion and glabella lie inside the cut and are
-// placed above the subnasale by typical adult proportions (nose tip 15 mm, nasion 55 mm, glabella 67 mm), on the
-// cut, below the top of the skin.
-FaceLandmarks clipped_face_landmarks(const Profile& profile, const std::pair<double, double>& cut, double x_mid,
-                                     double zmax) {
-  FaceLandmarks l;
-  l.x_mid = x_mid;
-  l.clipped_from = cut.first;
-  l.clipped_to = cut.second;
-  const Eigen::Vector3d ls = require(profile.extreme(cut.first - 30, cut.first - 6, true), "upper lip");
-  const Eigen::Vector3d sn = require(profile.extreme(ls.z() + 1, cut.first, false), "subnasale");
-  const Eigen::Vector3d st = require(profile.extreme(ls.z() - 20, ls.z() - 3, false), "stomion");
-  const Eigen::Vector3d li = require(profile.extreme(st.z() - 20, st.z() - 1, true), "lower lip");
-  auto on_cut = [&](double z) {
-    const std::optional<Eigen::Vector3d> p = profile.extreme(z - 1, z + 1, true);
-    return Eigen::Vector3d(x_mid, p ? p->y() : profile.extreme(cut.first, cut.second, true)->y(), z);
-  };
-  const double prn = std::min(sn.z() + 15, zmax - 20), n = std::min(prn + 40, zmax - 13),
-               g = std::min(n + 12, zmax - 1);
-  l.points = {{"pronasale", on_cut(prn)}, {"subnasale", sn},        {"nasion", on_cut(n)}, {"glabella", on_cut(g)},
-              {"labrale superius", ls},   {"labrale inferius", li}, {"stomion", st}};
-  l.estimated = {"pronasale", "nasion", "glabella"};
-  return l;
+// The subnasale: the profile point between the upper lip and the nose (`nose`: its tip, or the lowest point of a
+// field-of-view cut) deepest behind the chord joining them, where the columella meets the lip.
+Eigen::Vector3d subnasale(const Profile& profile, const Eigen::Vector3d& ls, const Eigen::Vector3d& nose) {
+  std::optional<Eigen::Vector3d> best;
+  double depth = -std::numeric_limits<double>::infinity();
+  for (const auto& bin : profile.bins) {
+    if (!bin || bin->z() <= ls.z() || bin->z() >= nose.z()) continue;
+    const double t = (bin->z() - ls.z()) / (nose.z() - ls.z());
+    const double d = ls.y() + t * (nose.y() - ls.y()) - bin->y();
+    if (d > depth) depth = d, best = bin;
+  }
+  // The lip below the columella is often nearly vertical: its top, as deep as the deepest point within 0.5 mm.
+  Eigen::Vector3d sn = require(best, "subnasale");
+  for (double z = sn.z() + 1; z < nose.z(); z += 1) {
+    const std::optional<Eigen::Vector3d> p = profile.extreme(z - 0.5, z + 0.5, true);
+    if (!p) continue;  // a bin between the mesh's vertices
+    if (p->y() > best->y() + 0.5) break;
+    sn = *p;
+  }
+  return sn;
+}
+
+// The soft-tissue pogonion and menton under the lower lip (face_landmarks.h); none when the model ends above them.
+void add_chin(const Profile& profile, const std::vector<int>& skin, const Eigen::MatrixXd& V, FaceLandmarks& l) {
+  const Eigen::Vector3d li = l.points.at("labrale inferius");
+  const std::optional<Eigen::Vector3d> fold = profile.next_minimum_below(li.z(), 25);
+  if (!fold) return;
+  const std::optional<Eigen::Vector3d> pog = profile.extreme(fold->z() - 30, fold->z() - 1, true);
+  if (!pog || pog->y() <= fold->y() + 1) return;  // no chin in front of the fold: the model ends above it
+  l.points["pogonion"] = *pog;
+  std::optional<Eigen::Vector3d> lowest;
+  for (int v : skin) {
+    const Eigen::Vector3d p = V.row(v).transpose();
+    if (std::abs(p.x() - l.x_mid) <= 3.0 && p.y() >= pog->y() - 20 && p.z() < pog->z() &&
+        (!lowest || p.z() < lowest->z()))
+      lowest = p;
+  }
+  // The chin's underside turns back towards the neck: a lowest point on the model's bottom edge is a cut, not a menton.
+  double zmin = std::numeric_limits<double>::infinity();
+  for (int v : skin) zmin = std::min(zmin, V(v, 2));
+  if (lowest && lowest->z() > zmin + 2.0) l.points["menton"] = *lowest;
 }
 
 }  // namespace
@@ -125,22 +197,124 @@ FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorX
   const double height = zmax - zmin;
   // The nose tip near the middle, then the plane through it.
   const auto first = skin_profile(V, skin, l.x_mid, 20.0).extreme(zmin + 0.1 * height, zmax - 0.1 * height, true);
-  l.x_mid = require(first, "nose tip").x();
+  // The middle of the skin within 1 mm of the front there: the tip of a nose, or the middle of a field-of-view cut.
+  l.x_mid = mirror_plane(V, skin, require(first, "nose tip"), zmin + 0.1 * height, zmax - 0.1 * height);
   const Profile profile = skin_profile(V, skin, l.x_mid, options.profile_band);
   const Eigen::Vector3d front = require(profile.extreme(zmin + 0.1 * height, zmax - 0.1 * height, true), "nose tip");
   const std::optional<std::pair<double, double>> cut =
       profile.clipped_run(front.y(), options.clipped_depth, options.clipped_length);
-  if (cut) return clipped_face_landmarks(profile, *cut, l.x_mid, zmax);
-  const Eigen::Vector3d prn = front;
-  const Eigen::Vector3d sn = require(profile.extreme(prn.z() - 25, prn.z() - 3, false), "subnasale");
-  const Eigen::Vector3d n = require(profile.extreme(prn.z() + 10, prn.z() + 45, false), "nasion");
-  const Eigen::Vector3d g = require(profile.extreme(n.z() + 3, n.z() + 25, true), "glabella");
+  if (cut) l.clipped_from = cut->first, l.clipped_to = cut->second;
+  // The nose as the profile shows it: its tip, or the lowest point of the cut.
+  const Eigen::Vector3d nose = cut ? require(profile.extreme(cut->first - 1, cut->first + 1, true), "nose") : front;
   // The lips: the upper lip's most anterior point, the lower lip's, and the least anterior point between them.
-  const Eigen::Vector3d ls = require(profile.extreme(sn.z() - 20, sn.z() - 3, true), "upper lip");
-  const Eigen::Vector3d li = require(profile.extreme(ls.z() - 30, ls.z() - 6, true), "lower lip");
-  const Eigen::Vector3d st = require(profile.extreme(li.z() + 1, ls.z() - 1, false), "stomion");
+  // Under an intact nose its flank can be more anterior than the lip: the lip is looked for below the least anterior
+  // point under the nose; under a cut, 6-30 mm below it.
+  const Eigen::Vector3d ls = cut ? require(profile.extreme(nose.z() - 30, nose.z() - 6, true), "upper lip") : [&] {
+    const Eigen::Vector3d sn0 = require(profile.extreme(nose.z() - 25, nose.z() - 3, false), "subnasale");
+    return require(profile.extreme(sn0.z() - 20, sn0.z() - 3, true), "upper lip");
+  }();
+  const Eigen::Vector3d sn = subnasale(profile, ls, nose);
+  const Eigen::Vector3d st = require(profile.next_minimum_below(ls.z(), 20), "stomion");
+  const Eigen::Vector3d li = require(profile.extreme(st.z() - 15, st.z() - 1, true), "lower lip");
+  // Above the nose: found above a cut that ends below the top of the skin, else placed by typical adult proportions
+  // on the cut (nose tip 15 mm above the subnasale, nasion 40 mm above the tip, glabella 12 mm above the nasion).
+  const bool above_cut = cut && cut->second < zmax - 15;
+  Eigen::Vector3d prn = front, n, g;
+  if (!cut || above_cut) {
+    if (cut)
+      prn = require(profile.extreme(0.5 * (cut->first + cut->second) - 1, 0.5 * (cut->first + cut->second) + 1, true),
+                    "nose tip");
+    n = require(profile.extreme((cut ? cut->second : prn.z() + 10), prn.z() + 45, false), "nasion");
+    g = require(profile.middle_of_front(n.z() + 3, n.z() + 30, 0.5), "glabella");
+    if (cut) l.estimated = {"pronasale"};
+  } else {
+    auto on_cut = [&](double z) {
+      const std::optional<Eigen::Vector3d> p = profile.extreme(z - 1, z + 1, true);
+      return Eigen::Vector3d(l.x_mid, p ? p->y() : front.y(), z);
+    };
+    prn = on_cut(std::min(sn.z() + 15, zmax - 20));
+    n = on_cut(std::min(prn.z() + 40, zmax - 13));
+    g = on_cut(std::min(n.z() + 12, zmax - 1));
+    l.estimated = {"pronasale", "nasion", "glabella"};
+  }
   l.points = {{"pronasale", prn},       {"subnasale", sn},        {"nasion", n},  {"glabella", g},
               {"labrale superius", ls}, {"labrale inferius", li}, {"stomion", st}};
+  add_chin(profile, skin, V, l);
+  return l;
+}
+
+void check_plausible(const FaceLandmarks& l, const std::string& remedy) {
+  const auto has = [&](const char* name) { return l.points.count(name) > 0; };
+  const auto at = [&](const char* name) { return l.points.at(name); };
+  const auto fail = [&](const std::string& landmark, const std::string& problem) {
+    throw Error("landmarks", "implausible " + landmark + ": " + problem + "; " + remedy);
+  };
+  const auto number = [](double v) {
+    std::ostringstream s;
+    s.precision(1);
+    s << std::fixed << v << " mm";
+    return s.str();
+  };
+  const char* order[] = {"glabella", "nasion",           "pronasale", "subnasale", "labrale superius",
+                         "stomion",  "labrale inferius", "pogonion",  "menton"};
+  const char* above = nullptr;
+  for (const char* name : order) {
+    if (!has(name)) continue;
+    if (above && at(name).z() >= at(above).z())
+      fail(name, std::string("it lies at or above the ") + above + " (z " + number(at(name).z()) + " vs " +
+                     number(at(above).z()) + ")");
+    above = name;
+  }
+  const auto range = [&](const char* a, const char* b, double lo, double hi, const char* blame) {
+    if (!has(a) || !has(b)) return;
+    const double d = (at(a) - at(b)).norm();
+    if (d < lo || d > hi)
+      fail(blame, std::string("the distance ") + a + " - " + b + " is " + number(d) + ", outside the adult range " +
+                      number(lo) + " to " + number(hi));
+  };
+  range("nasion", "subnasale", 35, 70, "subnasale");
+  range("subnasale", "menton", 45, 95, "menton");
+  range("glabella", "nasion", 3, 35, "glabella");
+  range("cheilion left", "cheilion right", 35, 85, "cheilion");
+  if (has("nasion") && has("subnasale") && has("menton")) {
+    const double ratio = (at("subnasale") - at("menton")).norm() / (at("nasion") - at("menton")).norm();
+    if (ratio < 0.45 || ratio > 0.70)
+      fail("menton", "the lower face (subnasale - menton) is " + std::to_string(static_cast<int>(100 * ratio)) +
+                         " % of the face height (nasion - menton), outside the adult 45 to 70 %");
+  }
+  for (const char* eye : {"endocanthion left", "exocanthion left", "endocanthion right", "exocanthion right"}) {
+    if (!has(eye)) continue;
+    for (const char* mouth : {"cheilion left", "cheilion right"})
+      if (has(mouth) && at(eye).z() <= at(mouth).z()) fail(eye, std::string("it lies below the ") + mouth);
+    if (has("glabella") && at(eye).z() >= at("glabella").z()) fail(eye, "it lies above the glabella");
+  }
+}
+
+std::vector<NamedLandmark> named_landmarks(const FaceLandmarks& l) {
+  std::vector<NamedLandmark> out;
+  for (const std::string& name : landmark_names()) {
+    const auto p = l.points.find(name);
+    if (p == l.points.end()) continue;
+    const bool estimated = std::find(l.estimated.begin(), l.estimated.end(), name) != l.estimated.end();
+    out.push_back({name, p->second,
+                   l.given     ? LandmarkStatus::given
+                   : estimated ? LandmarkStatus::estimated
+                               : LandmarkStatus::found});
+  }
+  return out;
+}
+
+FaceLandmarks landmarks_from(const std::vector<NamedLandmark>& given, const std::string& source) {
+  FaceLandmarks l;
+  for (const NamedLandmark& n : given) {
+    l.points[n.name] = n.position;
+    if (n.status == LandmarkStatus::estimated) l.estimated.push_back(n.name);
+  }
+  for (const FeatureSpec& spec : feature_specs())
+    if (!l.points.count(spec.landmark))
+      throw Error(source, "the " + spec.name + " needs the landmark '" + spec.landmark + "', which the file lacks");
+  l.x_mid = l.points.at("pronasale").x();
+  l.given = true;
   return l;
 }
 

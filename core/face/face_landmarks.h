@@ -3,17 +3,29 @@
 // (paper 3.4: mid-sagittal line, eyebrow line, below-nose line, middle lip line).
 //
 // Frame: +x lateral, +y anterior (the face looks to +y), +z superior. The skin is the model's w1 side (side_mask).
-//  - mid-sagittal plane x = x_mid: first the middle of the skin's x range, then the x of the nose tip found near it;
-//  - the profile: for 1 mm bins of z, the most anterior skin point within `profile_band` of the plane;
+//  - mid-sagittal plane x = x_mid: the skin's mirror plane (the median over 2 mm rows of z of the plane that best
+//    mirrors the row's front, core/util/mirror_symmetry.h), searched near the most anterior point within 20 mm of the
+//    middle of the skin's x range;
+//  - the profile: for 1 mm bins of z, the most anterior skin point within `profile_band` of the plane, moved onto it
+//    (a band wider than the philtrum's groove would catch its ridges);
 //  - pronasale (nose tip): the most anterior profile point in the middle 80 % of the z range;
-//    subnasale: the least anterior point up to 25 mm below it; nasion: the least anterior point 10-45 mm above it;
-//    glabella (brow ridge): the most anterior point up to 25 mm above the nasion;
-//    labrale superius: the most anterior point up to 20 mm below the subnasale; labrale inferius: the most anterior
-//    point 6-30 mm below that; stomion (lip contact): the least anterior point between the two.
-// A field-of-view cut: when the front of the profile is a plateau (within 3.5 mm of its most anterior point) at least
-// 25 mm long, the scan cut the face flat there (a nose drops more than that within 25 mm of its tip). Then the upper
-// lip, subnasale, stomion and lower lip are found below the cut, and the pronasale, nasion and glabella inside it
-// are placed by typical adult proportions above the subnasale (15, 55 and 67 mm), listed in `estimated`.
+//    the lips below it: labrale superius, the most anterior point 3-20 mm below the least anterior point up to 25 mm
+//    under the nose (6-30 mm under a field-of-view cut); stomion (lip contact), the first local minimum of the
+//    profile's depth below it (within 20 mm); labrale inferius, the most anterior point up to 15 mm below the stomion;
+//    subnasale, the point between the upper lip and the nose deepest behind the chord joining them, moved up to the
+//    top of the lip's part as deep within 0.5 mm (where the columella meets the lip);
+//    nasion: the least anterior point 10-45 mm above the nose tip; glabella (brow ridge): the middle of the points
+//    within 0.5 mm of the most anterior one 3-30 mm above the nasion (a flat brow's centre);
+//    pogonion (soft-tissue chin): the most anterior point up to 30 mm below the labiomental fold (the first local
+//    minimum below the labrale inferius); menton (soft tissue): the lowest skin point within 3 mm of the
+//    plane and 20 mm behind the pogonion (the underside of the chin), unless it lies on the model's bottom edge.
+// A field-of-view cut: when the front of the profile is a plateau (within clipped_depth of its most anterior point)
+// at least clipped_length long, the scan cut the face flat there (a nose drops more than that within 25 mm of its
+// tip). The lips and subnasale are found below it as above (the cut's lowest point standing for the nose). When the
+// cut ends well below the top of the skin (the nose alone was cut), the pronasale is estimated at the cut's middle and
+// the nasion and glabella are found above the cut; otherwise the pronasale, nasion and glabella are placed by typical
+// adult proportions above the subnasale (15, 55 and 67 mm) on the cut. Placed landmarks are listed in `estimated`.
+// Then the plausibility check (check_plausible). Every landmark is listed with its status: found, or estimated.
 // Each feature constraint pins the chosen field on the skin (and on walls of openings, e.g. the standard's mouth
 // slit) near the landmark: v on the horizontal plane through it, u = 0.5 on the mid-sagittal plane (whole volume).
 #include <Eigen/Core>
@@ -22,6 +34,7 @@
 #include <string>
 #include <vector>
 
+#include "core/face/landmark_file.h"
 #include "core/fields/constraint_set.h"
 #include "core/mesh/mesh.h"
 
@@ -34,10 +47,11 @@ struct FaceLandmarks {
   // that lie inside the cut and were placed by typical proportions instead of found.
   double clipped_from = std::numeric_limits<double>::quiet_NaN(), clipped_to = clipped_from;
   std::vector<std::string> estimated;
+  bool given = false;  // read from the user's file (landmarks_from), not found
 };
 
 struct LandmarkOptions {
-  double profile_band = 3.0;     // mm
+  double profile_band = 1.5;     // mm
   double clipped_depth = 3.5;    // mm: profile points this close to the most anterior one are on a front plateau
   double clipped_length = 25.0;  // mm: a front plateau this long is a field-of-view cut, not anatomy
 };
@@ -45,6 +59,20 @@ struct LandmarkOptions {
 // V #V x 3, side_mask #V. Throws facehex::Error("landmarks", ...) naming the landmark that cannot be found.
 FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
                                   const LandmarkOptions& options = {});
+
+// Adult ranges, each a fact an implausible set breaks: the profile landmarks in order from the top (glabella, nasion,
+// pronasale, subnasale, labrale superius, stomion, labrale inferius, pogonion, menton); nasion-subnasale (nose
+// height) 35-70 mm; subnasale-menton (lower face height) 45-95 mm and 0.45-0.70 of nasion-menton; glabella 3-35 mm
+// above the nasion; mouth width (cheilion to cheilion) 35-85 mm; eye corners above the mouth corners and below the
+// glabella. Landmarks absent from the set are not checked. Throws facehex::Error("landmarks", ...) naming the
+// landmark and `remedy` (e.g. "give them with --landmarks FILE").
+void check_plausible(const FaceLandmarks& landmarks, const std::string& remedy);
+
+// The landmarks as named points with their status (found or estimated), in landmark_names() order.
+std::vector<NamedLandmark> named_landmarks(const FaceLandmarks& landmarks);
+// Landmarks given by the user: the mid-sagittal plane through the given pronasale. Throws facehex::Error(source, ...)
+// when a landmark the feature constraints need is missing.
+FaceLandmarks landmarks_from(const std::vector<NamedLandmark>& given, const std::string& source);
 
 // One line per landmark, "name at (x, y, z) mm", marked "(estimated)" where placed by proportions, and a first line
 // naming the field-of-view cut if there is one; each line starts with `indent`.

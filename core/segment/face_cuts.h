@@ -10,14 +10,13 @@
 //                cut alone would cut it right across, joining u0 and u1 under the chin; the jaw cut takes away the
 //                back of the submental region so that the posterior cut meets two separate lateral pieces, as in the
 //                standard mesh (whose lower boundary also rises from the chin back towards the ears).
-// Automatic placement (each value can be given instead):
-//   centre_x    = mean x of the head voxels;
-//   bottom_z    = lowest bone voxel of the chin (within 15 mm of the mid-plane, in the anterior quarter of the
-//                 head's depth at its level) minus chin_clearance, but at least border_margin above the CT's bottom;
-//   top_z       = bottom_z + face_height, but at least border_margin below the CT's top;
-//   posterior_y = the front of the ears plus ear_clearance. The ears are where the head is widest (they stick out
-//                 further than anything else over the upper 60% of the face and the middle half of the head's
-//                 depth); their front is the most anterior coronal row within 5 mm of that width;
+// Automatic placement from the anatomy (face_anatomy.h, which states how each landmark is found); each value can be
+// given instead:
+//   centre_x    = the mid-sagittal plane at the pronasale's level, from the face's mirror symmetry;
+//   bottom_z    = the menton (lowest point of the bony chin) minus chin_clearance, but at least border_margin above
+//                 the CT's bottom;
+//   top_z       = the glabella plus brow_clearance (above the eyebrows), but at least border_margin below the CT's top;
+//   posterior_y = the front of the ears (the tragi) plus ear_clearance;
 //   jaw_z       = just above the highest model voxel on the posterior cut within one voxel of the mid-plane, in the
 //                 lower half of the face (find_jaw_cut, once the soft tissue is known); none if there is none.
 #include <limits>
@@ -25,14 +24,15 @@
 #include <vector>
 
 #include "core/mesh/sides.h"
+#include "core/segment/face_anatomy.h"
 #include "core/segment/voxel_grid.h"
 
 namespace facehex {
 
 struct FaceCutOptions {
   std::optional<double> top_z, bottom_z, posterior_y, centre_x;  // mm, segmentation frame
-  double face_height = 130.0;    // mm from the bottom to the top cut (menton to above the brows, plus clearance)
-  double chin_clearance = 10.0;  // mm below the lowest point of the mandible
+  double brow_clearance = 15.0;                                  // mm above the glabella (the eyebrows lie within it)
+  double chin_clearance = 15.0;  // mm below the menton (the chin's soft tissue is about 10 mm thick there)
   double ear_clearance = 10.0;   // mm in front of the front of the ears
   double border_margin = 3.0;    // mm: top and bottom cuts stay this far inside the CT
 };
@@ -48,12 +48,14 @@ struct CutPlane {
 struct FaceCuts {
   double top_z = 0, bottom_z = 0, posterior_y = 0, centre_x = 0;
   double jaw_z = -std::numeric_limits<double>::infinity();  // -infinity: no jaw cut
+  std::optional<FaceAnatomy> anatomy;  // what the automatic cuts were placed by; empty if all given
 
   std::vector<CutPlane> planes() const;
 };
 
 // `head` is the body (with its ears), `bone` the bone voxels, on the same grid.
-// Throws facehex::Error("segment", ...) if the cuts leave no face (bottom above top, ...).
+// The anatomy is looked for unless all four values are given. Throws facehex::Error("segment", ...) if it cannot be
+// found (naming the option that places the cut by hand) or if the cuts leave no face (bottom above top, ...).
 FaceCuts find_face_cuts(const Mask& head, const Mask& bone, const FaceCutOptions& options);
 
 // Sets cuts.jaw_z from the model mask (before the cuts are applied): `clearance` mm above the highest model voxel in

@@ -34,6 +34,7 @@ std::string segmentation_summary(const CtSegmentation& segmentation) {
        << thresholds.bone << " (file units); cuts (mm, segmentation frame): top z " << cuts.top_z << ", bottom z "
        << cuts.bottom_z << ", posterior y " << cuts.posterior_y << ", mid-plane x " << cuts.centre_x;
   if (std::isfinite(cuts.jaw_z)) text << ", jaw cut rising to z " << cuts.jaw_z << " at the posterior cut";
+  if (cuts.anatomy) text << "; found: " << face_anatomy_text(*cuts.anatomy);
   return text.str();
 }
 

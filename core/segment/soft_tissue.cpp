@@ -148,12 +148,12 @@ void check_topology(const PatientModel& model) {
   const int pieces = count_patches(model.boundary_faces, model.boundary_sides, -1);
   if (pieces != 1)
     throw Error("segment", "the model is " + std::to_string(pieces) +
-                               " separate solids; raise cavity_closing_radius or smoothing_sigma, or move the cuts");
+                               " separate solids; raise --cavity-closing or --smoothing, or move the cuts");
   const int chi = euler_characteristic(model.boundary_faces);
   if (chi != 2)
     throw Error("segment", "the model's boundary has Euler characteristic " + std::to_string(chi) +
-                               " instead of 2 (it has tunnels or voids); raise min_thickness, bone_gap_radius, "
-                               "cavity_closing_radius or smoothing_sigma, or lower max_depth");
+                               " instead of 2 (it has tunnels or voids); raise --min-thickness, --bone-gap, "
+                               "--cavity-closing or --smoothing, or lower --max-depth");
   for (int s = 0; s < kNumSides; ++s) {
     const int n = count_patches(model.boundary_faces, model.boundary_sides, s);
     if (n != 1)

@@ -40,6 +40,8 @@ inline TetrahedralizeOptions patient_tet_options() {
   return o;
 }
 
+// Each setting below is an option of the command line (app/transfer_options.cpp: --skin, --bone, --min-thickness,
+// --bone-gap, --cavity-closing, --smoothing, --max-depth, the cut options, --edge-length), named in the errors.
 struct SegmentOptions {
   std::optional<double> skin_threshold, bone_threshold;  // file units; estimated from the histogram when unset
   double working_spacing = 1.0;                          // mm, isotropic grid the CT is resampled to

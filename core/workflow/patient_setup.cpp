@@ -1,6 +1,7 @@
 #include "core/workflow/patient_setup.h"
 
 #include <filesystem>
+#include <optional>
 
 #include "core/face/automatic_constraints.h"
 #include "core/mesh/mesh_check.h"
@@ -14,9 +15,10 @@ namespace facehex {
 namespace fs = std::filesystem;
 
 void choose_constraints(PatientSetup& patient, const std::string& constraints_file,
-                        const std::map<std::string, double>* feature_values) {
+                        const std::map<std::string, double>* feature_values, const std::string& landmarks_file) {
   patient.landmarks.reset();
   patient.features_problem.clear();
+  patient.landmarks_path = landmarks_file;
   if (!constraints_file.empty()) {
     patient.constraints = read_constraint_set(constraints_file);
     patient.constraints_path = constraints_file;
@@ -38,11 +40,15 @@ void choose_constraints(PatientSetup& patient, const std::string& constraints_fi
   }
   try {
     FaceLandmarks landmarks;
-    patient.constraints =
-        automatic_constraints(patient.domain.V, patient.domain.side_mask, *feature_values, kFeatureBand, &landmarks);
+    const std::optional<FaceLandmarks> given =
+        landmarks_file.empty()
+            ? std::nullopt
+            : std::optional<FaceLandmarks>(landmarks_from(read_landmark_file(landmarks_file), landmarks_file));
+    patient.constraints = automatic_constraints(patient.domain.V, patient.domain.side_mask, *feature_values,
+                                                kFeatureBand, &landmarks, given ? &*given : nullptr);
     patient.landmarks = landmarks;
-    patient.constraints_note =
-        "automatic constraints: six sides and " + std::to_string(feature_specs().size()) + " features at the landmarks";
+    patient.constraints_note = "automatic constraints: six sides and " + std::to_string(feature_specs().size()) +
+                               " features at the landmarks" + (landmarks_file.empty() ? "" : " of " + landmarks_file);
   } catch (const Error& e) {
     patient.features_problem = e.what();
     patient.constraints_note += " only: no facial features (" + patient.features_problem + ")";
@@ -50,12 +56,14 @@ void choose_constraints(PatientSetup& patient, const std::string& constraints_fi
 }
 
 PatientSetup load_patient(const std::string& path, const SegmentOptions& segment, const std::string& constraints_file,
-                          const std::map<std::string, double>* feature_values, const ProgressCallback& progress) {
-  return setup_patient(load_patient_model(path, segment, progress), path, constraints_file, feature_values);
+                          const std::map<std::string, double>* feature_values, const ProgressCallback& progress,
+                          const std::string& landmarks_file) {
+  return setup_patient(load_patient_model(path, segment, progress), path, constraints_file, feature_values,
+                       landmarks_file);
 }
 
 PatientSetup setup_patient(PatientTetModel model, const std::string& path, const std::string& constraints_file,
-                           const std::map<std::string, double>* feature_values) {
+                           const std::map<std::string, double>* feature_values, const std::string& landmarks_file) {
   PatientSetup p;
   p.path = path;
   p.mesh = std::move(model.mesh);
@@ -66,7 +74,7 @@ PatientSetup setup_patient(PatientTetModel model, const std::string& path, const
   const std::string file = !constraints_file.empty() ? constraints_file
                            : is_ct_input(path)       ? std::string()
                                                      : constraints_beside(path);
-  choose_constraints(p, file, feature_values);
+  choose_constraints(p, file, feature_values, landmarks_file);
   return p;
 }
 

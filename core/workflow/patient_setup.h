@@ -23,6 +23,7 @@ struct PatientSetup {
   TetDomain domain;                            // own_domain(mesh)
   ConstraintSet constraints;
   std::string constraints_path;            // the file the constraints came from, or empty when placed automatically
+  std::string landmarks_path;              // the user's landmark file the features were placed at, or empty
   std::optional<FaceLandmarks> landmarks;  // where the automatic feature constraints were placed
   std::string features_problem;  // why no feature constraints were placed (then only the six sides, or none), or empty
   std::string constraints_note;  // one line for the user: which constraints, from where
@@ -32,22 +33,24 @@ struct PatientSetup {
 };
 
 // The one constraint policy: `constraints_file` when given; else, for a model with side labels, its six sides and the
-// facial feature constraints at its landmarks valued as the standard's (`feature_values`,
+// facial feature constraints at its landmarks (those of `landmarks_file` when given, core/face/landmark_file.h, else
+// found on its skin; either set checked for plausibility) valued as the standard's (`feature_values`,
 // core/face/automatic_constraints.h) or, when no values are given or the landmarks cannot be found, its six sides
 // alone (features_problem says why); a model with neither a constraint file nor side labels gets no constraints
 // (features_problem says so), for the user to place them.
 void choose_constraints(PatientSetup& patient, const std::string& constraints_file,
-                        const std::map<std::string, double>* feature_values);
+                        const std::map<std::string, double>* feature_values, const std::string& landmarks_file = "");
 
 // The model of `path` (a CT is segmented with `segment`; `progress` hears of it) with its constraints as
 // choose_constraints picks them, the file being `constraints_file`, else for a mesh file constraints_beside it
 // (core/util/resources.h). Throws facehex::Error naming the file or the stage.
 PatientSetup load_patient(const std::string& path, const SegmentOptions& segment, const std::string& constraints_file,
-                          const std::map<std::string, double>* feature_values, const ProgressCallback& progress = {});
+                          const std::map<std::string, double>* feature_values, const ProgressCallback& progress = {},
+                          const std::string& landmarks_file = "");
 
 // load_patient's second half, on a model read (or segmented) beforehand from `path`.
 PatientSetup setup_patient(PatientTetModel model, const std::string& path, const std::string& constraints_file,
-                           const std::map<std::string, double>* feature_values);
+                           const std::map<std::string, double>* feature_values, const std::string& landmarks_file = "");
 
 // A tet model made in memory (checked and oriented), constrained by choose_constraints without a file.
 PatientSetup patient_from_mesh(VolumeMesh mesh, const std::string& name,

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -32,17 +33,40 @@ void fill(Mask& m, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
       }
 }
 
-// The synthetic head: a block x in [20, 100] (mid-plane x = 60), y in [20, 100] (back to front), z in [10, 170], with
-// ears x in [10, 110] at y in [50, 60], z in [100, 120]; the chin bone x in [54, 66], y in [84, 94], z in [40, 50].
-// Known cuts with the default options: centre_x 60, bottom 40 - 10 = 30, top 30 + 130 = 160, posterior 60 + 10 = 70.
+// The synthetic head, symmetric about x = 60, in its own frame (y anterior, z superior): a block x in [20, 100],
+// y in [20, 90], z in [10, 170], its front rounded (y <= 90 - (x - 60)^2 / 80); a nose x in [56, 64] reaching y = 104
+// over z in [90, 110] (a flat front, as a field-of-view cut leaves it); a brow and forehead y in [90, 92] above z =
+// 130; ears x in [10, 110] at y in [50, 60], z in [100, 120]; shoulders x in [0, 120], y in [30, 80], z below 8; the
+// chin's bone x in [54, 66], y in [76, 86], z in [40, 50]. Known anatomy: pronasale z 100, nasion the middle of the
+// flat y = 90 over z in [116, 132], z 124; glabella the middle of the brow, z 140; menton z 40; ears' front y 60. Known
+// cuts with the default options: centre_x 60, bottom 40 - 15 = 25, top 140 + 15 = 155, posterior 60 + 10 = 70. `pose`
+// maps the head's frame into the CT's (a rotation about the point (60, 60, 90)), then `lift` moves it up.
 struct Head {
   Mask head, bone;
-  Head() : head(grid(), 0), bone(grid(), 0) {
-    fill(head, {20, 20, 10}, {100, 100, 170});
-    fill(head, {10, 50, 100}, {110, 60, 120});
-    fill(bone, {54, 84, 40}, {66, 94, 50});
+  explicit Head(const Eigen::Matrix3d& pose = Eigen::Matrix3d::Identity(), bool shoulders = true, double lift = 0)
+      : head(grid(), 0), bone(grid(), 0) {
+    const Eigen::Vector3d pivot(60, 60, 90);
+    const GridGeometry& g = head.geometry;
+    auto in = [](const Eigen::Vector3d& p, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+      return (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();
+    };
+    for (int k = 0; k < g.dims[2]; ++k)
+      for (int j = 0; j < g.dims[1]; ++j)
+        for (int i = 0; i < g.dims[0]; ++i) {
+          const Eigen::Vector3d p = pivot + pose.transpose() * (g.point(i, j, k) - Eigen::Vector3d(0, 0, lift) - pivot);
+          const bool rounded = p.y() <= 90 - (p.x() - 60) * (p.x() - 60) / 80;
+          head(i, j, k) = (rounded && in(p, {20, 20, 10}, {100, 90, 170})) || in(p, {56, 90, 90}, {64, 104, 110}) ||
+                          (p.y() <= 94 - (p.z() - 140) * (p.z() - 140) / 25 && in(p, {30, 90, 130}, {90, 94, 150})) ||
+                          in(p, {30, 90, 150}, {90, 92, 170}) || in(p, {10, 50, 100}, {110, 60, 120}) ||
+                          (shoulders && in(p, {0, 30, 0}, {120, 80, 8}));
+          bone(i, j, k) = in(p, {54, 76, 40}, {66, 86, 50});
+        }
   }
 };
+
+Eigen::Matrix3d rotation(double degrees, const Eigen::Vector3d& axis) {
+  return Eigen::AngleAxisd(degrees * M_PI / 180, axis.normalized()).toRotationMatrix();
+}
 
 void expect_error(const std::function<void()>& run, const std::string& words) {
   try {
@@ -54,57 +78,95 @@ void expect_error(const std::function<void()>& run, const std::string& words) {
   }
 }
 
-TEST(FaceCuts, AutomaticCutsOfASyntheticHead) {
+TEST(FaceCuts, AutomaticCutsOfASyntheticHeadFollowItsAnatomy) {
   const Head h;
   const FaceCuts cuts = find_face_cuts(h.head, h.bone, FaceCutOptions());
+  ASSERT_TRUE(cuts.anatomy);
+  const FaceAnatomy& a = *cuts.anatomy;
+  EXPECT_NEAR(a.centre_x, 60, 1e-9);
+  EXPECT_NEAR(a.roll_degrees, 0, 1e-9);
+  EXPECT_TRUE(a.pronasale.isApprox(Eigen::Vector3d(60, 104, 100))) << a.pronasale.transpose();
+  EXPECT_TRUE(a.nose_clipped);
+  EXPECT_NEAR(a.nasion.x(), 60, 1e-9);
+  EXPECT_NEAR(a.nasion.y(), 90, 1e-9);
+  EXPECT_NEAR(a.nasion.z(), 124, 2.0);
+  EXPECT_TRUE(a.glabella.isApprox(Eigen::Vector3d(60, 94, 140))) << a.glabella.transpose();
+  EXPECT_NEAR(a.menton.z(), 40, 1e-9);
+  EXPECT_NEAR(a.ear_front_y, 60, 1e-9);
+  EXPECT_NEAR(a.lowest_head_z, 10, 1e-9);  // the shoulders (z <= 8) are not head
   EXPECT_NEAR(cuts.centre_x, 60, 1e-9);
-  EXPECT_NEAR(cuts.bottom_z, 30, 1e-9);
-  EXPECT_NEAR(cuts.top_z, 160, 1e-9);
+  EXPECT_NEAR(cuts.bottom_z, 25, 1e-9);
+  EXPECT_NEAR(cuts.top_z, 155, 1e-9);
   EXPECT_NEAR(cuts.posterior_y, 70, 1e-9);
   EXPECT_EQ(cuts.jaw_z, -std::numeric_limits<double>::infinity());  // find_jaw_cut's business
+  EXPECT_NE(face_anatomy_text(a).find("glabella (60.0, 94.0, 140.0)"), std::string::npos) << face_anatomy_text(a);
 }
 
-TEST(FaceCuts, TheClearancesAndTheFaceHeightAreOptions) {
+TEST(FaceCuts, TheClearancesAreOptions) {
   const Head h;
   FaceCutOptions o;
   o.chin_clearance = 4;
   o.ear_clearance = 6;
-  o.face_height = 100;
+  o.brow_clearance = 9;
   const FaceCuts cuts = find_face_cuts(h.head, h.bone, o);
   EXPECT_NEAR(cuts.bottom_z, 36, 1e-9);
-  EXPECT_NEAR(cuts.top_z, 136, 1e-9);
+  EXPECT_NEAR(cuts.top_z, 149, 1e-9);
   EXPECT_NEAR(cuts.posterior_y, 66, 1e-9);
 }
 
-TEST(FaceCuts, TheChinIsTheLowestAnteriorBoneNearTheMidPlane) {
+TEST(FaceCuts, TheMentonIsTheLowestBoneConnectedToTheChinNearTheSkin) {
   Head h;
-  // Bone lower down that is not the chin: the spine (posterior), a lateral bone 16 mm off the mid-plane, and bone
-  // within the anterior quarter (y >= 100 - 0.25 * 80 = 80) but just behind it (y = 78).
-  fill(h.bone, {56, 30, 14}, {64, 40, 36});
-  fill(h.bone, {76, 90, 20}, {78, 94, 24});
-  fill(h.bone, {58, 78, 16}, {62, 78, 20});
-  EXPECT_NEAR(find_face_cuts(h.head, h.bone, FaceCutOptions()).bottom_z, 30, 1e-9);
-  // Bone 14 mm off the mid-plane, at the front limit of the anterior quarter: it is the chin now.
-  fill(h.bone, {74, 80, 34}, {74, 80, 34});
-  EXPECT_NEAR(find_face_cuts(h.head, h.bone, FaceCutOptions()).bottom_z, 24, 1e-9);
+  // Lower bone reached from the chin within the mid-plane band: the mandible's lower border curving back 20 mm.
+  fill(h.bone, {58, 66, 30}, {62, 78, 40});
+  EXPECT_NEAR(find_face_cuts(h.head, h.bone, FaceCutOptions()).anatomy->menton.z(), 30, 1e-9);
+  // Bone lower still but not connected (the hyoid), or behind the reach (the spine), or lateral: not the chin.
+  fill(h.bone, {58, 50, 14}, {62, 60, 26});
+  fill(h.bone, {58, 30, 12}, {62, 40, 60});
+  fill(h.bone, {76, 80, 20}, {78, 86, 40});
+  EXPECT_NEAR(find_face_cuts(h.head, h.bone, FaceCutOptions()).anatomy->menton.z(), 30, 1e-9);
+  // Without the chin's bone near the skin, the error names the option that places the bottom cut.
+  Head no_chin;
+  no_chin.bone = Mask(no_chin.head.geometry, 0);
+  fill(no_chin.bone, {54, 50, 40}, {66, 60, 50});  // 30 mm behind the skin
+  expect_error([&] { find_face_cuts(no_chin.head, no_chin.bone, FaceCutOptions()); }, "--bottom-cut");
+}
+
+TEST(FaceCuts, ATiltedHeadKeepsItsMidPlaneAndLandmarks) {
+  // Tilted 15 degrees towards a shoulder (about the y axis): the plane's trace leans by 15 degrees.
+  const Head h(rotation(15, Eigen::Vector3d::UnitY()), false);
+  const FaceAnatomy a = *find_face_cuts(h.head, h.bone, FaceCutOptions()).anatomy;
+  EXPECT_NEAR(std::abs(a.roll_degrees), 15, 2.0);
+  // The pronasale of the tilted head: (60, 104, 100) rotated about (60, 60, 90).
+  const Eigen::Vector3d prn =
+      Eigen::Vector3d(60, 60, 90) + rotation(15, Eigen::Vector3d::UnitY()) * Eigen::Vector3d(0, 44, 10);
+  EXPECT_NEAR(a.centre_at(prn.z()), prn.x(), 2.0);
+  EXPECT_NEAR(a.pronasale.y(), prn.y(), 2.0);
+}
+
+TEST(FaceCuts, ATurnedHeadKeepsItsMidPlaneNearTheNose) {
+  for (const double degrees : {-15.0, 10.0, 15.0}) {
+    const Eigen::Matrix3d pose = rotation(degrees, Eigen::Vector3d::UnitZ());
+    const Head h(pose, false);
+    const FaceCuts cuts = find_face_cuts(h.head, h.bone, FaceCutOptions());
+    const Eigen::Vector3d prn = Eigen::Vector3d(60, 60, 90) + pose * Eigen::Vector3d(0, 44, 10);
+    EXPECT_NEAR(cuts.centre_x, prn.x(), 5.0) << degrees;
+    EXPECT_NEAR(cuts.anatomy->menton.z(), 40, 2.0) << degrees;
+    EXPECT_NEAR(cuts.top_z, 155, 5.0) << degrees << ": " << face_anatomy_text(*cuts.anatomy);
+  }
 }
 
 TEST(FaceCuts, CutsStayInsideTheCt) {
-  Head h;
-  // A chin at the head's lowest slice (z = 10): 10 - 10 = 0 is the CT's bottom; the cut stays border_margin inside.
-  fill(h.bone, {58, 90, 10}, {62, 92, 12});
+  // 30 mm lower, the menton is at z = 10 and 10 - 15 lies below the CT: the bottom cut stays border_margin inside.
+  const Head low(Eigen::Matrix3d::Identity(), false, -30);
   FaceCutOptions o;
-  EXPECT_NEAR(find_face_cuts(h.head, h.bone, o).bottom_z, 3, 1e-9);
+  EXPECT_NEAR(find_face_cuts(low.head, low.bone, o).bottom_z, 3, 1e-9);
   o.border_margin = 5;
-  EXPECT_NEAR(find_face_cuts(h.head, h.bone, o).bottom_z, 5, 1e-9);
-  // No bone at all: the bottom of the CT (plus the margin).
-  const Mask no_bone(h.head.geometry, 0);
-  EXPECT_NEAR(find_face_cuts(h.head, no_bone, FaceCutOptions()).bottom_z, 3, 1e-9);
-  // A face taller than the CT: the top cut is border_margin below its top (180 - 3).
-  const Head fresh;
+  EXPECT_NEAR(find_face_cuts(low.head, low.bone, o).bottom_z, 5, 1e-9);
+  // 20 mm higher, the glabella is at z = 160 and 160 + 25 lies above the CT (z <= 180).
+  const Head high(Eigen::Matrix3d::Identity(), false, 20);
   o = FaceCutOptions();
-  o.face_height = 200;
-  EXPECT_NEAR(find_face_cuts(fresh.head, fresh.bone, o).top_z, 177, 1e-9);
+  o.brow_clearance = 25;
+  EXPECT_NEAR(find_face_cuts(high.head, high.bone, o).top_z, 177, 1e-9);
 }
 
 TEST(FaceCuts, TheEarsFrontIsTheMostAnteriorRowNearlyAsWideAsTheWidest) {
@@ -115,31 +177,15 @@ TEST(FaceCuts, TheEarsFrontIsTheMostAnteriorRowNearlyAsWideAsTheWidest) {
   EXPECT_NEAR(find_face_cuts(h.head, h.bone, FaceCutOptions()).posterior_y, 64 + 10, 1e-9);
 }
 
-TEST(FaceCuts, OnlyTheUpperFaceAndTheMiddleOfTheHeadsDepthCanBeEars) {
+TEST(FaceCuts, ShouldersAndThingsAboveTheBrowAreNotEars) {
   Head h;
-  // Shoulders, wider than the ears, but below the upper 60 % of the face (z < 30 + 0.4 * 130 = 82).
-  fill(h.head, {0, 30, 12}, {120, 90, 20});
-  // A wide brim above the top cut (z > 160), and a wide plate at the front quarter of the head's depth (y > 80).
-  fill(h.head, {0, 40, 164}, {120, 80, 168});
-  fill(h.head, {0, 86, 130}, {120, 90, 140});
+  // Wider than the ears: shoulders higher up, a brim above the glabella, a plate at the front quarter of the depth.
+  fill(h.head, {0, 30, 12}, {120, 80, 20});
+  fill(h.head, {0, 40, 150}, {120, 80, 154});
+  fill(h.head, {0, 86, 110}, {120, 88, 112});
   const FaceCuts cuts = find_face_cuts(h.head, h.bone, FaceCutOptions());
   EXPECT_NEAR(cuts.centre_x, 60, 1e-9);  // all symmetric about x = 60
   EXPECT_NEAR(cuts.posterior_y, 70, 1e-9);
-}
-
-TEST(FaceCuts, TheCentreIsTheMeanXOfTheHead) {
-  Head h;
-  // 41 x 41 x 81 voxels centred on x = 60, plus a block of 11 x 11 x 11 voxels centred on x = 110.
-  h.head = Mask(grid(), 0);
-  fill(h.head, {20, 20, 10}, {100, 100, 170});
-  fill(h.head, {100.5, 40, 100}, {120, 60, 120});
-  const double big = 41.0 * 41 * 81, small = 10.0 * 11 * 11;  // x = 102 ... 120: 10 voxels
-  const FaceCutOptions given = [] {
-    FaceCutOptions o;
-    o.posterior_y = 50;
-    return o;
-  }();
-  EXPECT_NEAR(find_face_cuts(h.head, h.bone, given).centre_x, (60 * big + 111 * small) / (big + small), 1e-9);
 }
 
 TEST(FaceCuts, GivenValuesAreTakenAsThey) {
@@ -166,17 +212,8 @@ TEST(FaceCuts, RejectsCutsThatLeaveNoFace) {
   expect_error([&] { find_face_cuts(h.head, h.bone, o); }, "must be well above the bottom cut");
   o.top_z = 30;  // upside down
   expect_error([&] { find_face_cuts(h.head, h.bone, o); }, "must be well above the bottom cut");
-  // A CT 14 mm tall: 3 mm margins leave 8 mm between the cuts.
-  Mask slab(grid(14), 0), slab_bone(grid(14), 0);
-  fill(slab, {20, 20, 0}, {100, 100, 14});
-  expect_error([&] { find_face_cuts(slab, slab_bone, FaceCutOptions()); }, "must be well above the bottom cut");
-  // Head only below the upper face: nowhere to look for the ears.
-  Mask low(grid(), 0);
-  fill(low, {20, 20, 0}, {100, 100, 60});
-  o = FaceCutOptions();
-  o.bottom_z = 30;
-  o.top_z = 160;
-  expect_error([&] { find_face_cuts(low, h.bone, o); }, "no head between the bottom and top cuts");
+  // A head without a chin (no bone): the error names the option that places the bottom cut by hand.
+  expect_error([&] { find_face_cuts(h.head, Mask(h.head.geometry, 0), FaceCutOptions()); }, "--bottom-cut");
 }
 
 TEST(FaceCuts, PlanesPointOutOfTheModel) {

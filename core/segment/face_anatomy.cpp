@@ -1,0 +1,296 @@
+#include "core/segment/face_anatomy.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <vector>
+
+#include "core/util/error.h"
+#include "core/util/mirror_symmetry.h"
+
+namespace facehex {
+namespace {
+
+constexpr double kShoulderWidth = 1.3;      // head sections wider than this times the head's are shoulders
+constexpr double kSymmetryReach = 45.0;     // mm either side of the mid-plane compared for symmetry
+constexpr double kSymmetrySearch = 30.0;    // mm either side of the head's mean x searched for the plane
+constexpr double kProfileBand = 2.0;        // mm either side of the mid-plane for the skin profile
+constexpr double kChinHalfWidth = 6.0;      // mm either side of the mid-plane for the chin's bone
+constexpr double kChinSoftTissue = 25.0;    // mm: the chin's bone is at most this far behind the skin
+constexpr double kChinGap = 4.0;            // mm of levels without such bone within the chin's run
+constexpr double kChinDepth = 30.0;         // mm the mandible's lower border reaches back from the chin's front
+constexpr double kEarWidthTolerance = 5.0;  // mm: rows this close to the widest still belong to the ears
+
+const double kNone = std::numeric_limits<double>::quiet_NaN();
+
+std::string point_text(const Eigen::Vector3d& p) {
+  std::ostringstream s;
+  s.precision(1);
+  s << std::fixed << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
+  return s.str();
+}
+
+[[noreturn]] void not_found(const std::string& what, const std::string& options) {
+  throw Error("segment", "cannot find " + what + " in the CT; check --skin, --anterior and --superior, or place the " +
+                             "cuts with " + options);
+}
+
+// The head masks' sections, one pass: per slice the x extent, per column (i, k) the most anterior voxel's y.
+struct Sections {
+  const GridGeometry& g;
+  std::vector<double> width;  // per slice, mm; -1 where empty
+  std::vector<double> front;  // per (i, k), x fastest; NaN where the column is empty
+
+  explicit Sections(const Mask& head) : g(head.geometry) {
+    width.assign(g.dims[2], -1);
+    front.assign(static_cast<size_t>(g.dims[0]) * g.dims[2], kNone);
+    for (int k = 0; k < g.dims[2]; ++k) {
+      int first = g.dims[0], last = -1;
+      for (int j = 0; j < g.dims[1]; ++j)
+        for (int i = 0; i < g.dims[0]; ++i)
+          if (head(i, j, k)) {
+            first = std::min(first, i), last = std::max(last, i);
+            front[at(i, k)] = g.point(i, j, k).y();  // j ascends: the last one is the most anterior
+          }
+      if (last >= 0) width[k] = (last - first + 1) * g.spacing.x();
+    }
+  }
+  size_t at(int i, int k) const { return static_cast<size_t>(i) + static_cast<size_t>(g.dims[0]) * k; }
+};
+
+// The slices above the highest one in the lower half that is wider than the shoulder bound, and the lowest non-empty
+// slice: lowest head level, highest level, lowest level.
+std::array<int, 3> head_levels(const Sections& s) {
+  int top = -1, bottom = -1;
+  for (int k = s.g.dims[2] - 1; k >= 0 && top < 0; --k)
+    if (s.width[k] > 0) top = k;
+  for (int k = 0; k < s.g.dims[2] && bottom < 0; ++k)
+    if (s.width[k] > 0) bottom = k;
+  if (top < 0) throw Error("segment", "the head mask is empty");
+  std::vector<double> upper;
+  for (int k = (top + bottom) / 2; k <= top; ++k)
+    if (s.width[k] > 0) upper.push_back(s.width[k]);
+  std::nth_element(upper.begin(), upper.begin() + upper.size() / 2, upper.end());
+  const double bound = kShoulderWidth * upper[upper.size() / 2];
+  int lowest = bottom;
+  for (int k = bottom; k <= (bottom + top) / 2; ++k)
+    if (s.width[k] > bound) lowest = k + 1;
+  return {lowest, top, bottom};
+}
+
+struct SliceSymmetry {
+  double z, c;
+};
+
+// Rule 2 on one slice.
+std::optional<SliceSymmetry> slice_symmetry(const Sections& s, int k, double x0) {
+  std::vector<double> front(s.g.dims[0]);
+  for (int i = 0; i < s.g.dims[0]; ++i) front[i] = s.front[s.at(i, k)];
+  const std::optional<double> c =
+      mirror_centre(front, s.g.origin.x(), s.g.spacing.x(), x0, kSymmetrySearch, kSymmetryReach);
+  if (!c) return std::nullopt;
+  return SliceSymmetry{s.g.point(0, 0, k).z(), *c};
+}
+
+// Least-squares line c(z) = c0 + slope (z - z0) through the slices, refitted without those more than 3 mm off.
+void fit_plane(const std::vector<SliceSymmetry>& slices, FaceAnatomy& anatomy) {
+  std::vector<const SliceSymmetry*> use;
+  for (const auto& s : slices) use.push_back(&s);
+  for (int pass = 0; pass < 2; ++pass) {
+    double z0 = 0, c0 = 0;
+    for (const auto* s : use) z0 += s->z, c0 += s->c;
+    z0 /= use.size(), c0 /= use.size();
+    double szz = 0, szc = 0;
+    for (const auto* s : use) szz += (s->z - z0) * (s->z - z0), szc += (s->z - z0) * (s->c - c0);
+    anatomy.roll_z = z0, anatomy.centre_x = c0, anatomy.roll_slope = szz > 0 ? szc / szz : 0;
+    std::vector<const SliceSymmetry*> kept;
+    for (const auto* s : use)
+      if (std::abs(s->c - anatomy.centre_at(s->z)) <= 3.0) kept.push_back(s);
+    if (kept.size() < 3) break;
+    use = kept;
+  }
+  anatomy.roll_degrees = std::atan(anatomy.roll_slope) * 180 / M_PI;
+}
+
+// Rule 3: the mid-sagittal skin profile, one point per head level (NaN y where the band is empty).
+struct Profile {
+  std::vector<Eigen::Vector3d> points;  // per slice index
+
+  Profile(const Mask& head, const FaceAnatomy& anatomy, int lowest, int top) {
+    const GridGeometry& g = head.geometry;
+    points.assign(g.dims[2], Eigen::Vector3d::Constant(kNone));
+    for (int k = lowest; k <= top; ++k) {
+      const double z = g.point(0, 0, k).z(), c = anatomy.centre_at(z);
+      for (int j = g.dims[1] - 1; j >= 0 && std::isnan(points[k].y()); --j)
+        for (int i = 0; i < g.dims[0]; ++i)
+          if (head(i, j, k) && std::abs(g.point(i, j, k).x() - c) <= kProfileBand) {
+            points[k] = Eigen::Vector3d(c, g.point(i, j, k).y(), z);
+            break;
+          }
+    }
+  }
+  // The most (max) or least anterior point with z in [lo, hi]; among ties within `tie` mm, the middle one.
+  std::optional<Eigen::Vector3d> extreme(double lo, double hi, bool max, double tie) const {
+    std::optional<double> best;
+    for (const auto& p : points)
+      if (!std::isnan(p.y()) && p.z() >= lo && p.z() <= hi && (!best || (max ? p.y() > *best : p.y() < *best)))
+        best = p.y();
+    if (!best) return std::nullopt;
+    std::vector<const Eigen::Vector3d*> ties;
+    for (const auto& p : points)
+      if (!std::isnan(p.y()) && p.z() >= lo && p.z() <= hi && std::abs(p.y() - *best) <= tie) ties.push_back(&p);
+    return *ties[ties.size() / 2];
+  }
+};
+
+// Rule 4: the bony chin below the pronasale.
+void find_chin(const Mask& bone, const Profile& profile, int lowest, FaceAnatomy& anatomy) {
+  const GridGeometry& g = bone.geometry;
+  // Most anterior bone voxel near the mid-plane in slice k, as a voxel index.
+  auto bone_front = [&](int k) -> std::optional<std::array<int, 3>> {
+    const double c = anatomy.centre_at(g.point(0, 0, k).z());
+    for (int j = g.dims[1] - 1; j >= 0; --j)
+      for (int i = 0; i < g.dims[0]; ++i)
+        if (bone(i, j, k) && std::abs(g.point(i, j, k).x() - c) <= kChinHalfWidth) return std::array<int, 3>{i, j, k};
+    return std::nullopt;
+  };
+  auto near_skin = [&](int k) -> std::optional<std::array<int, 3>> {
+    const auto b = bone_front(k);
+    if (!b || std::isnan(profile.points[k].y())) return std::nullopt;
+    if (profile.points[k].y() - g.point(b->at(0), b->at(1), k).y() > kChinSoftTissue) return std::nullopt;
+    return b;
+  };
+  const double start_z = anatomy.pronasale.z() - 30;
+  int k = static_cast<int>(std::floor((start_z - g.origin.z()) / g.spacing.z()));
+  k = std::min(k, g.dims[2] - 1);
+  while (k >= lowest && !near_skin(k)) --k;
+  if (k < lowest) not_found("the chin's bone below the nose", "--bottom-cut");
+  std::array<int, 3> last = *near_skin(k);
+  const int gap = static_cast<int>(std::ceil(kChinGap / g.spacing.z()));
+  for (int kk = k - 1; kk >= lowest && last[2] - kk <= gap; --kk)
+    if (const auto b = near_skin(kk)) last = *b;
+  // Flood down and back from the run's lowest bone within the mid-plane band.
+  const double y_min = g.point(0, last[1], 0).y() - kChinDepth;
+  std::vector<std::uint8_t> seen(g.size(), 0);
+  std::vector<std::array<int, 3>> stack = {last};
+  seen[g.index(last[0], last[1], last[2])] = 1;
+  std::array<int, 3> lowest_bone = last;
+  while (!stack.empty()) {
+    const std::array<int, 3> v = stack.back();
+    stack.pop_back();
+    if (v[2] < lowest_bone[2]) lowest_bone = v;
+    for (int axis = 0; axis < 3; ++axis)
+      for (int d : {-1, 1}) {
+        std::array<int, 3> n = v;
+        n[axis] += d;
+        if (!g.contains(n[0], n[1], n[2]) || n[2] > last[2] || seen[g.index(n[0], n[1], n[2])] ||
+            !bone(n[0], n[1], n[2]))
+          continue;
+        const Eigen::Vector3d p = g.point(n[0], n[1], n[2]);
+        if (p.y() < y_min || std::abs(p.x() - anatomy.centre_at(p.z())) > kChinHalfWidth) continue;
+        seen[g.index(n[0], n[1], n[2])] = 1;
+        stack.push_back(n);
+      }
+  }
+  anatomy.menton = g.point(lowest_bone[0], lowest_bone[1], lowest_bone[2]);
+}
+
+// Rule 5: the front of the ears.
+double find_ear_front(const Mask& head, const FaceAnatomy& anatomy) {
+  const GridGeometry& g = head.geometry;
+  const double z_lo = anatomy.pronasale.z() - 25, z_hi = anatomy.glabella.z();
+  double y_front = -std::numeric_limits<double>::infinity(), y_back = -y_front;
+  for (int k = 0; k < g.dims[2]; ++k) {
+    const double z = g.point(0, 0, k).z();
+    if (z < z_lo || z > z_hi) continue;
+    for (int j = 0; j < g.dims[1]; ++j)
+      for (int i = 0; i < g.dims[0]; ++i)
+        if (head(i, j, k))
+          y_front = std::max(y_front, g.point(i, j, k).y()), y_back = std::min(y_back, g.point(i, j, k).y());
+  }
+  if (!(y_front > y_back)) not_found("the ears", "--posterior-cut");
+  const double depth = y_front - y_back;
+  std::vector<double> width(g.dims[1], -1);
+  for (int j = 0; j < g.dims[1]; ++j) {
+    const double y = g.point(0, j, 0).y();
+    if (y < y_back + 0.25 * depth || y > y_front - 0.25 * depth) continue;
+    for (int k = 0; k < g.dims[2]; ++k) {
+      const double z = g.point(0, 0, k).z();
+      if (z < z_lo || z > z_hi) continue;
+      int first = -1, last = -1;
+      for (int i = 0; i < g.dims[0]; ++i)
+        if (head(i, j, k)) {
+          if (first < 0) first = i;
+          last = i;
+        }
+      if (first >= 0) width[j] = std::max(width[j], (last - first) * g.spacing.x());
+    }
+  }
+  const double widest = *std::max_element(width.begin(), width.end());
+  double ear_front = y_back + 0.5 * depth;
+  for (int j = 0; j < g.dims[1]; ++j)
+    if (widest > 0 && width[j] >= widest - kEarWidthTolerance) ear_front = g.point(0, j, 0).y();
+  return ear_front;
+}
+
+}  // namespace
+
+double FaceAnatomy::centre_at(double z) const { return centre_x + roll_slope * (z - roll_z); }
+
+FaceAnatomy find_face_anatomy(const Mask& head, const Mask& bone) {
+  const GridGeometry& g = head.geometry;
+  const Sections sections(head);
+  const auto [lowest, top, bottom] = head_levels(sections);
+  FaceAnatomy anatomy;
+  anatomy.lowest_head_z = g.point(0, 0, lowest).z();
+
+  double x_sum = 0, count = 0;
+  for (int k = lowest; k <= top; ++k)
+    for (int i = 0; i < g.dims[0]; ++i)
+      if (!std::isnan(sections.front[sections.at(i, k)])) x_sum += g.point(i, 0, 0).x(), count += 1;
+  const double x0 = x_sum / count;
+  std::vector<SliceSymmetry> slices;
+  const int stride = std::max(1, static_cast<int>(std::lround(2.0 / g.spacing.z())));  // every 2 mm is plenty
+  for (int k = lowest; k <= top; k += stride)
+    if (const auto s = slice_symmetry(sections, k, x0)) slices.push_back(*s);
+  if (slices.size() < 3) not_found("the face's mirror symmetry", "--mid-plane");
+  fit_plane(slices, anatomy);
+
+  const Profile profile(head, anatomy, bottom, top);
+  const double z_lo = g.point(0, 0, lowest).z(), z_hi = g.point(0, 0, top).z(), tie = 0.5 * g.spacing.y();
+  const auto prn = profile.extreme(z_lo, z_hi, true, tie);
+  if (!prn) not_found("the face's profile", "--top-cut, --bottom-cut and --posterior-cut");
+  anatomy.pronasale = *prn;
+  // A front plateau longer than a nose's tip: the field of view cut it.
+  const auto front_run = [&] {
+    double lo = prn->z(), hi = prn->z();
+    for (const auto& p : profile.points)
+      if (!std::isnan(p.y()) && p.y() >= prn->y() - tie) lo = std::min(lo, p.z()), hi = std::max(hi, p.z());
+    return hi - lo;
+  }();
+  anatomy.nose_clipped = front_run > 10.0;
+  const auto n = profile.extreme(prn->z() + 15, prn->z() + 50, false, tie);
+  if (!n) not_found("the nasion above the nose", "--top-cut");
+  anatomy.nasion = *n;
+  const auto gl = profile.extreme(n->z() + 3, n->z() + 30, true, tie);
+  if (!gl) not_found("the glabella above the nasion", "--top-cut");
+  anatomy.glabella = *gl;
+  find_chin(bone, profile, bottom, anatomy);
+  anatomy.ear_front_y = find_ear_front(head, anatomy);
+  return anatomy;
+}
+
+std::string face_anatomy_text(const FaceAnatomy& a) {
+  std::ostringstream s;
+  s.precision(1);
+  s << std::fixed << "mid-sagittal plane x " << a.centre_x << " (roll " << a.roll_degrees << " deg); pronasale "
+    << point_text(a.pronasale) << (a.nose_clipped ? " (nose clipped)" : "") << ", nasion " << point_text(a.nasion)
+    << ", glabella " << point_text(a.glabella) << ", menton " << point_text(a.menton) << ", front of the ears y "
+    << a.ear_front_y;
+  if (a.lowest_head_z > -std::numeric_limits<double>::infinity()) s << ", head sections above z " << a.lowest_head_z;
+  return s.str();
+}
+
+}  // namespace facehex

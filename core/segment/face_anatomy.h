@@ -1,0 +1,56 @@
+#pragma once
+// The anatomy the face cuts are placed by, read from the head and bone masks of a CT (segmentation frame: +x lateral,
+// +y anterior, +z superior), whatever else the scan holds (shoulders, a support, the whole skull).
+//
+// Rules, in the order they are applied:
+//  1. head levels: the slices above the highest one in the lower half of the head that is more than kShoulderWidth
+//     times as wide as the median width of the upper half: those are shoulders (or a support); the symmetry and the
+//     pronasale are looked for above them (the chin may reach down among them);
+//  2. mid-sagittal plane from the face's mirror symmetry: per head level, the front of the head d(x) (most anterior
+//     head voxel of each column) is compared with its mirror image about x = c, up to a linear term a s (a head
+//     turned about the vertical axis makes the front a little deeper on one side, proportionally to the distance s
+//     from the plane); c minimises the mean squared difference within kSymmetryReach of the plane (among equals, the
+//     nearest to the head's mean x). A straight line c(z) fitted through the levels' c (least squares, then again
+//     without the levels more than 3 mm off it) is the plane's trace: its slope is the head's roll (tilt towards a
+//     shoulder). A turned head keeps its plane through the nose, at the depth of the face's features;
+//  3. the skin profile: per head level, the most anterior head voxel within kProfileBand of c(z);
+//     pronasale = the most anterior profile point (the middle of the front plateau when the field of view cut the
+//     nose flat); nasion = the least anterior profile point 15-50 mm above it; glabella = the most anterior profile
+//     point 3-30 mm above the nasion (middles of ties within half a voxel);
+//  4. the bony chin: going down from 30 mm below the pronasale (below the head levels too), the levels where bone near
+//  the mid-plane (within
+//     kChinHalfWidth) lies at most kChinSoftTissue behind the skin profile; the first such level starts a run that
+//     continues down over gaps of at most kChinGap; menton = the lowest bone voxel connected, within the mid-plane
+//     band and going down and at most kChinDepth backwards, to the bone at the run's lowest level (the lower border of
+//     the mandible curves back, under the skin's horizontal reach);
+//  5. the ears: where the head is widest over the levels from 25 mm below the pronasale to the glabella, in the
+//     middle half of the head's depth there; their front is the most anterior coronal row within kEarWidthTolerance
+//     of that width (the tragus lies on that front).
+#include <Eigen/Core>
+#include <string>
+
+#include "core/segment/voxel_grid.h"
+
+namespace facehex {
+
+struct FaceAnatomy {
+  double centre_x = 0;      // mid-sagittal plane at the pronasale's level
+  double roll_degrees = 0;  // the plane's trace leans by this angle from vertical (positive: +x upwards)
+  Eigen::Vector3d pronasale, nasion, glabella;  // skin points of the mid-sagittal profile
+  bool nose_clipped = false;                    // the front of the nose is a plateau (field-of-view cut)
+  Eigen::Vector3d menton;                       // bone: the lowest point of the chin
+  double ear_front_y = 0;                       // y of the front of the ears (tragi)
+  double lowest_head_z = 0;                     // below this the slices are shoulders or a support
+
+  // The mid-sagittal plane's x at height z.
+  double centre_at(double z) const;
+  double roll_slope = 0, roll_z = 0;  // c(z) = centre_x + roll_slope (z - roll_z)
+};
+
+// Throws facehex::Error("segment", ...) naming what cannot be found and the cut options that place it by hand.
+FaceAnatomy find_face_anatomy(const Mask& head, const Mask& bone);
+
+// "pronasale (x, y, z), ..." on one line, mm.
+std::string face_anatomy_text(const FaceAnatomy& anatomy);
+
+}  // namespace facehex

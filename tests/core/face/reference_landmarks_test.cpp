@@ -1,0 +1,67 @@
+// The automatic landmarks against the ones placed by hand (tests/data/landmarks/README.md) on the two real CTs: the
+// bundled 3.2 mm one (its patient model, resources/patients/headsq) and the 1 mm Visible Human Female (the skin of its
+// model, stored as points, so that the test needs neither ../shared nor a minute of segmentation). Tolerances: 2 mm
+// on the 1 mm CT, 3 mm on the 3.2 mm one, 5 mm for a landmark inside a field-of-view cut (which must then be marked
+// estimated). Landmarks the finder does not place (eye and mouth corners, tragi) are only in the reference.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "core/face/face_landmarks.h"
+#include "core/face/landmark_file.h"
+#include "core/fields/constraint_set.h"
+#include "core/io/mesh_io.h"
+#include "core/mesh/sides.h"
+#include "core/util/resources.h"
+
+namespace facehex {
+namespace {
+
+const std::string kData = std::string(FACEHEX_TEST_DATA_DIR) + "/landmarks/";
+
+void expect_near_reference(const FaceLandmarks& found, const std::string& reference_file, double tolerance,
+                           std::size_t at_least) {
+  std::size_t compared = 0;
+  for (const NamedLandmark& ref : read_landmark_file(reference_file)) {
+    const auto p = found.points.find(ref.name);
+    if (p == found.points.end()) continue;
+    const bool estimated = std::find(found.estimated.begin(), found.estimated.end(), ref.name) != found.estimated.end();
+    const bool in_cut = ref.status == LandmarkStatus::estimated;
+    EXPECT_EQ(estimated, in_cut) << ref.name;
+    EXPECT_LE((p->second - ref.position).norm(), in_cut ? 5.0 : tolerance)
+        << ref.name << " found at " << p->second.transpose() << ", placed at " << ref.position.transpose();
+    ++compared;
+  }
+  EXPECT_GE(compared, at_least);
+}
+
+TEST(ReferenceLandmarks, BundledCtWithinThreeMillimetres) {
+  const VolumeMesh model = read_volume_mesh(resource_dir() + "/patients/headsq/patient.vtu");
+  const FaceLandmarks found = find_face_landmarks(model.V, side_mask_of(model));
+  EXPECT_FALSE(std::isnan(found.clipped_from));  // its nose and brow are cut flat
+  // glabella, nasion, pronasale (estimated), subnasale, the lips, stomion.
+  expect_near_reference(found, kData + "headsq.json", 3.0, 7);
+}
+
+TEST(ReferenceLandmarks, VisibleHumanFemaleWithinTwoMillimetres) {
+  std::ifstream in(kData + "vhfemale-head-skin.xyz");
+  ASSERT_TRUE(in);
+  std::vector<Eigen::Vector3d> points;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream s(line);
+    Eigen::Vector3d p;
+    s >> p.x() >> p.y() >> p.z();
+    points.push_back(p);
+  }
+  Eigen::MatrixXd V(points.size(), 3);
+  for (std::size_t i = 0; i < points.size(); ++i) V.row(i) = points[i].transpose();
+  const FaceLandmarks found = find_face_landmarks(V, Eigen::VectorXi::Constant(V.rows(), side_bit(W1)));
+  EXPECT_NO_THROW(check_plausible(found, "test"));
+  // glabella, nasion, pronasale (estimated: the nose tip is cut), subnasale, the lips, stomion, pogonion, menton.
+  expect_near_reference(found, kData + "vhfemale-head.json", 2.0, 9);
+}
+
+}  // namespace
+}  // namespace facehex
