@@ -128,8 +128,9 @@ double mirror_plane(const Eigen::MatrixXd& V, const std::vector<int>& skin, cons
 Eigen::Vector3d require(const std::optional<Eigen::Vector3d>& p, const std::string& name) {
   if (!p)
     throw Error("landmarks", "cannot find the " + name +
-                                 " on the mid-sagittal skin profile (is the face "
-                                 "looking to +y with +z up? see --orientation)");
+                                 " on the mid-sagittal skin profile (is the face looking to +y with +z up? a CT's "
+                                 "axes are set with --anterior and --superior; or give the landmarks with "
+                                 "--landmarks FILE)");
   return *p;
 }
 
