@@ -1,0 +1,14 @@
+#pragma once
+// A voxel volume (a CT) pushed through a smooth warp: the warped volume holds at W(x) what the original holds at x,
+// so that segmenting it gives the original's anatomy moved by W.
+#include "core/evaluation/smooth_warp.h"
+#include "core/segment/voxel_grid.h"
+
+namespace facehex {
+
+// The warped volume on a grid of the original's spacing whose box holds the image of the original's box (W of its
+// corners, and of the box's faces sampled every `spacing`); each voxel y takes the original's trilinear sample at
+// W^-1(y), values beyond the original's box its nearest border value (voxel_grid.h sample).
+Field warp_volume(const Field& field, const SmoothWarp& warp);
+
+}  // namespace facehex
