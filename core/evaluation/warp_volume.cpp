@@ -1,5 +1,6 @@
 #include "core/evaluation/warp_volume.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace facehex {
@@ -28,12 +29,18 @@ Field warp_volume(const Field& field, const SmoothWarp& warp) {
   target.spacing = g.spacing;
   target.origin = lo;
   for (int a = 0; a < 3; ++a) target.dims[a] = static_cast<int>(std::ceil((hi(a) - lo(a)) / g.spacing(a))) + 1;
-  Field out(target, 0.0f);
+  const float air = *std::min_element(field.data.begin(), field.data.end());
+  Field out(target, air);
 #pragma omp parallel for schedule(dynamic)
   for (int k = 0; k < target.dims[2]; ++k)
     for (int j = 0; j < target.dims[1]; ++j)
-      for (int i = 0; i < target.dims[0]; ++i)
-        out(i, j, k) = static_cast<float>(sample(field, warp.inverse(target.point(i, j, k))));
+      for (int i = 0; i < target.dims[0]; ++i) {
+        const Eigen::Vector3d x = warp.inverse(target.point(i, j, k));
+        bool inside = true;
+        for (int a = 0; a < 3; ++a)
+          inside = inside && x(a) >= g.lower(a) - 0.5 * g.spacing(a) && x(a) <= g.upper(a) + 0.5 * g.spacing(a);
+        if (inside) out(i, j, k) = static_cast<float>(sample(field, x));
+      }
   return out;
 }
 

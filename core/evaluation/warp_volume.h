@@ -7,8 +7,9 @@
 namespace facehex {
 
 // The warped volume on a grid of the original's spacing whose box holds the image of the original's box (W of its
-// corners, and of the box's faces sampled every `spacing`); each voxel y takes the original's trilinear sample at
-// W^-1(y), values beyond the original's box its nearest border value (voxel_grid.h sample).
+// faces); each voxel y takes the original's trilinear sample at W^-1(y) (voxel_grid.h sample), and where W^-1(y)
+// lies outside the original's box (by more than half a voxel), the original's lowest value: nothing was scanned
+// there, and a border value carried outwards would add tissue that the original does not have.
 Field warp_volume(const Field& field, const SmoothWarp& warp);
 
 }  // namespace facehex

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/evaluation/warp_volume.h"
@@ -106,6 +107,18 @@ TEST(WarpVolume, TheWarpedVolumeHoldsAtWOfXWhatTheOriginalHoldsAtX) {
       }
   EXPECT_LT(worst, 10.0);  // 1 % of the blob's peak: two trilinear interpolations of a 12 mm Gaussian
   EXPECT_GT(worst, 0.0);
+  // Beyond the image of the original's box, the original's lowest value (the blob's tail at the box's corner).
+  const float lowest = *std::min_element(f.data.begin(), f.data.end());
+  int outside = 0;
+  const GridGeometry& wg = warped.geometry;
+  for (int k = 0; k < wg.dims[2]; k += 7)
+    for (int j = 0; j < wg.dims[1]; j += 7)
+      for (int i = 0; i < wg.dims[0]; i += 7)
+        if ((w.inverse(wg.point(i, j, k)).array().abs() > 40.5).any()) {
+          ++outside;
+          EXPECT_EQ(warped(i, j, k), lowest);
+        }
+  EXPECT_GT(outside, 0);
 }
 
 }  // namespace
