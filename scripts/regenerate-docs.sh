@@ -102,6 +102,10 @@ EOF
       -o "$out/correspondence-mapping" "${extra[@]}"
     step correspondence-automatic "$facehex" bench --correspondence --mapping-only --cts "$cts" \
       --standard-constraints automatic -o "$out/correspondence-automatic" "${extra[@]}"
+    # The floor under the landmark finder and the closed domain: the standard on its split cells, the features at
+    # the standard's landmarks moved by the warp.
+    step correspondence-floor "$facehex" bench --correspondence --mapping-only --cts none --true-landmarks \
+      --standard-domain auxiliary --deformation-models split,closed-3 -o "$out/correspondence-floor" "${extra[@]}"
   fi
   if want benchmarks; then
     step bench-sizes "$facehex" bench --sizes 10000,50000,200000 --json
@@ -300,7 +304,8 @@ if only in ("", "correspondence"):
                                         f"`--standard-domain {full['standard_domain']}`), standard {full['standard']}, "
                                         f"constraints `{os.path.relpath(full['standard_constraints'], root)}`.\n\n"
                                         + corr_table(full, False))
-    for key, name in (("mapping", "correspondence-mapping"), ("automatic", "correspondence-automatic")):
+    for key, name in (("mapping", "correspondence-mapping"), ("automatic", "correspondence-automatic"),
+                      ("floor", "correspondence-floor")):
         rep = corr(name)
         blocks[f"results-correspondence-{key}"] = (f"Standard constraints: `{rep['standard_constraints'].replace(root + '/', '')}`."
                                                    "\n\n" + corr_table(rep, True))

@@ -152,6 +152,9 @@ void add_correspondence_options(Args& args) {
               "random-1,random-2,chin,nose")
       .option("cts", "with --correspondence: CT files warped for equivariance (default: the bundled CT; none: no CT)")
       .option("ct-seeds", "with --correspondence: seeds of the CT warps", "1,2")
+      .flag("true-landmarks",
+            "with --correspondence: a model's feature constraints at the standard's landmarks moved by the warp, not "
+            "at those found on it (separates the landmark finder's error)")
       .flag("mapping-only", "with --correspondence: the plain mapping alone, no relaxation and no repair (quick)");
 }
 
@@ -161,6 +164,7 @@ int correspondence_bench(const Args& args) {
   CorrespondenceBenchmarkOptions options;
   options.transfer = transfer_options(args);
   if (args.has("mapping-only")) options.transfer.shape_relaxation = options.transfer.untangle = false;
+  options.true_landmarks = args.has("true-landmarks");
   options.segment = segment_options(args);
   options.models = list(args.get("models"));
   options.self_maps = !options.models.empty();
@@ -201,7 +205,8 @@ int correspondence_bench(const Args& args) {
   const std::string setting =
       (args.has("mapping-only") ? std::string("`--mapping-only`")
                                 : "`--shape-relaxation " + args.get("shape-relaxation") + "`") +
-      ", `--standard-domain " + args.get("standard-domain") + "`, standard " + standard.name + " with " +
+      (options.true_landmarks ? ", `--true-landmarks`" : "") + ", `--standard-domain " + args.get("standard-domain") +
+      "`, standard " + standard.name + " with " +
       (args.has("standard-constraints") ? "`--standard-constraints " + args.get("standard-constraints") + "`"
                                         : std::string("its bundled constraints"));
   json report = {{"standard", standard.name},
@@ -209,6 +214,7 @@ int correspondence_bench(const Args& args) {
                  {"standard_domain", args.get("standard-domain")},
                  {"standard_constraints", standard.constraints_path},
                  {"mapping_only", args.has("mapping-only")},
+                 {"true_landmarks", options.true_landmarks},
                  {"cases", json::array()}};
   for (const auto& r : results) report["cases"].push_back(to_json(r));
   write_json(folder.file("correspondence.json").string(), report);

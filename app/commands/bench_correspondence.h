@@ -5,7 +5,8 @@
 
 namespace facehex::cli {
 
-// --correspondence, --output, --models, --deformation-models, --warps, --cts, --ct-seeds, --mapping-only.
+// --correspondence, --output, --models, --deformation-models, --warps, --cts, --ct-seeds, --true-landmarks,
+// --mapping-only.
 void add_correspondence_options(Args& args);
 
 // Runs the benchmark with the transfer options of `args` and writes the report; 0, or 1 when a case failed.

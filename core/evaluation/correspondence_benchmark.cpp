@@ -124,6 +124,7 @@ std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const Standar
                                                                    const ResultCallback& on_result) {
   const std::vector<VertexRegion> regions = correspondence_regions(standard.mesh);
   const std::map<std::string, double> values = feature_values(standard.constraints);
+  const FaceLandmarks standard_landmarks = find_face_landmarks(standard.mesh.V, side_mask_of(standard.mesh));
   std::vector<std::pair<std::string, SmoothWarp>> warps;
   for (const std::string& w : options.warps) warps.emplace_back(w, standard_warp(w, standard.mesh));
 
@@ -163,7 +164,16 @@ std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const Standar
           if (w == p.warp) warp = candidate;
         mesh.V = warp.apply_rows(mesh.V);
         const Eigen::MatrixXd truth = warp.apply_rows(standard.mesh.V);
-        const PatientSetup patient = patient_from_mesh(std::move(mesh), p.kind + " " + p.name, &values);
+        PatientSetup patient = patient_from_mesh(std::move(mesh), p.kind + " " + p.name, &values);
+        if (options.true_landmarks) {
+          FaceLandmarks moved = standard_landmarks;
+          for (auto& [name, point] : moved.points) point = warp.apply(point);
+          moved.x_mid = warp.apply(Eigen::Vector3d(standard_landmarks.x_mid, 0, 0)).x();
+          patient.constraints = side_constraints();
+          for (const Constraint& c : feature_constraints(moved, values, kFeatureBand).constraints)
+            patient.constraints.constraints.push_back(c);
+          patient.features_problem.clear();
+        }
         r = measure(standard, patient, truth, regions, options, progress);
         r.warp_mean = (truth - standard.mesh.V).rowwise().norm().mean();
         if (!p.warp.empty()) r.warp = warp_description(warp);

@@ -60,5 +60,26 @@ TEST(CorrespondenceBenchmark, FastSubsetOfThePlainMapping) {
     for (const auto& region : r->error.regions) EXPECT_GT(region.error.count, 0) << r->name << " " << region.name;
 }
 
+// With the standard parameterized on its split cells as the model is (no plugs in its openings) and the features at
+// the right anatomy, the plain mapping nearly follows a self-map, a moved chin and a longer nose: the floor the
+// landmark finder and the closed domain add to (docs/results.md).
+TEST(CorrespondenceBenchmark, SameDomainAndTrueLandmarksNearlyFollowLocalWarps) {
+  const StandardSetup standard = load_standard("artisynth-refface", "", "auxiliary");
+  CorrespondenceBenchmarkOptions options;
+  options.transfer.shape_relaxation = options.transfer.untangle = false;
+  options.models = {"split"};
+  options.deformation_models = {"split"};
+  options.warps = {"chin", "nose"};
+  options.true_landmarks = true;
+  const auto results = run_correspondence_benchmark(standard, options);
+  ASSERT_EQ(results.size(), 3u);
+  for (const auto& r : results) ASSERT_EQ(r.failure, "") << r.name;
+  const auto& self = find_case(results, "split");
+  EXPECT_LT(self.error.all.mean, 0.6);
+  EXPECT_LT(self.error.all.p95, 1.5);
+  EXPECT_LT(find_case(results, "chin on split").error.all.mean, 1.1);
+  EXPECT_LT(find_case(results, "nose on split").error.all.mean, 1.5);
+}
+
 }  // namespace
 }  // namespace facehex
