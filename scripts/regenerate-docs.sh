@@ -298,16 +298,20 @@ if only in ("", "correspondence"):
                        "mean shape / standard's", "dihedral change (°)"]
         return table(header + ["time (s)"], rows)
 
+    def constraints_of(report):  # the standard's constraint file, or how they were placed
+        c = report.get("standard_constraints")
+        return f"`{c.replace(root + '/', '')}`" if c else "the bundled set"
+
     blocks = {"results-correspondence-machine": machine_line()}
     full = corr("correspondence")
     blocks["results-correspondence"] = (f"Defaults (`--shape-relaxation {full['shape_relaxation']}`, "
                                         f"`--standard-domain {full['standard_domain']}`), standard {full['standard']}, "
-                                        f"constraints `{os.path.relpath(full['standard_constraints'], root)}`.\n\n"
+                                        f"constraints {constraints_of(full)}.\n\n"
                                         + corr_table(full, False))
     for key, name in (("mapping", "correspondence-mapping"), ("automatic", "correspondence-automatic"),
                       ("floor", "correspondence-floor")):
         rep = corr(name)
-        blocks[f"results-correspondence-{key}"] = (f"Standard constraints: `{rep['standard_constraints'].replace(root + '/', '')}`."
+        blocks[f"results-correspondence-{key}"] = (f"Standard constraints: {constraints_of(rep)}."
                                                    "\n\n" + corr_table(rep, True))
     write_blocks("docs/results.md", blocks)
     shutil.copyfile(os.path.join(out, "correspondence", "correspondence_skin_error.png"),
