@@ -50,7 +50,9 @@ void add_segment_options(Args& args) {
 
 void add_transfer_options(Args& args) {
   args.option("standard", "bundled standard name or a hex mesh file", "artisynth-refface")
-      .option("standard-constraints", "constraint set of the standard (default: the one bundled with it)")
+      .option("standard-constraints",
+              "constraint set of the standard, or automatic: placed by the rules of a patient's, valued by its own "
+              "fields (default: the one bundled with it)")
       .option("edge-length", "target edge length (mm) when the patient is a closed surface or a CT", "2")
       .option("standard-domain",
               "tet domain of the standard: closed (openings filled) or auxiliary (paper: split hexes only)", "closed")

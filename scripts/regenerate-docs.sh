@@ -5,13 +5,17 @@
 # with the date, the commit, the core count and the CPU model. Everything outside the markers is left as it is.
 #
 # Usage, from anywhere in the repository, after a Release build of facehex:
-#   scripts/regenerate-docs.sh [--only benchmarks|results] [--keep DIR] [--from DIR]
-#     --only benchmarks|results  run and write one page only
+#   scripts/regenerate-docs.sh [--only benchmarks|results|correspondence] [--keep DIR] [--from DIR]
+#     --only benchmarks|results|correspondence  run and write one part only (correspondence: the correspondence
+#                                section of docs/results.md, from `facehex bench --correspondence`)
 #     --keep DIR                 keep the raw JSON, logs and plots in DIR (default: a temporary folder, removed)
 #     --from DIR                 run nothing: write the pages from the JSON a previous --keep DIR left
 #   FACEHEX=path/to/facehex overrides build/bin/facehex.
 # Takes a few minutes on 2 cores (four `facehex compare` runs on the bundled patient, the bench up to ~200k tets, the
-# bundled CT's whole run); the machine should be otherwise idle, since the times are wall-clock.
+# bundled CT's whole run), and the correspondence benchmark an hour or more (every case is a whole transfer); the
+# machine should be otherwise idle, since the times are wall-clock. CORRESPONDENCE_ARGS adds options to the
+# correspondence benchmark's runs (e.g. "--models split,closed-3 --warps nose" for a shorter one); a CT at
+# ../shared/data/ct/vhfemale-head.mha beside the repository is warped too.
 # Needs bash, git, python3 (standard library only).
 set -euo pipefail
 
@@ -26,11 +30,13 @@ while [ $# -gt 0 ]; do
     --only) only=${2:?--only needs benchmarks or results}; shift 2 ;;
     --keep) keep=${2:?--keep needs a folder}; shift 2 ;;
     --from) from=${2:?--from needs a folder}; shift 2 ;;
-    -h|--help) sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,21p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "regenerate-docs.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
-case "$only" in ""|benchmarks|results) ;; *) echo "regenerate-docs.sh: --only benchmarks|results" >&2; exit 2 ;; esac
+case "$only" in ""|benchmarks|results|correspondence) ;;
+  *) echo "regenerate-docs.sh: --only benchmarks|results|correspondence" >&2; exit 2 ;;
+esac
 want() { [ -z "$only" ] || [ "$only" = "$1" ]; }
 
 if [ -n "$from" ]; then
@@ -84,6 +90,22 @@ EOF
       [ "$relax" = default ] || args=(--shape-relaxation "$relax")
       step "compare-$relax" "$facehex" compare -o "$out/compare-$relax" "${args[@]}"
     done
+  fi
+  if want correspondence; then
+    # The benchmark at the defaults, the plain mapping alone (no relaxation, no repair), and the plain mapping with
+    # the standard's constraints placed by a patient's rules. stdout (the Markdown table) goes to NAME.json's place.
+    cts=resources/ct/headsq/headsq.mhd
+    [ -f ../shared/data/ct/vhfemale-head.mha ] && cts="$cts,../shared/data/ct/vhfemale-head.mha"
+    read -r -a extra <<<"${CORRESPONDENCE_ARGS:-}"
+    step correspondence "$facehex" bench --correspondence --cts "$cts" -o "$out/correspondence" "${extra[@]}"
+    step correspondence-mapping "$facehex" bench --correspondence --mapping-only --cts "$cts" \
+      -o "$out/correspondence-mapping" "${extra[@]}"
+    step correspondence-automatic "$facehex" bench --correspondence --mapping-only --cts "$cts" \
+      --standard-constraints automatic -o "$out/correspondence-automatic" "${extra[@]}"
+    # The floor under the landmark finder and the closed domain: the standard on its split cells, the features at
+    # the standard's landmarks moved by the warp.
+    step correspondence-floor "$facehex" bench --correspondence --mapping-only --cts none --true-landmarks \
+      --standard-domain auxiliary --deformation-models split,closed-3 -o "$out/correspondence-floor" "${extra[@]}"
   fi
   if want benchmarks; then
     step bench-sizes "$facehex" bench --sizes 10000,50000,200000 --json
@@ -238,6 +260,62 @@ if only in ("", "results"):
     img = os.path.join(root, "docs", "img")
     for plot, file in patient["plots"].items():
         shutil.copyfile(os.path.join(out, "compare-default", file), os.path.join(img, f"results_{name}_{plot}.png"))
+
+# ---- docs/results.md: correspondence ----
+if only in ("", "correspondence"):
+    def corr(name):
+        return load(f"{name}/correspondence.json")
+
+    def region(c, name):
+        r = c["error_mm"]["regions"].get(name)
+        return f(r["mean"]) if r and r["count"] else "–"
+
+    def worst_rim(c):
+        rims = [(v["mean"], k[5:]) for k, v in c["error_mm"]["regions"].items() if k.startswith("rim: ") and v["count"]]
+        return f"{f(max(rims)[0])} ({max(rims)[1]})" if rims else "–"
+
+    def corr_table(report, mapping_only):
+        rows = []
+        for c in report["cases"]:
+            label = f"{c['kind']}: {c['name']}"
+            if "failure" in c:
+                rows.append([label, "failed: " + c["failure"].replace("|", "/")] + [""] * (10 if mapping_only else 14))
+                continue
+            e = c["error_mm"]["all"]
+            row = [label, n(c["patient_tets"]), f"{f(e['mean'])} / {f(e['p95'])} / {f(e['max'], 1)}",
+                   f"{100 * e['within_1mm']:.0f} %", region(c, "landmarks"), worst_rim(c), region(c, "skin"),
+                   region(c, "bone"), f(c["warp_mean_mm"]), n(c["folded_parametric_tets"]) if "folded_parametric_tets" in c else "–"]
+            if not mapping_only:
+                row += [f(c["mapping_error_mm"]["all"]["mean"]), f(c["moved_by_relaxation_mm"]["mean"], 1),
+                        c["inverted"], f(c["shape_mean"] / c["standard_shape_mean"], 3),
+                        f(c["dihedral_change_mean_deg"], 1)]
+            row.append(f(c["seconds"], 0))
+            rows.append(row)
+        header = ["case", "patient tets", "error mean / p95 / max (mm)", "within 1 mm", "landmarks", "worst opening rim",
+                  "skin", "bone", "the warp moves", "folded parametric tets"]
+        if not mapping_only:
+            header += ["plain mapping mean", "moved by relaxation + repair, mean", "inverted cells",
+                       "mean shape / standard's", "dihedral change (°)"]
+        return table(header + ["time (s)"], rows)
+
+    def constraints_of(report):  # the standard's constraint file, or how they were placed
+        c = report.get("standard_constraints")
+        return f"`{c.replace(root + '/', '')}`" if c else "the bundled set"
+
+    blocks = {"results-correspondence-machine": machine_line()}
+    full = corr("correspondence")
+    blocks["results-correspondence"] = (f"Defaults (`--shape-relaxation {full['shape_relaxation']}`, "
+                                        f"`--standard-domain {full['standard_domain']}`), standard {full['standard']}, "
+                                        f"constraints {constraints_of(full)}.\n\n"
+                                        + corr_table(full, False))
+    for key, name in (("mapping", "correspondence-mapping"), ("automatic", "correspondence-automatic"),
+                      ("floor", "correspondence-floor")):
+        rep = corr(name)
+        blocks[f"results-correspondence-{key}"] = (f"Standard constraints: {constraints_of(rep)}."
+                                                   "\n\n" + corr_table(rep, True))
+    write_blocks("docs/results.md", blocks)
+    shutil.copyfile(os.path.join(out, "correspondence", "correspondence_skin_error.png"),
+                    os.path.join(root, "docs", "img", "results_correspondence_skin_error.png"))
 
 # ---- docs/benchmarks.md ----
 if only in ("", "benchmarks"):

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "app/cli_args.h"
+#include "app/commands/bench_correspondence.h"
 #include "app/commands/commands.h"
 #include "app/transfer_options.h"
 #include "core/face/automatic_constraints.h"
@@ -213,8 +214,10 @@ int cmd_bench(const Argv& argv) {
               "automatic)")
       .option("ct", "instead: time the whole run on the bundled CT resampled to NX,NY,NZ voxels (e.g. 512,512,300)")
       .flag("json", "print JSON");
+  add_correspondence_options(args);
   add_transfer_options(args);
   if (!args.parse(argv)) return 0;
+  if (args.has("correspondence")) return correspondence_bench(args);
   if (args.has("ct")) return ct_bench(args);
   std::vector<std::string> patients;
   if (args.has("patient")) {

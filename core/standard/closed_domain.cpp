@@ -7,6 +7,7 @@
 #include <map>
 #include <set>
 
+#include "core/mesh/sides.h"
 #include "core/mesh/tet_topology.h"
 #include "core/tetgen/tetrahedralize.h"
 #include "core/util/error.h"
@@ -218,6 +219,33 @@ TetDomain closed_domain(const VolumeMesh& hex) {
   d.description = "auxiliary tets with " + std::to_string(closed) + " of " + std::to_string(openings) +
                   " openings closed by TetGen plugs";
   return d;
+}
+
+SurfaceMesh domain_surface(const TetDomain& d) {
+  const BoundaryFaces b = boundary_faces(d.T);
+  Eigen::VectorXi index = Eigen::VectorXi::Constant(d.V.rows(), -1);
+  SurfaceMesh s;
+  s.F.resize(b.F.rows(), 3);
+  s.labels.setZero(b.F.rows());
+  int used = 0;
+  for (Eigen::Index f = 0; f < b.F.rows(); ++f) {
+    int common = ~0;
+    for (int k = 0; k < 3; ++k) {
+      const int v = b.F(f, k);
+      if (index(v) < 0) index(v) = used++;
+      s.F(f, k) = index(v);
+      common &= d.side_mask.size() ? d.side_mask(v) : 0;
+    }
+    for (int side = 0; side < kNumSides; ++side)
+      if (common & (1 << side)) {
+        s.labels(f) = side + 1;
+        break;
+      }
+  }
+  s.V.resize(used, 3);
+  for (Eigen::Index v = 0; v < d.V.rows(); ++v)
+    if (index(v) >= 0) s.V.row(index(v)) = d.V.row(v);
+  return s;
 }
 
 }  // namespace facehex

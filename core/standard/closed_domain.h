@@ -17,4 +17,9 @@ namespace facehex {
 
 TetDomain closed_domain(const VolumeMesh& hex);
 
+// A domain's boundary as a closed surface on the domain's boundary vertices (renumbered), each triangle labelled
+// Side + 1 with the side its three vertices share (0: none, the walls of an opening left open; tetrahedralize.h's
+// convention).
+SurfaceMesh domain_surface(const TetDomain& domain);
+
 }  // namespace facehex

@@ -10,6 +10,11 @@
 namespace facehex {
 
 std::map<std::string, double> own_feature_values(const VolumeMesh& model, double band, const std::string& source) {
+  return own_feature_values(model, find_face_landmarks(model.V, side_mask_of(model)), band, source);
+}
+
+std::map<std::string, double> own_feature_values(const VolumeMesh& model, const FaceLandmarks& landmarks, double band,
+                                                 const std::string& source) {
   const TetDomain domain = model.is_tet_mesh() ? own_domain(model) : closed_domain(model);
   HarmonicFieldsOptions plain;
   plain.orthogonality_iterations = 0;
@@ -17,12 +22,11 @@ std::map<std::string, double> own_feature_values(const VolumeMesh& model, double
       parameterize_model(domain.V, domain.T, domain.side_mask, side_constraints(), source, plain);
   std::map<std::string, double> placeholder;
   for (const auto& spec : feature_specs()) placeholder[spec.name] = 0.5;
-  const ConstraintSet probe = automatic_constraints(model.V, side_mask_of(model), placeholder, band);
+  const ConstraintSet probe = feature_constraints(landmarks, placeholder, band);
   const std::vector<char> boundary =
       boundary_vertex_flags(static_cast<int>(domain.V.rows()), boundary_faces(domain.T).F);
   std::map<std::string, double> values;
   for (const auto& c : probe.constraints) {
-    if (c.select.side) continue;
     const std::vector<int> sel = select_vertices(c.select, domain.V, boundary, domain.side_mask);
     if (sel.empty()) throw Error(source, "feature '" + c.name + "' selects no vertex");
     double sum = 0;

@@ -4,6 +4,7 @@
 #include <map>
 #include <string>
 
+#include "core/face/face_landmarks.h"
 #include "core/mesh/mesh.h"
 
 namespace facehex {
@@ -13,5 +14,9 @@ namespace facehex {
 // `model`: a tet model (its own domain) or a hex-dominant standard (its closed domain), with side labels. Throws
 // facehex::Error naming `source` when a landmark is not found or a feature selects no vertex.
 std::map<std::string, double> own_feature_values(const VolumeMesh& model, double band, const std::string& source);
+
+// The same with the features at landmarks found beforehand (e.g. on a resampled surface of the model).
+std::map<std::string, double> own_feature_values(const VolumeMesh& model, const FaceLandmarks& landmarks, double band,
+                                                 const std::string& source);
 
 }  // namespace facehex

@@ -1,7 +1,10 @@
 #include "core/workflow/standard_setup.h"
 
+#include "core/face/automatic_constraints.h"
 #include "core/io/mesh_io.h"
+#include "core/segment/soft_tissue.h"
 #include "core/standard/closed_domain.h"
+#include "core/standard/own_constraints.h"
 #include "core/standard/parameterization_cache.h"
 #include "core/util/error.h"
 #include "core/util/resources.h"
@@ -27,8 +30,14 @@ StandardSetup load_standard(const std::string& name_or_path, const std::string& 
   s.mesh = read_volume_mesh(files.mesh);
   if (s.mesh.count(CellType::Hex) == 0)
     throw Error(files.mesh, "has no hexahedra: a standard is a hex-dominant mesh (a tet model is a patient)");
-  s.constraints_path = constraints_file.empty() ? files.constraints : constraints_file;
-  s.constraints = read_constraint_set(s.constraints_path);
+  if (constraints_file == kOwnAutomaticConstraints) {
+    s.constraints_path = files.mesh + " (automatic constraints)";
+    s.constraints =
+        own_automatic_constraints(s.mesh, s.constraints_path, kFeatureBand, SegmentOptions().tets.target_edge_length);
+  } else {
+    s.constraints_path = constraints_file.empty() ? files.constraints : constraints_file;
+    s.constraints = read_constraint_set(s.constraints_path);
+  }
   s.domain = standard_domain(s.mesh, domain_kind);
   return s;
 }

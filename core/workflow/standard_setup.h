@@ -30,9 +30,12 @@ TetDomain standard_domain(const VolumeMesh& hex, const std::string& kind);
 // Throws the same facehex::Error as standard_domain for a kind it does not know, without building a domain.
 void check_standard_domain_kind(const std::string& kind);
 
-// A bundled standard by name or a mesh file (core/util/resources.h find_standard), with `constraints_file` or else its
-// own constraint set, on the `domain_kind` domain. Throws facehex::Error naming the file when the mesh is no
-// hex-dominant mesh with side labels or a file cannot be read.
+// constraints_file: the standard's constraint set made by the rules of a patient's (core/standard/own_constraints.h).
+constexpr const char* kOwnAutomaticConstraints = "automatic";
+
+// A bundled standard by name or a mesh file (core/util/resources.h find_standard), with `constraints_file` (a file,
+// or kOwnAutomaticConstraints) or else the constraint set bundled with it, on the `domain_kind` domain. Throws
+// facehex::Error naming the file when the mesh is no hex-dominant mesh with side labels or a file cannot be read.
 StandardSetup load_standard(const std::string& name_or_path, const std::string& constraints_file = "",
                             const std::string& domain_kind = "closed");
 

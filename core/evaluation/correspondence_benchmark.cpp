@@ -1,0 +1,223 @@
+#include "core/evaluation/correspondence_benchmark.h"
+
+#include <unistd.h>
+
+#include <filesystem>
+
+#include "core/evaluation/standard_remesh.h"
+#include "core/evaluation/warp_volume.h"
+#include "core/face/automatic_constraints.h"
+#include "core/face/face_landmarks.h"
+#include "core/mesh/sides.h"
+#include "core/quality/surface_distance.h"
+#include "core/segment/ct_volume.h"
+#include "core/util/error.h"
+#include "core/util/stopwatch.h"
+#include "core/workflow/transfer.h"
+
+namespace facehex {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Rows of V whose side mask has the skin's bit.
+Eigen::MatrixXd skin_points(const VolumeMesh& mesh) {
+  const Eigen::VectorXi mask = side_mask_of(mesh);
+  std::vector<int> rows;
+  for (int v = 0; v < mask.size(); ++v)
+    if (mask(v) & side_bit(W1)) rows.push_back(v);
+  Eigen::MatrixXd P(static_cast<Eigen::Index>(rows.size()), 3);
+  for (size_t i = 0; i < rows.size(); ++i) P.row(static_cast<Eigen::Index>(i)) = mesh.V.row(rows[i]);
+  return P;
+}
+
+// The chin: the most anterior skin point within 10 mm of the mid-sagittal plane 12-45 mm below the lower lip.
+Eigen::Vector3d chin_point(const Eigen::MatrixXd& skin, const FaceLandmarks& lm) {
+  const double lip_z = lm.points.at("labrale inferius").z();
+  Eigen::Vector3d best = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  for (Eigen::Index i = 0; i < skin.rows(); ++i) {
+    const Eigen::Vector3d p = skin.row(i).transpose();
+    if (std::abs(p.x() - lm.x_mid) <= 10 && p.z() <= lip_z - 12 && p.z() >= lip_z - 45 && !(p.y() <= best.y()))
+      best = p;
+  }
+  if (!std::isfinite(best.y())) throw Error("landmarks", "no chin found below the lower lip of the standard");
+  return best;
+}
+
+struct Truth {
+  Eigen::MatrixXd V;  // where the standard's vertices should land
+  double warp_mean = 0;
+};
+
+// One transfer through the workflow and its errors against `truth`.
+CorrespondenceCaseResult measure(const StandardSetup& standard, const PatientSetup& patient,
+                                 const Eigen::MatrixXd& truth, const std::vector<VertexRegion>& regions,
+                                 const CorrespondenceBenchmarkOptions& options, const ProgressCallback& progress,
+                                 TransferResult* kept = nullptr) {
+  CorrespondenceCaseResult r;
+  if (!patient.features_problem.empty())
+    throw Error(patient.path, "the facial feature constraints cannot be placed (" + patient.features_problem + ")");
+  Stopwatch clock;
+  TransferOptions measuring = options.transfer;
+  measuring.allow_inverted_parameterization = true;
+  TransferResult t = transfer(standard, patient, measuring, progress);
+  r.seconds = clock.lap();
+  r.patient_tets = patient.mesh.num_cells();
+  r.vertex_error = vertex_errors(t.patient_hex.V, truth);
+  r.error = correspondence_error(r.vertex_error, regions);
+  r.mapping_error = correspondence_error(vertex_errors(t.run.mapped_hex.V, truth), regions);
+  const DistanceSummary moved = summarize_distances(moved_from_mapping(t.run));
+  r.moved_by_relaxation_mean = moved.mean;
+  r.moved_by_relaxation_max = moved.max;
+  r.inverted = t.patient_quality.summary.inverted + t.patient_quality.summary.degenerate;
+  r.folded_parametric_tets = t.run.patient.health.inverted + t.run.patient.health.degenerate;
+  r.shape_mean = t.patient_quality.summary.shape_mean;
+  r.standard_shape_mean = t.standard_quality.summary.shape_mean;
+  r.dihedral_change_mean = t.patient_quality.distortion.mean_deg;
+  if (kept) *kept = std::move(t);
+  return r;
+}
+
+}  // namespace
+
+SmoothWarp standard_warp(const std::string& name, const VolumeMesh& standard) {
+  const Eigen::MatrixXd skin = skin_points(standard);
+  const Eigen::Vector3d centre = standard.V.colwise().mean().transpose();
+  if (name.rfind("random-", 0) == 0) {
+    std::uint64_t seed = 0;
+    try {
+      seed = std::stoull(name.substr(7));
+    } catch (const std::exception&) {
+      throw Error("--warps", "expects random-SEED with a whole number SEED, got '" + name + "'");
+    }
+    return random_warp(seed, centre, skin);
+  }
+  if (name == "chin" || name == "nose") {
+    const FaceLandmarks lm = find_face_landmarks(standard.V, side_mask_of(standard));
+    if (name == "chin") return local_warp(chin_point(skin, lm), Eigen::Vector3d(0, 8, 0), 20.0);
+    const Eigen::Vector3d tip = lm.points.at("pronasale"), root = lm.points.at("nasion");
+    return local_warp(tip, 0.2 * (tip - root), 15.0);
+  }
+  throw Error("--warps", "expects random-SEED, chin or nose, got '" + name + "'");
+}
+
+VolumeMesh standard_model(const std::string& name, const VolumeMesh& standard) {
+  if (name == "split") return split_hex_model(standard);
+  for (const bool closed : {false, true}) {
+    const std::string prefix = closed ? "closed-" : "open-";
+    if (name.rfind(prefix, 0) != 0) continue;
+    double edge = 0;
+    try {
+      edge = std::stod(name.substr(prefix.size()));
+    } catch (const std::exception&) {
+    }
+    if (!(edge > 0)) throw Error("--models", "expects an edge length in mm after '" + prefix + "', got '" + name + "'");
+    return tetgen_remesh(standard, closed, edge);
+  }
+  throw Error("--models", "expects split, open-E or closed-E (E: edge length in mm), got '" + name + "'");
+}
+
+std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const StandardSetup& standard,
+                                                                   const CorrespondenceBenchmarkOptions& options,
+                                                                   const CaseCallback& on_case,
+                                                                   const ProgressCallback& progress,
+                                                                   const ResultCallback& on_result) {
+  const std::vector<VertexRegion> regions = correspondence_regions(standard.mesh);
+  const std::map<std::string, double> values = feature_values(standard.constraints);
+  const FaceLandmarks standard_landmarks = find_face_landmarks(standard.mesh.V, side_mask_of(standard.mesh));
+  std::vector<std::pair<std::string, SmoothWarp>> warps;
+  for (const std::string& w : options.warps) warps.emplace_back(w, standard_warp(w, standard.mesh));
+
+  struct Planned {
+    std::string kind, name, model, warp;  // model/warp: names; CT cases: model = the file
+    int ct_seed = -1;                     // -1: the CT as it is
+  };
+  std::vector<Planned> plan;
+  if (options.self_maps)
+    for (const std::string& m : options.models) plan.push_back({"self-map", m, m, ""});
+  for (const auto& [w, warp] : warps)
+    for (const std::string& m : options.deformation_models) plan.push_back({"deformation", w + " on " + m, m, w});
+  for (const std::string& ct : options.cts) {
+    const std::string stem = fs::path(ct).filename().string();
+    for (const std::uint64_t seed : options.ct_seeds)
+      plan.push_back({"ct", stem + " warp " + std::to_string(seed), ct, "", static_cast<int>(seed)});
+  }
+
+  std::map<std::string, VolumeMesh> models;  // made once, warped per case
+  const auto model = [&](const std::string& name) -> const VolumeMesh& {
+    auto it = models.find(name);
+    if (it == models.end()) it = models.emplace(name, standard_model(name, standard.mesh)).first;
+    return it->second;
+  };
+  std::map<std::string, TransferResult> ct_originals;  // per CT file: its own transfer, the truth's basis
+
+  std::vector<CorrespondenceCaseResult> results;
+  for (size_t i = 0; i < plan.size(); ++i) {
+    const Planned& p = plan[i];
+    if (on_case) on_case(static_cast<int>(i), static_cast<int>(plan.size()), p.kind + ": " + p.name);
+    CorrespondenceCaseResult r;
+    try {
+      if (p.kind != "ct") {
+        VolumeMesh mesh = model(p.model);
+        SmoothWarp warp;  // identity
+        for (const auto& [w, candidate] : warps)
+          if (w == p.warp) warp = candidate;
+        mesh.V = warp.apply_rows(mesh.V);
+        const Eigen::MatrixXd truth = warp.apply_rows(standard.mesh.V);
+        PatientSetup patient = patient_from_mesh(std::move(mesh), p.kind + " " + p.name, &values);
+        if (options.true_landmarks) {
+          FaceLandmarks moved = standard_landmarks;
+          for (auto& [name, point] : moved.points) point = warp.apply(point);
+          moved.x_mid = warp.apply(Eigen::Vector3d(standard_landmarks.x_mid, 0, 0)).x();
+          patient.constraints = side_constraints();
+          for (const Constraint& c : feature_constraints(moved, values, kFeatureBand).constraints)
+            patient.constraints.constraints.push_back(c);
+          patient.features_problem.clear();
+        }
+        r = measure(standard, patient, truth, regions, options, progress);
+        r.warp_mean = (truth - standard.mesh.V).rowwise().norm().mean();
+        if (!p.warp.empty()) r.warp = warp_description(warp);
+        r.model = p.model;
+      } else {
+        Stopwatch clock;
+        if (!ct_originals.count(p.model)) {
+          const PatientSetup original = load_patient(p.model, options.segment, "", &values, progress);
+          TransferResult t;
+          measure(standard, original, standard.mesh.V, regions, options, progress, &t);
+          ct_originals.emplace(p.model, std::move(t));
+        }
+        const TransferResult& original = ct_originals.at(p.model);
+        const CtVolume ct = read_ct_volume(p.model);
+        const SmoothWarp warp =
+            random_warp(static_cast<std::uint64_t>(p.ct_seed), original.patient_hex.V.colwise().mean().transpose(),
+                        skin_points(original.patient_hex), options.ct_ranges);
+        const fs::path tmp = fs::temp_directory_path() / ("facehex-correspondence-" + std::to_string(::getpid()) + "-" +
+                                                          std::to_string(i) + ".mha");
+        write_ct_volume(tmp.string(), CtVolume{warp_volume(ct.intensity, warp), ct.source + " (warped)"});
+        PatientSetup warped;
+        try {
+          warped = load_patient(tmp.string(), options.segment, "", &values, progress);
+        } catch (...) {
+          fs::remove(tmp);
+          throw;
+        }
+        fs::remove(tmp);
+        const Eigen::MatrixXd truth = warp.apply_rows(original.patient_hex.V);
+        r = measure(standard, warped, truth, regions, options, progress);
+        r.seconds = clock.lap();
+        r.warp_mean = (truth - original.patient_hex.V).rowwise().norm().mean();
+        r.warp = warp_description(warp);
+        r.model = p.model;
+      }
+    } catch (const Error& e) {
+      r.failure = e.what();
+    }
+    r.kind = p.kind;
+    r.name = p.name;
+    if (on_result) on_result(r);
+    results.push_back(std::move(r));
+  }
+  return results;
+}
+
+}  // namespace facehex

@@ -1,0 +1,86 @@
+#pragma once
+// Known-answer transfers of a standard, run through the workflow (core/workflow/transfer.h) as `facehex run` runs
+// them, and how far each vertex landed from where it should:
+//  - self-map: the standard onto tet models of its own volume (standard_remesh.h); the answer is the identity;
+//  - deformation: the same models under smooth invertible warps (smooth_warp.h) with known seeds, plus a chin moved
+//    forward and a longer nose; the answer is the warped standard;
+//  - CT equivariance: a CT and warped copies of it (warp_volume.h); the answer is the warp applied to the original
+//    CT's result (segmentation noise included).
+// Each patient is constrained by the workflow's one policy (patient_from_mesh / load_patient: its sides and the
+// facial features at its landmarks).
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/evaluation/correspondence_error.h"
+#include "core/evaluation/smooth_warp.h"
+#include "core/mapping/transfer_pipeline.h"
+#include "core/segment/soft_tissue.h"
+#include "core/workflow/standard_setup.h"
+
+namespace facehex {
+
+struct CorrespondenceBenchmarkOptions {
+  // allow_inverted_parameterization is set by the benchmark: a patient whose fields fold is measured (and its folded
+  // parametric tets counted) rather than refused.
+  TransferOptions transfer;
+  SegmentOptions segment;  // for the CTs
+  // Tet models of the standard's volume by name: "split" (hexes split, openings open), "open-E" and "closed-E"
+  // (TetGen re-meshes at E mm of the open and of the closed volume).
+  std::vector<std::string> models = {"split", "open-3", "closed-3"};
+  // The self-maps run on every model; each warp runs on each of deformation_models.
+  bool self_maps = true;
+  std::vector<std::string> deformation_models = {"closed-3"};
+  // Warps by name: "random-SEED" (random_warp with the default ranges), "chin" (the chin moved 8 mm forward), "nose"
+  // (the nose tip moved along the nasion-pronasale line by 20 % of that length).
+  std::vector<std::string> warps = {"random-1", "random-2", "chin", "nose"};
+  // Place a self-map's or deformation's feature constraints at the standard's landmarks moved by the warp instead of
+  // at the landmarks found on the model (the CTs are not affected): separates the landmark finder's error from the
+  // rest.
+  bool true_landmarks = false;
+  // CT files; each runs once as it is and once under each CT warp seed (ct_ranges).
+  std::vector<std::string> cts;
+  std::vector<std::uint64_t> ct_seeds = {1, 2};
+  RandomWarpRanges ct_ranges = {0.08, 0.04, 4, 4.0, 25.0, 40.0};
+};
+
+struct CorrespondenceCaseResult {
+  std::string kind;     // "self-map", "deformation", "ct"
+  std::string name;     // e.g. "nose on closed-3"
+  std::string model;    // the patient model's description
+  std::string warp;     // warp_description, or empty
+  std::string failure;  // the error that stopped this case, or empty
+  int patient_tets = 0;
+  CorrespondenceError error;          // of the result
+  CorrespondenceError mapping_error;  // of the plain mapping, before relaxation and repair
+  Eigen::VectorXd vertex_error;       // #Vs, mm, of the result
+  double warp_mean = 0;               // mm the warp moves the standard's vertices (the error of doing nothing)
+  double moved_by_relaxation_mean = 0, moved_by_relaxation_max = 0;  // mm, relaxation and repair together
+  int inverted = 0;                                                  // inverted or degenerate cells of the result
+  int folded_parametric_tets = 0;  // the patient's parametric tets inverted or degenerate (param_health.h)
+  double shape_mean = 0, standard_shape_mean = 0, dihedral_change_mean = 0;
+  double seconds = 0;  // the transfer (and the CT's segmentation)
+};
+
+// Which case is next (index of count) and its name, before it runs; `progress` hears of its stages; `on_result`
+// gets each case's result as it is measured.
+using CaseCallback = std::function<void(int index, int count, const std::string& name)>;
+using ResultCallback = std::function<void(const CorrespondenceCaseResult& result)>;
+
+// Runs every case; a case that throws facehex::Error is recorded with its failure and the others run on. Throws
+// facehex::Error for an unknown model or warp name and when the standard's landmarks cannot be found.
+std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const StandardSetup& standard,
+                                                                   const CorrespondenceBenchmarkOptions& options,
+                                                                   const CaseCallback& on_case = {},
+                                                                   const ProgressCallback& progress = {},
+                                                                   const ResultCallback& on_result = {});
+
+// The named warp of CorrespondenceBenchmarkOptions::warps for a standard (hex-dominant, side labels). Throws
+// facehex::Error("--warps", ...) for a name it does not know.
+SmoothWarp standard_warp(const std::string& name, const VolumeMesh& standard);
+
+// The named model of CorrespondenceBenchmarkOptions::models. Throws facehex::Error("--models", ...) otherwise.
+VolumeMesh standard_model(const std::string& name, const VolumeMesh& standard);
+
+}  // namespace facehex

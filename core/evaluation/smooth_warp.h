@@ -1,0 +1,76 @@
+#pragma once
+// Smooth invertible warps of space with a known answer, for correspondence benchmarks: a transfer onto a warped
+// copy of a model should land every vertex where the warp took it.
+//
+//   W(x) = c + A (x - c) + sum_i d_i exp(-|x - p_i|^2 / (2 s_i^2))
+//
+// A is a linear map with det A > 0 (per-axis scale and shear), each Gaussian bump moves the points near p_i by up to
+// |d_i|. The Jacobian is J(x) = A + sum_i d_i (grad g_i)^T, and |grad g_i| <= exp(-1/2) / s_i. When the bumps'
+// gradient bound L = sum_i |d_i| exp(-1/2) / s_i is below the smallest singular value of A, W is injective on all of
+// R^3 (|W(x) - W(y)| >= (sigma_min(A) - L) |x - y|) and det J > 0 everywhere: the warps made below keep L at most
+// half of it.
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace facehex {
+
+struct GaussianBump {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();        // mm
+  Eigen::Vector3d displacement = Eigen::Vector3d::Zero();  // mm, at the centre
+  double sigma = 1;                                        // mm
+};
+
+class SmoothWarp {
+ public:
+  SmoothWarp() = default;
+  SmoothWarp(const Eigen::Vector3d& centre, const Eigen::Matrix3d& linear, std::vector<GaussianBump> bumps);
+
+  Eigen::Vector3d apply(const Eigen::Vector3d& x) const;
+  Eigen::MatrixXd apply_rows(const Eigen::MatrixXd& V) const;  // each row of #V x 3
+  Eigen::Matrix3d jacobian(const Eigen::Vector3d& x) const;
+  // The x with W(x) = y, by Newton steps from the linear part's inverse (to 1e-9 mm).
+  Eigen::Vector3d inverse(const Eigen::Vector3d& y) const;
+  // The bound L of the header and the smallest singular value of A: L < sigma_min(A) makes W invertible.
+  double bump_gradient_bound() const;
+  double linear_min_singular_value() const;
+
+  const Eigen::Vector3d& centre() const { return centre_; }
+  const Eigen::Matrix3d& linear() const { return linear_; }
+  const std::vector<GaussianBump>& bumps() const { return bumps_; }
+
+ private:
+  Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d linear_ = Eigen::Matrix3d::Identity();
+  std::vector<GaussianBump> bumps_;
+};
+
+// The ranges a seeded random warp draws from.
+struct RandomWarpRanges {
+  double max_scale = 0.12;  // each axis scaled by a factor in [1 - max_scale, 1 + max_scale]
+  double max_shear = 0.08;  // each off-diagonal entry of A in [-max_shear, max_shear]
+  int bumps = 4;            // Gaussian bumps centred on points drawn from `anchors`
+  double max_bump = 8.0;    // mm, |d_i| up to this (scaled down to keep L <= sigma_min(A) / 2)
+  double min_sigma = 25.0;  // mm
+  double max_sigma = 40.0;  // mm
+};
+
+// A warp drawn from the ranges with std::mt19937_64(seed) (whose sequence the C++ standard fixes, converted to
+// doubles by hand, so a seed gives the same warp bit for bit on every platform), about `centre`, its bumps centred
+// on rows of `anchors` (#A x 3, e.g. a model's skin vertices).
+SmoothWarp random_warp(std::uint64_t seed, const Eigen::Vector3d& centre, const Eigen::MatrixXd& anchors,
+                       const RandomWarpRanges& ranges = {});
+
+// A warp that is one bump: the points near `at` move by `displacement`; sigma is raised where needed to keep
+// L <= 1/2.
+SmoothWarp local_warp(const Eigen::Vector3d& at, const Eigen::Vector3d& displacement, double sigma);
+
+// The smallest det J over a regular grid of `steps` points per axis spanning [lower, upper].
+double min_jacobian_determinant(const SmoothWarp& warp, const Eigen::Vector3d& lower, const Eigen::Vector3d& upper,
+                                int steps);
+
+// One line for reports: "scale (1.05, 0.93, 1.10), shear up to 0.04, 4 bumps up to 7.2 mm".
+std::string warp_description(const SmoothWarp& warp);
+
+}  // namespace facehex

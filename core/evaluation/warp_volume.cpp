@@ -1,0 +1,47 @@
+#include "core/evaluation/warp_volume.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace facehex {
+
+Field warp_volume(const Field& field, const SmoothWarp& warp) {
+  const GridGeometry& g = field.geometry;
+  // The image of the original box's boundary bounds the image of the box (W is a homeomorphism).
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (int a = 0; a < 3; ++a)
+    for (const int side : {0, g.dims[a] - 1}) {
+      const int b = (a + 1) % 3, c = (a + 2) % 3;
+      for (int i = 0; i < g.dims[b]; i += 4)
+        for (int j = 0; j < g.dims[c]; j += 4) {
+          Eigen::Vector3i ijk;
+          ijk(a) = side;
+          ijk(b) = i;
+          ijk(c) = j;
+          const Eigen::Vector3d y = warp.apply(g.point(ijk(0), ijk(1), ijk(2)));
+          lo = lo.cwiseMin(y);
+          hi = hi.cwiseMax(y);
+        }
+    }
+  lo -= 2 * g.spacing;  // the faces were sampled every 4 voxels
+  hi += 2 * g.spacing;
+  GridGeometry target;
+  target.spacing = g.spacing;
+  target.origin = lo;
+  for (int a = 0; a < 3; ++a) target.dims[a] = static_cast<int>(std::ceil((hi(a) - lo(a)) / g.spacing(a))) + 1;
+  const float air = *std::min_element(field.data.begin(), field.data.end());
+  Field out(target, air);
+#pragma omp parallel for schedule(dynamic)
+  for (int k = 0; k < target.dims[2]; ++k)
+    for (int j = 0; j < target.dims[1]; ++j)
+      for (int i = 0; i < target.dims[0]; ++i) {
+        const Eigen::Vector3d x = warp.inverse(target.point(i, j, k));
+        bool inside = true;
+        for (int a = 0; a < 3; ++a)
+          inside = inside && x(a) >= g.lower(a) - 0.5 * g.spacing(a) && x(a) <= g.upper(a) + 0.5 * g.spacing(a);
+        if (inside) out(i, j, k) = static_cast<float>(sample(field, x));
+      }
+  return out;
+}
+
+}  // namespace facehex
