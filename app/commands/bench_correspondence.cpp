@@ -163,7 +163,7 @@ int correspondence_bench(const Args& args) {
   check_transfer_options(args);
   CorrespondenceBenchmarkOptions options;
   options.transfer = transfer_options(args);
-  if (args.has("mapping-only")) options.transfer.shape_relaxation = options.transfer.untangle = false;
+  if (args.has("mapping-only")) options.transfer.shape_relaxation = options.transfer.repair_folds = false;
   options.true_landmarks = args.has("true-landmarks");
   options.segment = segment_options(args);
   options.models = list(args.get("models"));
