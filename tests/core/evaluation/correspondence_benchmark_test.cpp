@@ -34,7 +34,7 @@ TEST(CorrespondenceBenchmark, UnknownModelsAndWarpsAreNamed) {
 TEST(CorrespondenceBenchmark, FastSubsetOfThePlainMapping) {
   const StandardSetup standard = load_standard("artisynth-refface");
   CorrespondenceBenchmarkOptions options;
-  options.transfer.shape_relaxation = options.transfer.untangle = false;
+  options.transfer.shape_relaxation = options.transfer.repair_folds = false;
   options.models = {"split"};
   options.deformation_models = {"split"};
   options.warps = {"nose"};
@@ -66,7 +66,7 @@ TEST(CorrespondenceBenchmark, FastSubsetOfThePlainMapping) {
 TEST(CorrespondenceBenchmark, SameDomainAndTrueLandmarksNearlyFollowLocalWarps) {
   const StandardSetup standard = load_standard("artisynth-refface", "", "auxiliary");
   CorrespondenceBenchmarkOptions options;
-  options.transfer.shape_relaxation = options.transfer.untangle = false;
+  options.transfer.shape_relaxation = options.transfer.repair_folds = false;
   options.models = {"split"};
   options.deformation_models = {"split"};
   options.warps = {"chin", "nose"};
