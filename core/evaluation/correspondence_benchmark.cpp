@@ -78,6 +78,22 @@ CorrespondenceCaseResult measure(const StandardSetup& standard, const PatientSet
   return r;
 }
 
+// The standard's landmarks as its own constraint set places its features (each feature plane's point is its
+// landmark), so that "true landmarks" put a model's features where the standard's are, whatever the finder does; the
+// finder's points where the set has no such plane.
+FaceLandmarks standard_feature_landmarks(const StandardSetup& standard) {
+  FaceLandmarks l = find_face_landmarks(standard.mesh.V, side_mask_of(standard.mesh));
+  for (const FeatureSpec& spec : feature_specs())
+    for (const Constraint& c : standard.constraints.constraints)
+      if (c.name == spec.name && c.select.plane) {
+        if (spec.field == 0)
+          l.x_mid = c.select.plane->point.x();
+        else
+          l.points[spec.landmark] = c.select.plane->point;
+      }
+  return l;
+}
+
 }  // namespace
 
 SmoothWarp standard_warp(const std::string& name, const VolumeMesh& standard) {
@@ -124,7 +140,7 @@ std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const Standar
                                                                    const ResultCallback& on_result) {
   const std::vector<VertexRegion> regions = correspondence_regions(standard.mesh);
   const std::map<std::string, double> values = feature_values(standard.constraints);
-  const FaceLandmarks standard_landmarks = find_face_landmarks(standard.mesh.V, side_mask_of(standard.mesh));
+  const FaceLandmarks standard_landmarks = standard_feature_landmarks(standard);
   std::vector<std::pair<std::string, SmoothWarp>> warps;
   for (const std::string& w : options.warps) warps.emplace_back(w, standard_warp(w, standard.mesh));
 

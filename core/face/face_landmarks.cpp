@@ -226,7 +226,10 @@ FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorX
       prn = require(profile.extreme(0.5 * (cut->first + cut->second) - 1, 0.5 * (cut->first + cut->second) + 1, true),
                     "nose tip");
     n = require(profile.extreme((cut ? cut->second : prn.z() + 10), prn.z() + 45, false), "nasion");
-    g = require(profile.middle_of_front(n.z() + 3, n.z() + 30, 0.5), "glabella");
+    // Not within a few mm of the model's top: where a model is cut just above the brow (a standard), the cut's edge
+    // is the most anterior point above the nasion, and it is no anatomy.
+    constexpr double kTopCutMargin = 5;
+    g = require(profile.middle_of_front(n.z() + 3, std::min(n.z() + 30, zmax - kTopCutMargin), 0.5), "glabella");
     if (cut) l.estimated = {"pronasale"};
   } else {
     auto on_cut = [&](double z) {
