@@ -1,10 +1,10 @@
 #include "core/io/ansys_io.h"
 
-#include "core/io/io_util.h"
-
 #include <cmath>
 #include <unordered_map>
 #include <vector>
+
+#include "core/io/io_util.h"
 
 namespace facehex {
 

@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -209,6 +210,36 @@ void check_volume_mesh(const std::string& subject, const VolumeMesh& mesh) {
       throw Error(subject, "cell data '" + name + "' has " + std::to_string(a.rows()) + " rows for " +
                                std::to_string(nc) + " cells");
     }
+  }
+}
+
+// The sizes a VTK XML file declares, checked before VTK's reader trusts them (a count that is negative or past our
+// 32-bit indices, or a component count no mesh array has, sends it into a crash or a loop over billions): the XML
+// part before the appended data is scanned for every NumberOf... attribute (points, cells, polys, components...).
+void check_vtk_xml_sizes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string xml;
+  char chunk[1 << 16];
+  size_t end = std::string::npos;
+  while (end == std::string::npos && in.read(chunk, sizeof chunk).gcount() > 0) {
+    xml.append(chunk, static_cast<size_t>(in.gcount()));
+    end = xml.find("<AppendedData");
+  }
+  if (end != std::string::npos) xml.resize(end);
+  const std::string key = "NumberOf";
+  for (size_t at = xml.find(key); at != std::string::npos; at = xml.find(key, at + 1)) {
+    const size_t eq = xml.find("=\"", at);
+    if (eq == std::string::npos || eq - at > 40) continue;  // "NumberOf" in text, not an attribute
+    const std::string attribute = xml.substr(at, eq - at);
+    const size_t from = eq + 2, to = xml.find('"', from);
+    const std::string text = xml.substr(from, to == std::string::npos ? 0 : to - from);
+    const bool components = attribute == "NumberOfComponents";
+    const double least = components ? 1 : 0, most = components ? 1000 : 2147483647.0;
+    char* stop = nullptr;
+    const double value = std::strtod(text.c_str(), &stop);
+    if (text.empty() || *stop != '\0' || !(value >= least && value <= most) || value != std::floor(value))
+      throw Error(path, attribute + "=\"" + text + "\" is not a count from " + std::to_string(int(least)) + " to " +
+                            std::to_string(static_cast<long long>(most)) + " (a damaged file)");
   }
 }
 

@@ -21,6 +21,9 @@ std::string find_sibling(const std::string& path, const std::string& ext);
 // Throws facehex::Error(path, ...) unless path names an existing, non-empty, readable regular file. Readers call
 // it first so that "file not found" is not reported as some parser's confusion.
 void check_readable_file(const std::string& path);
+// A VTK XML file's declared sizes (every NumberOf... attribute before its appended data) are counts our readers can
+// hold: 0 .. 2^31-1, components 1 .. 1000. Throws Error(path, ...) naming the attribute.
+void check_vtk_xml_sizes(const std::string& path);
 
 // Text that reads back to exactly the same double (%.17g).
 std::string format_double(double x);

@@ -93,6 +93,24 @@ std::vector<char> to_bytes(const VolumeMesh& mesh) {
   return std::move(w.bytes);
 }
 
+std::vector<char> to_bytes(const SurfaceMesh& surface) {
+  Writer w;
+  w.matrix(surface.V);
+  w.matrix(surface.F);
+  w.matrix(surface.labels);
+  return std::move(w.bytes);
+}
+
+SurfaceMesh surface_from_bytes(const std::vector<char>& bytes, const std::string& subject) {
+  Reader r(bytes, subject);
+  SurfaceMesh s;
+  s.V = r.matrix<Eigen::MatrixXd>();
+  s.F = r.matrix<Eigen::MatrixXi>();
+  s.labels = r.matrix<Eigen::VectorXi>();
+  if (!r.done()) throw Error(subject, "unexpected surface data from the reading process");
+  return s;
+}
+
 VolumeMesh mesh_from_bytes(const std::vector<char>& bytes, const std::string& subject) {
   Reader r(bytes, subject);
   VolumeMesh mesh;

@@ -8,7 +8,9 @@
 namespace facehex::io {
 
 std::vector<char> to_bytes(const VolumeMesh& mesh);
-// Throws Error(subject, ...) if the bytes are not a whole mesh.
+std::vector<char> to_bytes(const SurfaceMesh& surface);
+// Throw Error(subject, ...) if the bytes are not a whole mesh.
 VolumeMesh mesh_from_bytes(const std::vector<char>& bytes, const std::string& subject);
+SurfaceMesh surface_from_bytes(const std::vector<char>& bytes, const std::string& subject);
 
 }  // namespace facehex::io

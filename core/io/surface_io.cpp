@@ -21,10 +21,12 @@
 #include <vtkXMLPolyDataWriter.h>
 
 #include "core/io/io_util.h"
+#include "core/io/mesh_bytes.h"
 #include "core/io/mesh_io.h"
 #include "core/io/surface_file_checks.h"
 #include "core/io/vtk_util.h"
 #include "core/util/atomic_file.h"
+#include "core/util/child_process.h"
 #include "core/util/error.h"
 
 namespace facehex {
@@ -72,23 +74,14 @@ void check_surface(const std::string& subject, const SurfaceMesh& s) {
   }
 }
 
-}  // namespace
-
-SurfaceMesh read_surface_mesh(const std::string& path) {
-  const std::string ext = io::lower_extension(path);
-  if (!is_surface_file(path)) {
-    throw Error(path, "unknown surface file extension '" + ext + "' (readable: .stl, .obj, .ply, .vtp)");
-  }
-  io::check_readable_file(path);
+// The surface through VTK's readers, triangulated, its exact duplicate points merged (in the reading child).
+SurfaceMesh read_surface_here(const std::string& path, const std::string& ext) {
   vtkSmartPointer<vtkAlgorithm> reader;
   if (ext == ".stl") {
-    io::check_stl_file(path);
     reader = make_reader<vtkSTLReader>(path);
   } else if (ext == ".obj") {
-    io::check_obj_file(path);
     reader = make_reader<vtkOBJReader>(path);
   } else if (ext == ".ply") {
-    io::check_ply_file(path);
     reader = make_reader<vtkPLYReader>(path);
   } else {
     reader = make_reader<vtkXMLPolyDataReader>(path);
@@ -119,6 +112,28 @@ SurfaceMesh read_surface_mesh(const std::string& path) {
     for (int f = 0; f < s.F.rows(); ++f) s.labels[f] = static_cast<int>(labels->GetComponent(f, 0));
   }
   if (s.F.rows() == 0) throw Error(path, "file holds no triangles (empty, damaged or not a surface)");
+  return s;
+}
+
+}  // namespace
+
+SurfaceMesh read_surface_mesh(const std::string& path) {
+  const std::string ext = io::lower_extension(path);
+  if (!is_surface_file(path)) {
+    throw Error(path, "unknown surface file extension '" + ext + "' (readable: .stl, .obj, .ply, .vtp)");
+  }
+  io::check_readable_file(path);
+  if (ext == ".stl") io::check_stl_file(path);
+  if (ext == ".obj") io::check_obj_file(path);
+  if (ext == ".ply") io::check_ply_file(path);
+  if (ext == ".vtp") io::check_vtk_xml_sizes(path);
+  // VTK's readers trust the sizes a file declares: they run in a child process with a time and memory budget that
+  // grow with the file (core/util/child_process.h).
+  SurfaceMesh s =
+      io::surface_from_bytes(compute_in_child(
+                                 path, "reading the surface",
+                                 [&] { return io::to_bytes(read_surface_here(path, ext)); }, limits_for_reading(path)),
+                             path);
   check_surface(path, s);
   return s;
 }

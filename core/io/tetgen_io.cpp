@@ -1,8 +1,8 @@
 #include "core/io/tetgen_io.h"
 
-#include "core/io/io_util.h"
-
 #include <vector>
+
+#include "core/io/io_util.h"
 
 namespace facehex::io {
 

@@ -18,10 +18,7 @@
 #include <vtkXMLUnstructuredGridReader.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
-#include <cmath>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 
 #include "core/io/io_util.h"
@@ -131,45 +128,11 @@ vtkSmartPointer<vtkUnstructuredGrid> to_grid(const VolumeMesh& mesh, const std::
   return grid;
 }
 
-// The sizes a VTK XML file declares, checked before VTK's reader trusts them (a count that is negative or past our
-// 32-bit indices, or a component count no mesh array has, sends it into a crash or a loop over billions): the XML
-// part before the appended data is scanned for NumberOfPoints, NumberOfCells and NumberOfComponents.
-void check_vtu_sizes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string xml;
-  char chunk[1 << 16];
-  size_t end = std::string::npos;
-  while (end == std::string::npos && in.read(chunk, sizeof chunk).gcount() > 0) {
-    xml.append(chunk, static_cast<size_t>(in.gcount()));
-    end = xml.find("<AppendedData");
-  }
-  if (end != std::string::npos) xml.resize(end);
-  for (const auto& [attribute, most] : {std::pair<std::string, double>{"NumberOfPoints", 2147483647.0},
-                                        {"NumberOfCells", 2147483647.0},
-                                        {"NumberOfComponents", 1000.0}}) {
-    const std::string key = attribute + "=\"";
-    for (size_t at = xml.find(key); at != std::string::npos; at = xml.find(key, at + 1)) {
-      const size_t from = at + key.size(), to = xml.find('"', from);
-      const std::string text = xml.substr(from, to == std::string::npos ? 0 : to - from);
-      char* stop = nullptr;
-      const double value = std::strtod(text.c_str(), &stop);
-      const double least = attribute == "NumberOfComponents" ? 1 : 0;
-      if (text.empty() || *stop != '\0' || !(value >= least && value <= most) || value != std::floor(value))
-        throw Error(path, attribute + "=\"" + text + "\" is not a count from " + std::to_string(int(least)) + " to " +
-                              std::to_string(static_cast<long long>(most)) + " (a damaged file)");
-    }
-  }
-}
-
 // VTK's readers trust the sizes a file declares: a damaged file can make them crash, loop or allocate without bound.
 // They run in a child process with a time and memory budget that grow with the file (core/util/child_process.h).
 VolumeMesh read_in_child(const std::string& path, const std::string& what, const std::function<VolumeMesh()>& read) {
-  const double megabytes = static_cast<double>(std::filesystem::file_size(path)) / (1 << 20);
-  ChildLimits limits;
-  limits.seconds = 60 + 2 * megabytes;
-  limits.memory_bytes = (size_t{2} << 30) + static_cast<size_t>(64 * megabytes) * (1 << 20);
   return mesh_from_bytes(compute_in_child(
-                             path, what, [&] { return to_bytes(read()); }, limits),
+                             path, what, [&] { return to_bytes(read()); }, limits_for_reading(path)),
                          path);
 }
 
@@ -177,7 +140,7 @@ VolumeMesh read_in_child(const std::string& path, const std::string& what, const
 
 VolumeMesh read_vtu(const std::string& path) {
   check_readable_file(path);
-  check_vtu_sizes(path);
+  check_vtk_xml_sizes(path);
   return read_in_child(path, "reading VTK XML", [&] {
     vtkNew<vtkXMLUnstructuredGridReader> reader;
     reader->SetFileName(path.c_str());

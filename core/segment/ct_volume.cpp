@@ -140,10 +140,7 @@ CtVolume volume_from_bytes(const std::vector<char>& bytes, const std::string& pa
 CtVolume read_volume_file(const std::string& path) {
   const std::string name = lower(path);
   if (ends_with(name, ".mhd") || ends_with(name, ".mha")) check_metaimage_header(path);
-  const double megabytes = static_cast<double>(std::filesystem::file_size(path)) / (1 << 20);
-  ChildLimits limits;
-  limits.seconds = 60 + 2 * megabytes;
-  limits.memory_bytes = (size_t{4} << 30) + static_cast<size_t>(64 * megabytes) * (1 << 20);
+  const ChildLimits limits = limits_for_reading(path, size_t{4} << 30);  // the voxels, cast to float, and a copy
   return volume_from_bytes(
       compute_in_child(
           path, "reading the CT", [&] { return volume_bytes(read_volume_file_here(path)); }, limits),

@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <new>
 
 #include "core/util/error.h"
@@ -175,6 +176,15 @@ bool ChildProcess::crashed() const { return WIFSIGNALED(status_); }
 std::string ChildProcess::signal_name() const { return crashed() ? strsignal(WTERMSIG(status_)) : ""; }
 
 int ChildProcess::exit_code() const { return WIFEXITED(status_) ? WEXITSTATUS(status_) : -1; }
+
+ChildLimits limits_for_reading(const std::string& path, std::size_t base_bytes) {
+  std::error_code ec;
+  const double megabytes = static_cast<double>(std::filesystem::file_size(path, ec)) / (1 << 20);
+  ChildLimits limits;
+  limits.seconds = 60 + 2 * (ec ? 0 : megabytes);
+  limits.memory_bytes = base_bytes + static_cast<std::size_t>(64 * (ec ? 0 : megabytes)) * (std::size_t{1} << 20);
+  return limits;
+}
 
 void write_to_parent(int fd, const void* data, std::size_t bytes) {
   const char* p = static_cast<const char*>(data);

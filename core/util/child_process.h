@@ -60,6 +60,10 @@ class ChildProcess {
   std::vector<char> output_;
 };
 
+// The budget for reading a file in a child: a minute plus two seconds per MB, `base_bytes` plus 64 times the file's
+// size (a compressed file may expand that much), generous for any sound file and small beside a damaged one's runaway.
+ChildLimits limits_for_reading(const std::string& path, std::size_t base_bytes = std::size_t{2} << 30);
+
 // Writes all bytes to the parent, or ends the child if the parent is gone.
 void write_to_parent(int fd, const void* data, std::size_t bytes);
 

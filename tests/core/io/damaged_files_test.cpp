@@ -125,6 +125,38 @@ TEST(DamagedFiles, EveryByteOfABinaryVtkCutOrFlippedIsAnErrorOrTheSameMesh) {
   EXPECT_GT(errors, 0);
 }
 
+TEST(DamagedFiles, ASurfaceWithANegativeCountIsAnErrorAndAGoodOneStillReads) {
+  TempDir dir;
+  SurfaceMesh s;
+  s.V.resize(4, 3);
+  s.V << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1;
+  s.F.resize(4, 3);
+  s.F << 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3;
+  write_surface_mesh(dir.file("good.vtp"), s);
+  const SurfaceMesh back = read_surface_mesh(dir.file("good.vtp"));
+  EXPECT_EQ(back.V.rows(), 4);  // the reader may renumber the points (it merges duplicates)
+  EXPECT_EQ(back.F.rows(), 4);
+  std::string text = test::read_file(dir.file("good.vtp"));
+  const size_t at = text.find("NumberOfPolys=\"");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, text.find('"', at + 15) - at + 1, "NumberOfPolys=\"-1\"");
+  test::write_file(dir.file("bad.vtp"), text);
+  test::expect_error([&] { read_surface_mesh(dir.file("bad.vtp")); }, "NumberOfPolys=\"-1\" is not a count",
+                     dir.file("bad.vtp"));
+}
+
+TEST(MeshBytes, ASurfaceRoundTripIsBitIdentical) {
+  SurfaceMesh s;
+  s.V = Eigen::MatrixXd::Random(5, 3);
+  s.F.resize(2, 3);
+  s.F << 0, 1, 2, 2, 3, 4;
+  s.labels = Eigen::VectorXi::LinSpaced(2, 1, 2);
+  const SurfaceMesh back = io::surface_from_bytes(io::to_bytes(s), "s");
+  EXPECT_EQ(back.V, s.V);
+  EXPECT_EQ(back.F, s.F);
+  EXPECT_EQ(back.labels, s.labels);
+}
+
 TEST(MeshBytes, ARoundTripIsBitIdenticalAndDamagedBytesAreRefused) {
   const VolumeMesh m = test::sample_mesh();
   const std::vector<char> bytes = io::to_bytes(m);
