@@ -1,6 +1,7 @@
 #include "core/fields/constraint_set.h"
 
 #include <cmath>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 
@@ -25,7 +26,10 @@ Selection parse_selection(const json& j) {
   int kinds = 0;
   if (j.contains("ids")) {
     ++kinds;
+    if (!j.at("ids").is_array()) throw std::runtime_error("\"ids\" must be an array of vertex ids");
     for (const auto& id : j.at("ids")) {
+      if (!id.is_number_integer() || id.get<long long>() > std::numeric_limits<int>::max())
+        throw std::runtime_error("vertex id " + id.dump() + " is not a whole number of range");
       const int v = id.get<int>();
       if (v < 0) throw std::runtime_error("negative vertex id " + std::to_string(v));
       s.ids.push_back(v);
@@ -87,6 +91,16 @@ json selection_json(const Selection& s) {
   return j;
 }
 
+// An exception's message for the user: a JSON library error ("[json.exception.type_error.302] type must be number,
+// but is string") as "a value has the wrong type: type must be number, but is string".
+std::string message_of(const std::exception& e) {
+  const std::string what = e.what();
+  if (dynamic_cast<const nlohmann::json::exception*>(&e) == nullptr) return what;
+  const size_t code_end = what.find("] ");
+  return "a value has the wrong type or is missing: " +
+         (code_end == std::string::npos ? what : what.substr(code_end + 2));
+}
+
 }  // namespace
 
 ConstraintSet parse_constraint_set(const std::string& json_text, const std::string& source) {
@@ -94,13 +108,16 @@ ConstraintSet parse_constraint_set(const std::string& json_text, const std::stri
   try {
     root = json::parse(json_text);
   } catch (const json::exception& e) {
-    throw Error(source, std::string("not valid JSON: ") + e.what());
+    const std::string what = e.what();  // without the library's error code
+    throw Error(source,
+                "not valid JSON: " + what.substr(what.find("] ") == std::string::npos ? 0 : what.find("] ") + 2));
   }
   ConstraintSet set;
   try {
     if (root.value("format", std::string()) != "facehex-constraints")
       throw std::runtime_error("\"format\" must be \"facehex-constraints\"");
-    if (root.value("version", 0) != 1) throw std::runtime_error("unsupported \"version\" (expected 1)");
+    if (!root.contains("version") || !root.at("version").is_number_integer() || root.at("version").get<int>() != 1)
+      throw std::runtime_error("unsupported \"version\" (expected 1)");
     for (const auto& c : root.at("constraints")) {
       Constraint k;
       k.name = c.value("name", std::string("constraint ") + std::to_string(set.constraints.size() + 1));
@@ -109,15 +126,17 @@ ConstraintSet parse_constraint_set(const std::string& json_text, const std::stri
         k.field = field == "u" ? 0 : field == "v" ? 1 : field == "w" ? 2 : -1;
         if (k.field < 0) throw std::runtime_error("field must be \"u\", \"v\" or \"w\"");
         k.value = c.at("value").get<double>();
-        if (!std::isfinite(k.value)) throw std::runtime_error("value is not finite");
+        if (!(k.value >= 0 && k.value <= 1))
+          throw std::runtime_error("value " + c.at("value").dump() +
+                                   " is outside 0..1 (each field runs from 0 on one side to 1 on the other)");
         k.select = parse_selection(c.at("select"));
       } catch (const std::exception& e) {
-        throw std::runtime_error("constraint '" + k.name + "': " + e.what());
+        throw std::runtime_error("constraint '" + k.name + "': " + message_of(e));
       }
       set.constraints.push_back(std::move(k));
     }
   } catch (const std::exception& e) {
-    throw Error(source, e.what());
+    throw Error(source, message_of(e));
   }
   return set;
 }
