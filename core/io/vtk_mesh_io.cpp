@@ -18,7 +18,6 @@
 #include <vtkXMLUnstructuredGridReader.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
-#include <filesystem>
 #include <functional>
 
 #include "core/io/io_util.h"

@@ -92,10 +92,13 @@ MetaImageHeader check_metaimage_header(const std::string& path) {
                                 "volume to identity directions (for an axis permutation: remove the matrix and give "
                                 "the axes with --anterior and --superior)");
     }
-  const long long channels =
-      h.fields.count("ElementNumberOfChannels") ? std::stoll("0" + h.fields["ElementNumberOfChannels"]) : 1;
-  if (channels < 1 || channels > 4) throw Error(path, "ElementNumberOfChannels must be 1 to 4");
-  const long long bytes = h.dims[0] * h.dims[1] * h.dims[2] * channels * element_bytes(path, field("ElementType"));
+  const double channels = h.fields.count("ElementNumberOfChannels")
+                              ? numbers(path, "ElementNumberOfChannels", h.fields["ElementNumberOfChannels"], 1)[0]
+                              : 1;
+  if (!(channels >= 1 && channels <= 4) || channels != std::floor(channels))
+    throw Error(path, "ElementNumberOfChannels must be a whole number from 1 to 4");
+  const long long bytes =
+      h.dims[0] * h.dims[1] * h.dims[2] * static_cast<long long>(channels) * element_bytes(path, field("ElementType"));
   const std::string data_file = field("ElementDataFile");
   const bool compressed = h.fields.count("CompressedData") && (h.fields["CompressedData"] == "True");
   const bool list = data_file.rfind("LIST", 0) == 0 || data_file.find('%') != std::string::npos;

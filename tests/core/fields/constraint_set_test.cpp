@@ -1,7 +1,6 @@
 #include "core/fields/constraint_set.h"
 
 #include <gtest/gtest.h>
-#include <stdlib.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -14,6 +13,7 @@
 #include "core/mesh/tet_topology.h"
 #include "core/util/error.h"
 #include "core/util/text_file.h"
+#include "tests/core/io/io_test_util.h"
 #include "tests/core/test_meshes.h"
 
 namespace facehex {
@@ -56,24 +56,7 @@ void expect_error(const std::function<void()>& run, const std::string& subject, 
   }
 }
 
-class TempDir {
- public:
-  TempDir() {
-    std::string pattern = (fs::temp_directory_path() / "facehex_constraints_test_XXXXXX").string();
-    if (!::mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
-    path_ = pattern;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-
- private:
-  fs::path path_;
-};
+using test::TempDir;
 
 Selection by_plane(const PlaneSelection& p) {
   Selection s;

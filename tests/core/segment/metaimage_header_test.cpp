@@ -81,6 +81,8 @@ TEST_F(MetaImageHeaderTest, EachBadFieldIsNamed) {
       {{"ElementSpacing", "ElementSpacing = 1 nan 2"}, "ElementSpacing"},
       {{"TransformMatrix", "TransformMatrix = -1 0 0 0 1 0 0 0 1"}, "is not the identity"},
       {{"ElementType", "ElementType = MET_STRING"}, "ElementType 'MET_STRING'"},
+      {{"ElementNumberOfChannels", "ElementNumberOfChannels = 2.5"}, "ElementNumberOfChannels must be a whole number"},
+      {{"ElementNumberOfChannels", "ElementNumberOfChannels = x"}, "ElementNumberOfChannels must hold 1 numbers"},
   };
   for (const auto& [edit, needle] : cases) {
     const std::string path = header(edit.first, edit.second);
