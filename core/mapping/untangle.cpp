@@ -1,5 +1,7 @@
 #include "core/mapping/untangle.h"
 
+#include <omp.h>
+
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -7,6 +9,7 @@
 
 #include "core/mesh/corner_jacobian.h"
 #include "core/util/error.h"
+#include "core/util/idle_cores.h"
 
 namespace facehex {
 namespace {
@@ -84,6 +87,51 @@ struct Energy {
     return power == 1 ? eta : std::pow(eta, power);
   }
 };
+
+// Vertices that share no cell can step at the same time: a step reads and writes only the cells around its vertex.
+// The free vertices are cut, by their rank along the region's longest extent, into slabs whose cells reach at most
+// into the neighbouring slab; the even slabs then step in parallel, then the odd ones. That is two waits per sweep
+// whatever the thread count, so a thread that loses its core to another job delays a sweep once, rather than at each
+// of the dozens of colour classes a graph colouring needs. The slabs depend on the mesh only: the result does not
+// depend on the thread count. Fewer, thicker slabs where thin ones would share cells; one slab for a small region.
+std::vector<std::vector<int>> cut_into_slabs(const VolumeMesh& mesh, const std::vector<std::vector<int>>& cells_of,
+                                             const std::vector<int>& free_vertices) {
+  constexpr int kMostSlabs = 16, kLeastSlabVertices = 64;
+  const int n = static_cast<int>(free_vertices.size());
+  if (n == 0) return {};
+  Eigen::MatrixXd X(n, 3);
+  for (int i = 0; i < n; ++i) X.row(i) = mesh.V.row(free_vertices[i]);
+  int axis = 0;
+  (X.colwise().maxCoeff() - X.colwise().minCoeff()).maxCoeff(&axis);
+  std::vector<int> order(n);
+  for (int i = 0; i < n; ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return X(a, axis) < X(b, axis); });
+  std::vector<int> slab_of(mesh.num_vertices(), -1);
+  for (int slabs = std::min(kMostSlabs, n / kLeastSlabVertices); slabs >= 2; --slabs) {
+    for (int rank = 0; rank < n; ++rank)
+      slab_of[free_vertices[order[rank]]] = static_cast<int>(static_cast<long long>(rank) * slabs / n);
+    bool thick_enough = true;
+    for (int i = 0; i < n && thick_enough; ++i)
+      for (int c : cells_of[free_vertices[i]]) {
+        int lowest = slabs, highest = -1;
+        for (int local = 0; local < node_count(mesh.types[c]); ++local) {
+          const int slab = slab_of[mesh.C(c, local)];
+          if (slab < 0) continue;  // not free: never moves
+          lowest = std::min(lowest, slab);
+          highest = std::max(highest, slab);
+        }
+        if (highest - lowest > 1) {
+          thick_enough = false;
+          break;
+        }
+      }
+    if (!thick_enough) continue;
+    std::vector<std::vector<int>> cut(slabs);
+    for (int v : free_vertices) cut[slab_of[v]].push_back(v);
+    return cut;
+  }
+  return {free_vertices};
+}
 
 }  // namespace
 
@@ -169,6 +217,10 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
   for (int v = 0; v < nv; ++v)
     if (region[v] && !movable[v].isZero()) free_vertices.push_back(v);
   report.free_vertices = static_cast<int>(free_vertices.size());
+  const std::vector<std::vector<int>> slabs = cut_into_slabs(mesh, cells_of, free_vertices);
+  // Unless told, no more threads than idle cores (idle_cores.h): a sweep waits for its slowest slab twice, and for
+  // delta once.
+  const int threads = options.threads > 0 ? options.threads : std::min(omp_get_max_threads(), idle_cores());
 
   // Corners touching each free vertex (the vertex is the corner node or one of its three neighbours), the centre of
   // every hex around it (its first interior sample), and all interior samples of the cells bad at the start (the
@@ -291,7 +343,7 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
   auto update_delta = [&] {
     const int n = static_cast<int>(touched_corners.size());
     double sigma_min = std::numeric_limits<double>::infinity();
-#pragma omp parallel for reduction(min : sigma_min)
+#pragma omp parallel for num_threads(threads) reduction(min : sigma_min)
     for (int i = 0; i < n; ++i) {
       Eigen::Matrix3d A;
       const Eigen::Matrix3d Winv = corner_matrix(touched_corners[i], cell_nodes(mesh, touched_corners[i].cell), A);
@@ -398,40 +450,21 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
     const double moved_v = (mesh.V.row(v) - x0).norm();
     return Step{moved_v, edge};
   };
-  // Vertices that share no cell can step at the same time (each step reads and writes only the cells around its
-  // vertex): colour classes of the free vertices, stepped class after class, each class in parallel.
-  std::vector<std::vector<int>> colours;
-  {
-    std::vector<int> colour(nv, -1);
-    std::vector<int> taken;  // colours of the neighbours, marked with the vertex id
-    for (int v : free_vertices) {
-      taken.assign(colours.size() + 1, -1);
-      for (int c : cells_of[v])
-        for (int i = 0; i < node_count(mesh.types[c]); ++i) {
-          const int other = colour[mesh.C(c, i)];
-          if (other >= 0) taken[other] = v;
-        }
-      int k = 0;
-      while (taken[k] == v) ++k;
-      if (k == static_cast<int>(colours.size())) colours.emplace_back();
-      colour[v] = k;
-      colours[k].push_back(v);
-    }
-  }
   std::vector<Step> steps(nv);
   for (report.sweeps = 0; report.sweeps < options.max_sweeps; ++report.sweeps) {
     update_delta();
     int visited = 0;
-    for (const std::vector<int>& members : colours) {
-      const int n = static_cast<int>(members.size());
-#pragma omp parallel for schedule(dynamic, 16) reduction(+ : visited)
-      for (int i = 0; i < n; ++i) {
-        const int v = members[i];
-        steps[v] = Step{};
-        if (!active[v]) continue;
-        ++visited;
-        steps[v] = step_vertex(v);
-      }
+    // The even slabs step in parallel, then the odd ones (cut_into_slabs), each slab in its own Gauss-Seidel order.
+    const int slab_count = static_cast<int>(slabs.size());
+    for (int parity = 0; parity < 2; ++parity) {
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) reduction(+ : visited)
+      for (int k = parity; k < slab_count; k += 2)
+        for (int v : slabs[k]) {
+          steps[v] = Step{};
+          if (!active[v]) continue;
+          ++visited;
+          steps[v] = step_vertex(v);
+        }
     }
     // The next sweep visits the vertices around those that moved.
     std::fill(next_active.begin(), next_active.end(), 0);

@@ -75,6 +75,9 @@ struct UntangleOptions {
   // transfer's repair keeps 1: a higher power trades the many fair cells, and the standard's angles, for the few
   // worst ones, which costs the transfer more than it gains.
   double corner_power = 1;
+  // Threads for the sweeps; 0: as many as there are idle cores (idle_cores.h), up to OpenMP's maximum. The result is
+  // the same for every thread count.
+  int threads = 0;
   // Called after each sweep with stage "untangling" and the fraction of max_sweeps done; returning false cancels
   // (Cancelled is thrown between sweeps).
   ProgressCallback progress;
