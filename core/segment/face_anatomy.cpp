@@ -1,6 +1,7 @@
 #include "core/segment/face_anatomy.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -21,7 +22,7 @@ constexpr double kChinHalfWidth = 6.0;      // mm either side of the mid-plane f
 constexpr double kChinSoftTissue = 25.0;    // mm: the chin's bone is at most this far behind the skin
 constexpr double kChinGap = 4.0;            // mm of levels without such bone within the chin's run
 constexpr double kChinDepth = 30.0;         // mm the mandible's lower border reaches back from the chin's front
-constexpr double kEarWidthTolerance = 5.0;  // mm: rows this close to the widest still belong to the ears
+constexpr double kEarReachTolerance = 3.0;  // mm: rows whose side reaches this close to the widest are the ear
 
 const double kNone = std::numeric_limits<double>::quiet_NaN();
 
@@ -212,7 +213,10 @@ double find_ear_front(const Mask& head, const FaceAnatomy& anatomy) {
   }
   if (!(y_front > y_back)) not_found("the ears", "--posterior-cut");
   const double depth = y_front - y_back;
-  std::vector<double> width(g.dims[1], -1);
+  // Per side, each coronal row's reach from the mid-sagittal plane: a head turned about the vertical axis has one ear
+  // further forward than the other, and the row of the head's full width lies between them.
+  std::array<std::vector<double>, 2> reach;
+  reach.fill(std::vector<double>(g.dims[1], -1));
   for (int j = 0; j < g.dims[1]; ++j) {
     const double y = g.point(0, j, 0).y();
     if (y < y_back + 0.25 * depth || y > y_front - 0.25 * depth) continue;
@@ -225,13 +229,21 @@ double find_ear_front(const Mask& head, const FaceAnatomy& anatomy) {
           if (first < 0) first = i;
           last = i;
         }
-      if (first >= 0) width[j] = std::max(width[j], (last - first) * g.spacing.x());
+      if (first < 0) continue;
+      const double centre = anatomy.centre_at(z);
+      reach[0][j] = std::max(reach[0][j], centre - g.point(first, 0, 0).x());
+      reach[1][j] = std::max(reach[1][j], g.point(last, 0, 0).x() - centre);
     }
   }
-  const double widest = *std::max_element(width.begin(), width.end());
-  double ear_front = y_back + 0.5 * depth;
-  for (int j = 0; j < g.dims[1]; ++j)
-    if (widest > 0 && width[j] >= widest - kEarWidthTolerance) ear_front = g.point(0, j, 0).y();
+  // Each ear's front, and the more anterior of the two: the posterior cut goes in front of both.
+  double ear_front = -std::numeric_limits<double>::infinity();
+  for (const std::vector<double>& side : reach) {
+    const double widest = *std::max_element(side.begin(), side.end());
+    if (!(widest > 0)) continue;
+    for (int j = 0; j < g.dims[1]; ++j)
+      if (side[j] >= widest - kEarReachTolerance) ear_front = std::max(ear_front, g.point(0, j, 0).y());
+  }
+  if (!std::isfinite(ear_front)) not_found("the ears", "--posterior-cut");
   return ear_front;
 }
 

@@ -23,9 +23,10 @@
 //     continues down over gaps of at most kChinGap; menton = the lowest bone voxel connected, within the mid-plane
 //     band and going down and at most kChinDepth backwards, to the bone at the run's lowest level (the lower border of
 //     the mandible curves back, under the skin's horizontal reach);
-//  5. the ears: where the head is widest over the levels from 25 mm below the pronasale to the glabella, in the
-//     middle half of the head's depth there; their front is the most anterior coronal row within kEarWidthTolerance
-//     of that width (the tragus lies on that front).
+//  5. the ears: per side, where the head reaches furthest from the mid-sagittal plane over the levels from 25 mm
+//     below the pronasale to the glabella, in the middle half of the head's depth there; an ear's front is the most
+//     anterior coronal row whose reach on that side is within kEarReachTolerance of the furthest (the tragus lies on
+//     that front), and the ears' front is the more anterior of the two (a turned head has one ear further forward).
 #include <Eigen/Core>
 #include <string>
 

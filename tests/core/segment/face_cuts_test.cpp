@@ -177,6 +177,17 @@ TEST(FaceCuts, TheEarsFrontIsTheMostAnteriorRowNearlyAsWideAsTheWidest) {
   EXPECT_NEAR(find_face_cuts(h.head, h.bone, FaceCutOptions()).posterior_y, 64 + 10, 1e-9);
 }
 
+TEST(FaceCuts, ATurnedHeadsPosteriorCutIsInFrontOfTheMoreAnteriorEar) {
+  for (const double degrees : {-15.0, -10.0, 10.0, 15.0}) {
+    const Head h(rotation(degrees, Eigen::Vector3d::UnitZ()), false);
+    // The ears' front edge (y = 60 at 50 mm either side of the pivot) turns forward on one side by 50 sin(angle).
+    const double anterior_ear = 60 + 50 * std::sin(std::abs(degrees) * M_PI / 180);
+    const FaceCuts cuts = find_face_cuts(h.head, h.bone, FaceCutOptions());
+    EXPECT_NEAR(cuts.anatomy->ear_front_y, anterior_ear, 2.0) << degrees;  // a 2 mm grid
+    EXPECT_GE(cuts.posterior_y, anterior_ear + 10 - 2.0) << degrees;
+  }
+}
+
 TEST(FaceCuts, ShouldersAndThingsAboveTheBrowAreNotEars) {
   Head h;
   // Wider than the ears: shoulders higher up, a brim above the glabella, a plate at the front quarter of the depth.
