@@ -54,6 +54,56 @@ struct Profile {
     return std::nullopt;
   }
 
+  // Going down from z (within `reach` mm), the profile's turns, alternately hollows and prominences: the bins that
+  // the Douglas-Peucker simplification of the profile keeps at `tolerance` mm, each a hollow if it lies behind the
+  // chord of its kept neighbours, else a prominence; consecutive turns of one kind keep the deepest (most anterior).
+  // Measured against chords rather than as extremes of the depth, they stay where they are on a head that is pitched
+  // and on a face whose proportions differ from the usual.
+  struct Turn {
+    Eigen::Vector3d point;
+    bool hollow;
+  };
+  std::vector<Turn> turns_below(double z, double reach, double tolerance) const {
+    std::vector<Eigen::Vector3d> points;
+    for (int b = static_cast<int>(std::floor(z - z0)); b >= 0 && z0 + b + 0.5 >= z - reach; --b)
+      if (b < static_cast<int>(bins.size()) && bins[b] && bins[b]->z() <= z) points.push_back(*bins[b]);
+    std::vector<int> kept = {0};
+    if (points.size() >= 2) {
+      simplify(points, 0, static_cast<int>(points.size()) - 1, tolerance, kept);
+      kept.push_back(static_cast<int>(points.size()) - 1);
+    }
+    std::vector<Turn> turns;
+    for (size_t i = 1; i + 1 < kept.size(); ++i) {
+      const Eigen::Vector3d &p = points[kept[i]], &a = points[kept[i - 1]], &c = points[kept[i + 1]];
+      const double chord_y = a.y() + (p.z() - a.z()) / (c.z() - a.z()) * (c.y() - a.y());
+      const Turn turn{p, p.y() < chord_y};
+      if (!turns.empty() && turns.back().hollow == turn.hollow) {
+        if (turn.hollow ? p.y() < turns.back().point.y() : p.y() > turns.back().point.y()) turns.back() = turn;
+      } else {
+        turns.push_back(turn);
+      }
+    }
+    return turns;
+  }
+
+  // Douglas-Peucker in the (z, y) plane: the indices strictly between first and last that are further than
+  // tolerance from the chord, and recursively so, in order.
+  static void simplify(const std::vector<Eigen::Vector3d>& points, int first, int last, double tolerance,
+                       std::vector<int>& kept) {
+    const Eigen::Vector2d a = points[first].tail<2>(), chord = (points[last].tail<2>() - a).normalized();
+    int farthest = -1;
+    double distance = tolerance;
+    for (int i = first + 1; i < last; ++i) {
+      const Eigen::Vector2d d = points[i].tail<2>() - a;
+      const double off = std::abs(chord.x() * d.y() - chord.y() * d.x());
+      if (off > distance) distance = off, farthest = i;
+    }
+    if (farthest < 0) return;
+    simplify(points, first, farthest, tolerance, kept);
+    kept.push_back(farthest);
+    simplify(points, farthest, last, tolerance, kept);
+  }
+
   // The longest run of bins at most `depth` mm behind `front` (one bin behind it allowed; empty bins, between the
   // mesh's vertices, unless three in a row), as (lowest z, highest z), if it is at least `min_length` mm long: a flat
   // plateau where the scan's field of view cut the face.
@@ -134,6 +184,9 @@ Eigen::Vector3d require(const std::optional<Eigen::Vector3d>& p, const std::stri
   return *p;
 }
 
+constexpr double kTurnTolerance = 1.5;  // mm: the profile's lips deviate from its chords by more than this
+constexpr double kLipsReach = 50.0;     // mm below the nose within which the lips are looked for
+
 // The subnasale: the profile point between the upper lip and the nose (`nose`: its tip, or the lowest point of a
 // field-of-view cut) deepest behind the chord joining them, where the columella meets the lip.
 Eigen::Vector3d subnasale(const Profile& profile, const Eigen::Vector3d& ls, const Eigen::Vector3d& nose) {
@@ -207,16 +260,15 @@ FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorX
   if (cut) l.clipped_from = cut->first, l.clipped_to = cut->second;
   // The nose as the profile shows it: its tip, or the lowest point of the cut.
   const Eigen::Vector3d nose = cut ? require(profile.extreme(cut->first - 1, cut->first + 1, true), "nose") : front;
-  // The lips: the upper lip's most anterior point, the lower lip's, and the least anterior point between them.
-  // Under an intact nose its flank can be more anterior than the lip: the lip is looked for below the least anterior
-  // point under the nose; under a cut, 6-30 mm below it.
-  const Eigen::Vector3d ls = cut ? require(profile.extreme(nose.z() - 30, nose.z() - 6, true), "upper lip") : [&] {
-    const Eigen::Vector3d sn0 = require(profile.extreme(nose.z() - 25, nose.z() - 3, false), "subnasale");
-    return require(profile.extreme(sn0.z() - 20, sn0.z() - 3, true), "upper lip");
-  }();
+  // The lips: going down from the nose, the profile's turns (Profile::turns_below) are the subnasale's hollow, the
+  // upper lip, the stomion and the lower lip. Read in that order rather than in windows of fixed height, they follow
+  // a face whose nose or lips are longer or shorter than the usual.
+  std::vector<Profile::Turn> turns = profile.turns_below(nose.z(), kLipsReach, kTurnTolerance);
+  while (!turns.empty() && !turns.front().hollow) turns.erase(turns.begin());  // on the nose's own underside
+  const char* lips[] = {"subnasale", "upper lip", "stomion", "lower lip"};
+  if (turns.size() < 4) require(std::nullopt, lips[turns.size()]);
+  const Eigen::Vector3d ls = turns[1].point, st = turns[2].point, li = turns[3].point;
   const Eigen::Vector3d sn = subnasale(profile, ls, nose);
-  const Eigen::Vector3d st = require(profile.next_minimum_below(ls.z(), 20), "stomion");
-  const Eigen::Vector3d li = require(profile.extreme(st.z() - 15, st.z() - 1, true), "lower lip");
   // Above the nose: found above a cut that ends below the top of the skin, else placed by typical adult proportions
   // on the cut (nose tip 15 mm above the subnasale, nasion 40 mm above the tip, glabella 12 mm above the nasion).
   const bool above_cut = cut && cut->second < zmax - 15;

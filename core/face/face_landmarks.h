@@ -9,9 +9,12 @@
 //  - the profile: for 1 mm bins of z, the most anterior skin point within `profile_band` of the plane, moved onto it
 //    (a band wider than the philtrum's groove would catch its ridges);
 //  - pronasale (nose tip): the most anterior profile point in the middle 80 % of the z range;
-//    the lips below it: labrale superius, the most anterior point 3-20 mm below the least anterior point up to 25 mm
-//    under the nose (6-30 mm under a field-of-view cut); stomion (lip contact), the first local minimum of the
-//    profile's depth below it (within 20 mm); labrale inferius, the most anterior point up to 15 mm below the stomion;
+//    the lips below it, from the profile's turns within 50 mm below the nose: the points its Douglas-Peucker
+//    simplification at 1.5 mm keeps, each a hollow if it lies behind the chord of its kept neighbours, else a
+//    prominence (runs of one kind reduced to the deepest or most anterior). After any prominence on the nose's own
+//    underside: the first hollow (the subnasale's), then labrale superius (the next prominence), stomion (the next
+//    hollow, lip contact or the middle of an open mouth) and labrale inferius (the next prominence). Turns measured
+//    against chords, not windows of fixed height, keep their order on a longer nose or lip and on a pitched head.
 //    subnasale, the point between the upper lip and the nose deepest behind the chord joining them, moved up to the
 //    top of the lip's part as deep within 0.5 mm (where the columella meets the lip);
 //    nasion: the least anterior point 10-45 mm above the nose tip; glabella (brow ridge): the middle of the points
