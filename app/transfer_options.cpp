@@ -53,7 +53,9 @@ void add_transfer_options(Args& args) {
       .option("standard-constraints",
               "constraint set of the standard, or automatic: placed by the rules of a patient's, valued by its own "
               "fields (default: the one bundled with it)")
-      .option("edge-length", "target edge length (mm) when the patient is a closed surface or a CT", "2")
+      .option("edge-length",
+              std::string("target edge length (mm) when the patient is a closed surface or a CT (default: ") +
+                  kDefaultEdgeLengthHelp + ")")
       .option("standard-domain",
               "tet domain of the standard: closed (openings filled) or auxiliary (paper: split hexes only)", "closed")
       .flag("allow-inverted", "continue even if the patient parameterization has inverted tets")
@@ -82,7 +84,10 @@ SegmentOptions segment_options(const Args& args) {
   if (args.has("bone")) o.bone_threshold = args.number("bone");
   o.orientation.anterior = args.get("anterior");
   o.orientation.superior = args.get("superior");
-  o.tets.target_edge_length = args.number("edge-length", kLeastEdgeLength, kMostEdgeLength);
+  if (args.has("edge-length")) {
+    o.tets.target_edge_length = args.number("edge-length", kLeastEdgeLength, kMostEdgeLength);
+    o.coarsen_above_tets = 0;
+  }
   const auto finite = [&](const std::string& name) {
     const double x = args.number(name);
     if (!std::isfinite(x))

@@ -19,7 +19,8 @@ int cmd_segment(const Argv& argv) {
             "facial soft tissue: thresholds from the histogram, cavities closed, cut at the forehead, below the chin "
             "and in front of the ears, six sides labelled (point data side_mask). See docs/segmentation.md.");
   args.positional("CT", "CT volume file or DICOM folder").option("output", "output tet model (.vtu)");
-  args.option("edge-length", "target mean edge length of the tets (mm)", "2");
+  args.option("edge-length",
+              std::string("target mean edge length of the tets (mm; default: ") + kDefaultEdgeLengthHelp + ")");
   args.option("write-landmarks",
               "find the facial landmarks on the model's skin, check them, and write them to this file (.json, or 3D "
               "Slicer .mrk.json)");

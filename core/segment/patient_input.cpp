@@ -16,7 +16,10 @@ PatientTetModel load_patient_model(const std::string& path, const SegmentOptions
     report_progress(progress, "segmentation: reading the CT", 0.0);
     PatientModel segmented = build_patient_model(read_ct_volume(path, options.orientation), options, progress);
     model.mesh = std::move(segmented.mesh);
-    model.segmentation = CtSegmentation{options, segmented.thresholds, segmented.cuts};
+    CtSegmentation as_used{options, segmented.thresholds, segmented.cuts};
+    as_used.options.tets.target_edge_length = segmented.edge_length;
+    as_used.options.coarsen_above_tets = 0;
+    model.segmentation = as_used;
   } else {
     MeshReadOptions read;
     read.target_edge_length = options.tets.target_edge_length;
@@ -35,6 +38,7 @@ std::string segmentation_summary(const CtSegmentation& segmentation) {
        << cuts.bottom_z << ", posterior y " << cuts.posterior_y << ", mid-plane x " << cuts.centre_x;
   if (std::isfinite(cuts.jaw_z)) text << ", jaw cut rising to z " << cuts.jaw_z << " at the posterior cut";
   if (cuts.anatomy) text << "; found: " << face_anatomy_text(*cuts.anatomy);
+  text << "; tets of edge length " << segmentation.options.tets.target_edge_length << " mm";
   return text.str();
 }
 

@@ -12,8 +12,9 @@
 
 namespace facehex {
 
-// How a CT was segmented: the options given, and the thresholds and cut planes used (found or given), for the user
-// to check and to give back changed (SegmentOptions::cuts).
+// How a CT was segmented: the options as used (the edge length the tets were made at, without further coarsening),
+// and the thresholds and cut planes used (found or given), for the user to check and to give back changed
+// (SegmentOptions::cuts).
 struct CtSegmentation {
   SegmentOptions options;
   TissueThresholds thresholds;

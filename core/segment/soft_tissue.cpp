@@ -227,18 +227,24 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   // lengths and not at others close to them. TetGen finds crossings before meshing; the surface is then remeshed at
   // an edge length 3 % shorter, then 3 % longer, which places the vertices differently.
   // A vertex where skin touches bone at a zero-thickness rim is left free in w (tetrahedralize_with_sides).
+  TetrahedralizeOptions tet_options = options.tets;
+  if (options.coarsen_above_tets > 0)
+    tet_options.target_edge_length =
+        std::max(tet_options.target_edge_length,
+                 edge_length_for_tet_count(enclosed_volume(surface), options.coarsen_above_tets, tet_options));
+  model.edge_length = tet_options.target_edge_length;
   TetrahedralizeResult tets;
   for (const double scale : {1.0, 0.97, 1.03}) {
     step(scale == 1.0 ? "remeshing the surface" : "remeshing the surface again (it crossed itself)", 0.38);
-    const SurfaceMesh remeshed = remesh_isotropic(surface, scale * options.tets.target_edge_length);
+    const SurfaceMesh remeshed = remesh_isotropic(surface, scale * tet_options.target_edge_length);
     step("tetrahedralizing (TetGen)", 0.55);
     try {
-      tets = tetrahedralize_with_sides(remeshed, options.tets);
+      tets = tetrahedralize_with_sides(remeshed, tet_options);
       break;
     } catch (const SelfIntersectingSurface& e) {
       if (scale == 1.03)
         throw Error("segment", std::string("the remeshed surface intersects itself at three edge lengths near ") +
-                                   number(options.tets.target_edge_length) + " mm (" + e.what() +
+                                   number(tet_options.target_edge_length) + " mm (" + e.what() +
                                    "); choose another --edge-length or move the cuts");
     }
   }

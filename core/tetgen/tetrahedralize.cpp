@@ -53,15 +53,6 @@ constexpr double kTetsPerRegularVolume = 1.8;
 // Memory of the whole pipeline per tet (TetGen, the Laplacian's factorization, the locator, the outputs), with margin.
 constexpr double kPipelineBytesPerTet = 3 * 1024;
 
-double enclosed_volume(const SurfaceMesh& s) {
-  double six_v = 0;
-  for (int f = 0; f < s.F.rows(); ++f) {
-    const Eigen::Vector3d a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
-    six_v += a.dot(b.cross(c));
-  }
-  return std::abs(six_v) / 6;
-}
-
 std::string count_text(double n) {
   char text[32];
   std::snprintf(text, sizeof text, n >= 1e6 ? "%.1f million" : "%.0f", n >= 1e6 ? n / 1e6 : n);
@@ -279,6 +270,19 @@ RawMesh run_tetgen(tetgenio& in, const TetrahedralizeOptions& options) {
 double predicted_tet_count(double volume, const TetrahedralizeOptions& options) {
   const double regular = std::pow(options.target_edge_length, 3) / (6.0 * std::sqrt(2.0));
   return kTetsPerRegularVolume * volume / regular;
+}
+
+double edge_length_for_tet_count(double volume, double tets, const TetrahedralizeOptions&) {
+  return std::cbrt(kTetsPerRegularVolume * volume * 6.0 * std::sqrt(2.0) / tets);
+}
+
+double enclosed_volume(const SurfaceMesh& s) {
+  double six_v = 0;
+  for (int f = 0; f < s.F.rows(); ++f) {
+    const Eigen::Vector3d a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
+    six_v += a.dot(b.cross(c));
+  }
+  return std::abs(six_v) / 6;
 }
 
 double max_tets_for_memory() {

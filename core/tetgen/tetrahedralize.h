@@ -20,6 +20,10 @@ struct TetrahedralizeOptions {
 // About how many tets TetGen makes in `volume` mm^3 at these options (quality meshes pack fewer, larger-than-ideal
 // tets near the bound, and more near the surface; the factor is calibrated on segmented faces).
 double predicted_tet_count(double volume, const TetrahedralizeOptions& options);
+// The edge length at which predicted_tet_count(volume) is `tets` (the other options as given).
+double edge_length_for_tet_count(double volume, double tets, const TetrahedralizeOptions& options);
+// The volume a closed, consistently oriented triangle surface encloses (mm^3).
+double enclosed_volume(const SurfaceMesh& surface);
 // How many tets a transfer can handle with this machine's physical memory.
 double max_tets_for_memory();
 

@@ -104,7 +104,26 @@ TEST(SoftTissue, RealCtMakesASixSidedModel) {
   // The data's README: skin at about 500, bone at about 1150 (file units).
   EXPECT_NEAR(m.thresholds.skin, 550, 150);
   EXPECT_NEAR(m.thresholds.bone, 1150, 100);
+  EXPECT_EQ(m.edge_length, 2.0);  // a face of this size keeps the paper's edge length
   expect_valid_patient(m);
+}
+
+TEST(SoftTissue, ALargeModelIsMeshedCoarserUnlessTheEdgeLengthIsGiven) {
+  const CtVolume ct = testing::ellipsoid_phantom();
+  SegmentOptions o = testing::phantom_options(ct);
+  o.coarsen_above_tets = 0;
+  const PatientModel given = build_patient_model(ct, o);
+  EXPECT_EQ(given.edge_length, 3.0);
+  // A goal of an eighth of the tets at 3 mm: about twice the edge length, and far fewer tets.
+  o.coarsen_above_tets = given.mesh.num_cells() / 8.0;
+  const PatientModel coarse = build_patient_model(ct, o);
+  EXPECT_GT(coarse.edge_length, 1.6 * 3.0);
+  EXPECT_LT(coarse.edge_length, 2.4 * 3.0);
+  EXPECT_LT(coarse.mesh.num_cells(), given.mesh.num_cells() / 4);
+  expect_valid_patient(coarse);
+  // A goal the model is below already leaves the edge length as given.
+  o.coarsen_above_tets = 10.0 * given.mesh.num_cells();
+  EXPECT_EQ(build_patient_model(ct, o).edge_length, 3.0);
 }
 
 void expect_error(const std::function<void()>& run, const std::string& subject, const std::string& words) {

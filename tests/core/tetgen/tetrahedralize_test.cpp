@@ -72,15 +72,6 @@ SurfaceMesh icosphere(double r, int levels) {
   return s;
 }
 
-double enclosed_volume(const SurfaceMesh& s) {
-  double vol = 0;
-  for (int f = 0; f < s.F.rows(); ++f) {
-    const Eigen::Vector3d a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
-    vol += a.dot(b.cross(c)) / 6;
-  }
-  return vol;
-}
-
 double tet_volume(const VolumeMesh& m, int t) {
   const Eigen::Vector3d p0 = m.V.row(m.C(t, 0)), p1 = m.V.row(m.C(t, 1)), p2 = m.V.row(m.C(t, 2)),
                         p3 = m.V.row(m.C(t, 3));
@@ -154,6 +145,20 @@ TEST(Tetrahedralize, IcosphereFillsItsPolyhedron) {
   const double mean = mean_edge_length(r.mesh);
   EXPECT_GT(mean, opt.target_edge_length / 1.5);
   EXPECT_LT(mean, opt.target_edge_length * 1.5);
+}
+
+TEST(Tetrahedralize, TheEdgeLengthForATetCountInvertsThePrediction) {
+  const SurfaceMesh s = icosphere(10, 2);
+  TetrahedralizeOptions opt;
+  const double volume = enclosed_volume(s);
+  EXPECT_NEAR(volume, 4.0 / 3.0 * M_PI * 1000, 0.05 * 4.0 / 3.0 * M_PI * 1000);  // a sphere of radius 10, nearly
+  for (const double edge : {0.7, 2.0, 3.5}) {
+    opt.target_edge_length = edge;
+    EXPECT_NEAR(edge_length_for_tet_count(volume, predicted_tet_count(volume, opt), opt), edge, 1e-12);
+  }
+  // Eight times the tets: half the edge.
+  opt.target_edge_length = 2.0;
+  EXPECT_NEAR(edge_length_for_tet_count(volume, 8 * predicted_tet_count(volume, opt), opt), 1.0, 1e-12);
 }
 
 TEST(Tetrahedralize, PreserveSurfaceKeepsTheInputBoundary) {
