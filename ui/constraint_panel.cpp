@@ -23,6 +23,9 @@ namespace facehex::gui {
 namespace {
 
 enum Column { kShown, kName, kField, kValue, kVertices, kSelection, kColumns };
+// The list is as tall as its rows up to this many, so the automatic set (six sides, four features) is seen whole;
+// longer lists scroll.
+constexpr int kRowsShown = 12;
 
 QIcon swatch(const QColor& c) {
   QPixmap pm(12, 12);
@@ -75,13 +78,14 @@ ConstraintPanel::ConstraintPanel(SessionModel* session, const QList<QAction*>& a
   auto* top = new QHBoxLayout;
   top->addWidget(new QLabel(tr("Model:"), this));
   top->addWidget(modelChoice_, 1);
+  // The list first: reviewing the constraints placed (the automatic ones) comes before placing more.
   auto* layout = new QVBoxLayout(this);
   layout->addLayout(top);
-  layout->addWidget(planeBox);
-  layout->addWidget(addBox);
   layout->addWidget(new QLabel(tr("Constraints:"), this));
   layout->addWidget(table_, 1);
   layout->addLayout(buttons);
+  layout->addWidget(planeBox);
+  layout->addWidget(addBox);
 
   connect(modelChoice_, qOverload<int>(&QComboBox::currentIndexChanged), this,
           [this](int i) { session_->setActiveRole(static_cast<Role>(modelChoice_->itemData(i).toInt())); });
@@ -95,6 +99,13 @@ ConstraintPanel::ConstraintPanel(SessionModel* session, const QList<QAction*>& a
   });
   connect(session_, &SessionModel::planeChanged, this, &ConstraintPanel::refreshPlane);
   connect(session_, &SessionModel::planeSelectionChanged, this, &ConstraintPanel::refreshPlane);
+  connect(session_, &SessionModel::highlightChanged, this, [this] {
+    const std::optional<Highlight>& h = session_->highlight();
+    if (h && h->constraint >= 0 && h->role == session_->activeRole()) {
+      table_->selectRow(h->constraint);
+      table_->scrollTo(table_->model()->index(h->constraint, kName));
+    }
+  });
   refreshModelChoice();
   refreshPlane();
   refreshList();
@@ -133,6 +144,7 @@ QGroupBox* ConstraintPanel::buildPlaneBox() {
   axes->addStretch();
   selectionCount_ = new QLabel(this);
   selectionCount_->setObjectName("selectionCount");
+  selectionCount_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);  // its numbers never widen the panel
   auto* planeBox = new QGroupBox(tr("Cutting plane (drag it in the highlighted view)"), this);
   auto* planeForm = new QFormLayout(planeBox);
   planeForm->addRow(axes);
@@ -186,6 +198,8 @@ void ConstraintPanel::buildTable() {
   table_->setHorizontalHeaderLabels({"", tr("Name"), tr("Field"), tr("Value"), tr("Vertices"), tr("Selection")});
   table_->horizontalHeaderItem(kShown)->setToolTip(tr("Show or hide the constraint's vertices"));
   table_->verticalHeader()->hide();
+  table_->verticalHeader()->setSectionResizeMode(QHeaderView::Fixed);
+  table_->verticalHeader()->setDefaultSectionSize(table_->fontMetrics().height() + 10);
   table_->setSelectionBehavior(QAbstractItemView::SelectRows);
   table_->setSelectionMode(QAbstractItemView::SingleSelection);
   table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
@@ -254,6 +268,9 @@ void ConstraintPanel::refreshList() {
   const Role r = session_->activeRole();
   const int rows = session_->hasModel(r) ? static_cast<int>(session_->constraints(r).set.constraints.size()) : 0;
   table_->setRowCount(rows);
+  table_->setMinimumHeight(table_->horizontalHeader()->sizeHint().height() +
+                           std::min(std::max(rows, 1), kRowsShown) * table_->verticalHeader()->defaultSectionSize() +
+                           2 * table_->frameWidth());
   for (int i = 0; i < rows; ++i) {
     const Constraint& c = session_->constraints(r).set.constraints[i];
     auto* shown = new QTableWidgetItem(swatch(constraintColour(c)), "");

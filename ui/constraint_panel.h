@@ -1,8 +1,8 @@
 #pragma once
-// Placing and editing constraints: which model the plane acts on, the plane's band and region and the number of
-// vertices it selects, a form that turns the selection into a constraint (name, field, value), and the editable
-// list (rename, change field or value, show/hide, delete). File operations and undo/redo are the main window's
-// actions, shown here as buttons. Everything goes through the SessionModel.
+// Placing and editing constraints: which model the plane acts on, the editable list (rename, change field or value,
+// show/hide, delete; as tall as the automatic set), the plane's band and region and the number of vertices it
+// selects, and a form that turns the selection into a constraint (name, field, value). File operations and undo/redo
+// are the main window's actions, shown here as buttons. Everything goes through the SessionModel.
 #include <QWidget>
 
 #include "ui/session_model.h"

@@ -33,8 +33,7 @@ int screenshot(MainWindow& window, const QString& file, const QString& stateName
   }
   window.setErrorReporter([](const QString& message) { std::cerr << message.toStdString() << "\n"; });
   window.autosave()->setEnabled(false);  // a scripted session must not replace the user's autosave
-  window.resize(1600, 1000);
-  window.show();
+  window.show();                         // as it opens on this screen, not as the user's last session left it
   if (!openInputs(window, patient.isEmpty() ? defaultPatient(*state) : patient, standard) ||
       !driveToState(window, *state))
     return 1;
@@ -76,6 +75,7 @@ int main(int argc, char** argv) {
   MainWindow window;
   if (parser.isSet(screenshotOption))
     return screenshot(window, parser.value(screenshotOption), parser.value(stateOption), patient, standard);
+  window.restoreWindowState();
   window.show();
   if (patient.isEmpty())
     window.controller()->openStandard(standard);

@@ -16,6 +16,7 @@
 #include <QProgressBar>
 #include <QPushButton>
 #include <QScreen>
+#include <QScrollArea>
 #include <QSettings>
 #include <QSplitter>
 #include <QStatusBar>
@@ -31,6 +32,7 @@
 #include "ui/autosave.h"
 #include "ui/constraint_panel.h"
 #include "ui/display_panel.h"
+#include "ui/message_log.h"
 #include "ui/model_view.h"
 #include "ui/quality_panel.h"
 #include "ui/segmentation_dialog.h"
@@ -41,6 +43,18 @@ namespace {
 
 constexpr int kMaxRecent = 8;
 const char* kRecentKey = "recentPatients";
+const char* kGeometryKey = "window/geometry";
+const char* kStateKey = "window/state";
+const char* kBusy = QT_TRANSLATE_NOOP("facehex::gui::MainWindow", "Busy: wait for the running job or cancel it");
+
+// A panel in a scroll area: on a screen too small for it, it scrolls instead of pushing the window off the screen.
+QScrollArea* scrolling(QWidget* panel) {
+  auto* area = new QScrollArea;
+  area->setWidget(panel);
+  area->setWidgetResizable(true);
+  area->setFrameShape(QFrame::NoFrame);
+  return area;
+}
 
 QString filter(const QString& what, const std::vector<std::string>& extensions) {
   QStringList patterns;
@@ -75,8 +89,7 @@ MainWindow::MainWindow(QWidget* parent)
 
   segmentationDialog_ = new SegmentationDialog(this);
   connect(segmentationDialog_, &QDialog::accepted, this, [this] {
-    if (!controller_->openPatient(segmentationCt_, segmentationDialog_->options()))
-      statusBar()->showMessage(tr("Busy: wait for the running job or cancel it"));
+    if (!controller_->openPatient(segmentationCt_, segmentationDialog_->options())) note(tr(kBusy));
   });
   createActions();
   createMenusAndToolbar();
@@ -84,9 +97,10 @@ MainWindow::MainWindow(QWidget* parent)
   createStatusBar();
 
   connect(controller_, &TransferController::failed, this, [this](const QString& m) { reportError(m); });
-  connect(controller_, &TransferController::finished, this, [this](const QString& m) {
+  connect(controller_, &TransferController::finished, this, [this](const QString& m, const QStringList& detail) {
     statusBar()->showMessage(m);
     statusBar()->setToolTip(m);  // the whole line, when the bar cuts it (a segmentation lists its thresholds and cuts)
+    log_->add(MessageLog::Kind::Outcome, m, detail);
   });
   connect(controller_, &TransferController::busyChanged, this, &MainWindow::updateActions);
   connect(controller_, &TransferController::progress, this, [this](const QString& stage, double f) {
@@ -94,7 +108,7 @@ MainWindow::MainWindow(QWidget* parent)
     progress_->setFormat(stage + "  %p%");
   });
   connect(autosave_, &ConstraintAutosave::failed, this,
-          [this](const QString& m) { statusBar()->showMessage(tr("Autosave failed: %1").arg(m)); });
+          [this](const QString& m) { note(tr("Autosave failed: %1").arg(m)); });
   connect(session_, &SessionModel::modelChanged, this, [this](Role r) {
     updateSizes();
     updateActions();
@@ -105,15 +119,47 @@ MainWindow::MainWindow(QWidget* parent)
   connect(session_, &SessionModel::constraintsChanged, this, &MainWindow::updateActions);
   updateSizes();
   updateActions();
-  // As large as the design's layout where the screen has room, else the screen's free area (a laptop's 1366 x 768):
-  // every dock and the progress bar stay on the screen.
-  QSize size(1500, 950);
-  if (const QScreen* screen = QGuiApplication::primaryScreen())
-    size = size.boundedTo(screen->availableGeometry().size());
-  resize(size);
+  if (const QScreen* screen = QGuiApplication::primaryScreen()) fitTo(screen->availableGeometry());
 }
 
 MainWindow::~MainWindow() = default;
+
+void MainWindow::fitTo(const QRect& available) {
+  // The screen's free area (a laptop's 1366 x 768 included) up to a size where the views stop gaining from it: every
+  // dock and the progress bar stay on the screen, the constraints panel scrolling when it needs more. The display
+  // panel gets its height, the constraints the rest of the column.
+  const QSize size = QSize(1920, 1200).boundedTo(available.size());
+  resize(size);
+  move(available.topLeft() + QPoint(available.width() - size.width(), available.height() - size.height()) / 2);
+  const int display = displayDock_->sizeHint().height();
+  resizeDocks({constraintsDock_}, {std::min(470, size.width() * 35 / 100)}, Qt::Horizontal);
+  resizeDocks({constraintsDock_, displayDock_}, {size.height() - display, display}, Qt::Vertical);
+  resizeDocks({analysisDock_}, {size.height() / 5}, Qt::Vertical);
+}
+
+void MainWindow::restoreWindowState() {
+  const QSettings settings;
+  restoreGeometry(settings.value(kGeometryKey).toByteArray());
+  restoreState(settings.value(kStateKey).toByteArray());
+}
+
+void MainWindow::reportError(const QString& message) {
+  log_->add(MessageLog::Kind::Error, message);
+  reportError_(message);
+}
+
+void MainWindow::note(const QString& text) {
+  statusBar()->showMessage(text);
+  log_->add(MessageLog::Kind::Note, text);
+}
+
+bool MainWindow::mayDiscardResult(const QString& action) {
+  return !session_->transfer() || session_->transferExported() ||
+         QMessageBox::question(
+             this, action,
+             tr("The transferred hex mesh has not been exported and will be lost. %1 anyway?").arg(action),
+             QMessageBox::Yes | QMessageBox::No, QMessageBox::No) == QMessageBox::Yes;
+}
 
 void MainWindow::createActions() {
   auto action = [this](const QString& text, const QKeySequence& key, auto slot) {
@@ -127,13 +173,16 @@ void MainWindow::createActions() {
       tr("Open a head CT (MetaImage, NIfTI, NRRD: segmented on opening), a patient tet model "
          "or a closed surface (VTU, VTK, Gmsh, TetGen, ANSYS, STL, OBJ, PLY, VTP)"));
   resegment_ = action(tr("Segment &again..."), QKeySequence(), [this] {
-    if (session_->hasModel(Role::Patient)) askSegmentation(session_->model(Role::Patient).path);
+    if (session_->hasModel(Role::Patient) && mayDiscardResult(tr("Segment again")))
+      askSegmentation(session_->model(Role::Patient).path);
   });
   resegment_->setToolTip(
       tr("Segment the patient's CT again with other thresholds or cuts (starting from the ones used)"));
   openDicom_ = action(tr("Open &DICOM folder..."), QKeySequence(), &MainWindow::openDicomDialog);
   openDicom_->setToolTip(tr("Open a head CT stored as a folder of DICOM slices (segmented on opening)"));
-  openDemo_ = action(tr("Open &demo"), QKeySequence(), [this] { controller_->openDemo(); });
+  openDemo_ = action(tr("Open &demo"), QKeySequence(), [this] {
+    if (mayDiscardResult(tr("Open the demo"))) controller_->openDemo();
+  });
   openStandardFile_ = action(tr("Open standard &file..."), QKeySequence(), [this] { onStandardChosen(-1); });
   loadConstraints_ = action(tr("&Load constraints..."), QKeySequence(), [this] { constraintsDialog(false); });
   mergeConstraints_ = action(tr("&Merge constraints..."), QKeySequence(), [this] { constraintsDialog(true); });
@@ -200,7 +249,7 @@ void MainWindow::createMenusAndToolbar() {
   QMenu* standards = file->addMenu(tr("Open &standard"));
   for (const BundledModel& s : bundled_standards()) {
     const QString name = QString::fromStdString(s.name);
-    standards->addAction(name, this, [this, name] { controller_->openStandard(name); });
+    standards->addAction(name, this, [this, name] { onStandardChosen(standardChoice_->findData(name)); });
   }
   standards->addSeparator();
   standards->addAction(openStandardFile_);
@@ -248,26 +297,23 @@ void MainWindow::createDocks() {
       new ConstraintPanel(session_, {features_, loadConstraints_, mergeConstraints_, saveConstraints_, recover_}, this);
   // The panels on the right run the full height; the analysis tabs sit under the views only.
   setCorner(Qt::BottomRightCorner, Qt::RightDockWidgetArea);
-  auto* constraints = new QDockWidget(tr("Constraints"), this);
-  constraints->setObjectName("constraintsDock");
-  constraints->setWidget(constraintPanel_);
-  addDockWidget(Qt::RightDockWidgetArea, constraints);
-  auto* display = new QDockWidget(tr("Display"), this);
-  display->setObjectName("displayDock");
-  display->setWidget(new DisplayPanel(session_, this));
-  addDockWidget(Qt::RightDockWidgetArea, display);
+  auto dock = [this](const QString& title, const char* name, QWidget* content, Qt::DockWidgetArea area) {
+    auto* d = new QDockWidget(title, this);
+    d->setObjectName(name);
+    d->setWidget(content);
+    addDockWidget(area, d);
+    return d;
+  };
+  constraintsDock_ = dock(tr("Constraints"), "constraintsDock", scrolling(constraintPanel_), Qt::RightDockWidgetArea);
+  displayDock_ = dock(tr("Display"), "displayDock", new DisplayPanel(session_, this), Qt::RightDockWidgetArea);
 
   auto* tabs = new QTabWidget(this);
   tabs->setObjectName("analysisTabs");
   tabs->addTab(new AngleHistogram(session_, this), tr("Gradient angles"));
-  tabs->addTab(new QualityPanel(session_, this), tr("Quality"));
-  auto* analysis = new QDockWidget(tr("Analysis"), this);
-  analysis->setObjectName("analysisDock");
-  analysis->setWidget(tabs);
-  addDockWidget(Qt::BottomDockWidgetArea, analysis);
-  resizeDocks({constraints, display}, {600, 250}, Qt::Vertical);
-  resizeDocks({constraints}, {470}, Qt::Horizontal);
-  resizeDocks({analysis}, {240}, Qt::Vertical);
+  tabs->addTab(scrolling(new QualityPanel(session_, this)), tr("Quality"));
+  log_ = new MessageLog(session_, this);
+  tabs->addTab(log_, tr("Messages"));
+  analysisDock_ = dock(tr("Analysis"), "analysisDock", tabs, Qt::BottomDockWidgetArea);
 }
 
 void MainWindow::createStatusBar() {
@@ -330,16 +376,15 @@ void MainWindow::updateStandardChoice() {
 
 void MainWindow::onStandardChosen(int index) {
   const QVariant data = index >= 0 ? standardChoice_->itemData(index) : QVariant();
-  if (data.isValid()) {
-    controller_->openStandard(data.toString());
-    return;
-  }
-  const QString path = QFileDialog::getOpenFileName(this, tr("Open a standard hex mesh"), QString(),
-                                                    filter(tr("Hex-dominant meshes"), {".vtu", ".vtk", ".msh"}));
-  if (!path.isEmpty())
-    controller_->openStandard(path);
+  QString choice = data.toString();
+  if (mayDiscardResult(tr("Open another standard")) &&
+      (data.isValid() ||
+       !(choice = QFileDialog::getOpenFileName(this, tr("Open a standard hex mesh"), QString(),
+                                               filter(tr("Hex-dominant meshes"), {".vtu", ".vtk", ".msh"})))
+            .isEmpty()))
+    controller_->openStandard(choice);
   else if (session_->hasModel(Role::Standard))
-    updateStandardChoice();
+    updateStandardChoice();  // the choice shows what is loaded
 }
 
 void MainWindow::openPatientDialog() {
@@ -361,10 +406,11 @@ void MainWindow::openDicomDialog() {
 }
 
 void MainWindow::openPatient(const QString& path) {
+  if (!mayDiscardResult(tr("Open another patient"))) return;
   if (is_ct_input(path.toStdString()))
     askSegmentation(path);
   else if (!controller_->openPatient(path))
-    statusBar()->showMessage(tr("Busy: wait for the running job or cancel it"));
+    note(tr(kBusy));
 }
 
 void MainWindow::askSegmentation(const QString& ct) {
@@ -385,25 +431,27 @@ void MainWindow::constraintsDialog(bool merge) {
   const QString path =
       QFileDialog::getOpenFileName(this, merge ? tr("Merge a constraint set") : tr("Load a constraint set"), QString(),
                                    tr("Constraint sets (*.json)"));
-  if (!path.isEmpty()) controller_->loadConstraints(session_->activeRole(), path, merge);
+  if (!path.isEmpty() && controller_->loadConstraints(session_->activeRole(), path, merge))
+    note((merge ? tr("Merged %1 into the %2's constraints") : tr("Loaded %1 as the %2's constraints"))
+             .arg(path, roleName(session_->activeRole())));
 }
 
 void MainWindow::saveConstraintsDialog() {
   const QString path = QFileDialog::getSaveFileName(this, tr("Save the constraint set"),
                                                     session_->model(session_->activeRole()).constraintsPath,
                                                     tr("Constraint sets (*.json)"));
-  if (!path.isEmpty() && controller_->saveConstraints(session_->activeRole(), path))
-    statusBar()->showMessage(tr("Saved %1").arg(path));
+  if (!path.isEmpty() && controller_->saveConstraints(session_->activeRole(), path)) note(tr("Saved %1").arg(path));
 }
 
 void MainWindow::recoverAutosave() {
-  controller_->loadConstraints(session_->activeRole(), ConstraintAutosave::path(session_->activeRole()), false);
+  if (controller_->loadConstraints(session_->activeRole(), ConstraintAutosave::path(session_->activeRole()), false))
+    note(tr("Recovered the %1's constraints autosaved after its last edit").arg(roleName(session_->activeRole())));
 }
 
 void MainWindow::exportDialog() {
   const QString path = QFileDialog::getSaveFileName(this, tr("Export the patient hex mesh"), "patient_hex.vtu",
                                                     filter(tr("Volume meshes"), writable_volume_extensions()));
-  if (!path.isEmpty() && controller_->exportHex(path)) statusBar()->showMessage(tr("Exported %1").arg(path));
+  if (!path.isEmpty() && controller_->exportHex(path)) note(tr("Exported %1").arg(path));
 }
 
 QImage MainWindow::snapshot() {
@@ -425,7 +473,7 @@ bool MainWindow::saveScreenshot(const QString& path) {
 void MainWindow::screenshotDialog() {
   const QString path =
       QFileDialog::getSaveFileName(this, tr("Save a screenshot"), "facehex.png", tr("PNG images (*.png)"));
-  if (!path.isEmpty() && saveScreenshot(path)) statusBar()->showMessage(tr("Saved %1").arg(path));
+  if (!path.isEmpty() && saveScreenshot(path)) note(tr("Saved %1").arg(path));
 }
 
 void MainWindow::about() {
@@ -464,13 +512,13 @@ void MainWindow::rebuildRecentMenu() {
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {
-  if (session_->transfer() && !session_->transferExported() &&
-      QMessageBox::question(this, tr("Quit FaceHex"),
-                            tr("The transferred hex mesh has not been exported and will be lost. Quit anyway?"),
-                            QMessageBox::Yes | QMessageBox::No, QMessageBox::No) != QMessageBox::Yes) {
+  if (!mayDiscardResult(tr("Quit"))) {
     event->ignore();
     return;
   }
+  QSettings settings;
+  settings.setValue(kGeometryKey, saveGeometry());
+  settings.setValue(kStateKey, saveState());
   event->accept();
 }
 

@@ -1,14 +1,16 @@
 #pragma once
 // The FaceHex main window: the standard and patient views side by side, the constraint and display panels, the
-// analysis tabs (angle histogram, quality tables), menus and toolbar, and a status bar with the mesh sizes, the
-// progress of the running job and its cancel button. It owns the session, the controller and the autosave, and
-// routes every error to one replaceable reporter (a message box by default) with the core's message unchanged.
+// analysis tabs (angle histogram, quality tables, the message log), menus and toolbar, and a status bar with the mesh
+// sizes, the progress of the running job and its cancel button. It owns the session, the controller and the
+// autosave, logs every outcome, note and error, and routes every error to one replaceable reporter (a message box by
+// default) with the core's message unchanged. Its panels scroll, so all of it is reachable on a small screen.
 #include <QMainWindow>
 #include <functional>
 
 #include "ui/session_model.h"
 
 class QComboBox;
+class QDockWidget;
 class QLabel;
 class QMenu;
 class QProgressBar;
@@ -20,6 +22,7 @@ namespace facehex::gui {
 
 class ConstraintAutosave;
 class ConstraintPanel;
+class MessageLog;
 class ModelView;
 class SegmentationDialog;
 class TransferController;
@@ -35,10 +38,17 @@ class MainWindow : public QMainWindow {
   TransferController* controller() const { return controller_; }
   ModelView* view(Role role) const { return views_[static_cast<int>(role)]; }
   ConstraintAutosave* autosave() const { return autosave_; }
+  MessageLog* messageLog() const { return log_; }
 
   using ErrorReporter = std::function<void(const QString& message)>;
   void setErrorReporter(ErrorReporter reporter) { reportError_ = std::move(reporter); }
-  void reportError(const QString& message) { reportError_(message); }
+  void reportError(const QString& message);  // logged, then reported
+
+  // Sizes the window and its panels for a screen's free area (the primary screen's on construction): as large as
+  // the design's layout where there is room, the panels in proportion.
+  void fitTo(const QRect& available);
+  // The window's size, place and panel layout as the last session left them (saved when the window closes).
+  void restoreWindowState();
 
   // Opens a patient as File > Open does: a CT first asks for its segmentation options (segmentationDialog(), not
   // blocking; Segment starts the job), anything else is opened at once.
@@ -56,6 +66,10 @@ class MainWindow : public QMainWindow {
   void closeEvent(QCloseEvent* event) override;
 
  private:
+  // Whether `action` (which replaces the transfer's result) may go ahead: true when the result was exported or
+  // there is none, else the user is asked.
+  bool mayDiscardResult(const QString& action);
+  void note(const QString& text);  // the status bar and the log
   void createActions();
   void createMenusAndToolbar();
   void createDocks();
@@ -81,6 +95,8 @@ class MainWindow : public QMainWindow {
   ConstraintAutosave* autosave_;
   std::array<ModelView*, 2> views_{};
   ConstraintPanel* constraintPanel_ = nullptr;
+  MessageLog* log_ = nullptr;
+  QDockWidget *constraintsDock_ = nullptr, *displayDock_ = nullptr, *analysisDock_ = nullptr;
   SegmentationDialog* segmentationDialog_ = nullptr;
   QString segmentationCt_;  // the CT the dialog is asking about
   ErrorReporter reportError_;

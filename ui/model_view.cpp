@@ -171,6 +171,8 @@ struct ModelView::Pipeline {
   Ptr<vtkActor> constraintActor = pointActor(constraintPoints, 5);
   Ptr<vtkPolyData> selectionPoints = make<vtkPolyData>();
   Ptr<vtkActor> selectionActor = pointActor(selectionPoints, 9);
+  Ptr<vtkPolyData> highlightPoints = make<vtkPolyData>();  // what a message named (a vertex, a constraint's)
+  Ptr<vtkActor> highlightActor = pointActor(highlightPoints, 9);
 
   Ptr<vtkPolyData> glyphSeeds = make<vtkPolyData>();
   Ptr<vtkGlyph3D> glyphs = make<vtkGlyph3D>();
@@ -267,11 +269,16 @@ ModelView::ModelView(SessionModel* session, Role role, QWidget* parent)
     : QWidget(parent), session_(session), role_(role), p_(std::make_unique<Pipeline>()) {
   setObjectName(roleName(role) + "View");
   header_ = new QLabel(this);
+  header_->setObjectName(roleName(role) + "Header");
   header_->setTextFormat(Qt::RichText);
   header_->setContentsMargins(6, 3, 6, 3);
+  // What the header says must not resize the view: a longer note would widen the centre and push the panels (and
+  // the control under the user's pointer) sideways. It is cut at the view's edge; the tooltip has all of it.
+  header_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Fixed);
   auto* hint = new QLabel(role == Role::Patient
-                              ? tr("<p>No patient model yet.</p><p>Open a tet model or a closed surface with "
-                                   "<b>File \u25b8 Open patient</b>, drop a file here, or try <b>File \u25b8 Open "
+                              ? tr("<p>No patient model yet.</p><p>Open a head CT, a tet model or a closed surface "
+                                   "with <b>File \u25b8 Open patient</b> (a folder of DICOM slices: <b>File \u25b8 "
+                                   "Open DICOM folder</b>), drop a file here, or try <b>File \u25b8 Open "
                                    "demo</b>.</p>")
                               : tr("<p>No standard yet: pick one in the toolbar.</p>"),
                           this);
@@ -313,6 +320,7 @@ ModelView::ModelView(SessionModel* session, Role role, QWidget* parent)
         static_cast<vtkProp*>(p.glyphActor), static_cast<vtkProp*>(p.scalarBar)})
     p.renderer->AddViewProp(prop);
   p.overlay->AddActor(p.selectionActor);
+  p.overlay->AddActor(p.highlightActor);
 
   p.planeRep->SetPlaceFactor(1.05);
   p.planeRep->OutlineTranslationOff();
@@ -340,6 +348,11 @@ void ModelView::connectSession() {
     render();
   });
   connect(session_, &SessionModel::activeRoleChanged, this, &ModelView::refresh);
+  connect(session_, &SessionModel::highlightChanged, this, [this] {
+    if (!session_->hasModel(role_)) return;
+    updateHighlight();
+    render();
+  });
   connect(session_, &SessionModel::displayChanged, this, &ModelView::refresh);
   // Dragging the plane must stay fluid: only what depends on the plane is updated.
   connect(session_, &SessionModel::planeSelectionChanged, this, [this] {
@@ -405,6 +418,7 @@ void ModelView::refresh() {
   updateSurface();
   updateHex();
   updateSelection();
+  updateHighlight();
   updateGlyphs();
   updatePlaneWidget();
   render();
@@ -429,6 +443,7 @@ void ModelView::updateHeader() {
   }
   if (active) text += tr(" &nbsp;<span style='color:#b07800'>\u25cf active</span>");
   header_->setText(text);
+  header_->setToolTip(text);
   header_->setStyleSheet(active ? "background:#fff3c4;" : "background:#ececec;");
 }
 
@@ -575,6 +590,24 @@ void ModelView::updateSelection() {
     for (int v : session_->planeSelection()) selection.add(m.domain.V.row(v).transpose(), selectionColour());
   selection.install(p.selectionPoints);
 }
+
+void ModelView::updateHighlight() {
+  Pipeline& p = *p_;
+  PointCloud marked;
+  const std::optional<Highlight>& h = session_->highlight();
+  if (h && h->role == role_) {
+    const LoadedModel& m = session_->model(role_);
+    if (h->vertex >= 0)
+      marked.add(m.domain.V.row(h->vertex).transpose(), highlightColour());
+    else
+      for (int v : session_->constraintVertices(role_, h->constraint))
+        marked.add(m.domain.V.row(v).transpose(), highlightColour());
+    p.highlightActor->GetProperty()->SetPointSize(h->vertex >= 0 ? 18 : 9);  // one vertex must stand out alone
+  }
+  marked.install(p.highlightPoints);
+}
+
+int ModelView::highlightedPoints() const { return static_cast<int>(p_->highlightPoints->GetNumberOfPoints()); }
 
 void ModelView::updateGlyphs() {
   Pipeline& p = *p_;

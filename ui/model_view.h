@@ -33,6 +33,8 @@ class ModelView : public QWidget {
   // Cells the hex-quality display draws (after the threshold), or -1 when it is not shown.
   int drawnHexCells() const;
   bool planeWidgetEnabled() const;
+  // Points drawn for the session's highlight (a vertex, a constraint's vertices) in this view.
+  int highlightedPoints() const;
 
  signals:
   void cameraOrientationChanged(const Eigen::Vector3d& direction, const Eigen::Vector3d& viewUp);
@@ -51,6 +53,7 @@ class ModelView : public QWidget {
   void extractSurface();
   void colourSurface();
   void updateSelection();
+  void updateHighlight();
   void updateGlyphs();
   void updatePlaneWidget();
   void onPlaneInteraction();

@@ -13,6 +13,8 @@ QColor constraintColour(const Constraint& constraint);
 QColor fieldColour(int field);
 // The plane selection preview.
 inline QColor selectionColour() { return QColor(255, 230, 0); }
+// What a message named and the user asked to see: apart from every constraint colour and the selection.
+inline QColor highlightColour() { return QColor(255, 0, 255); }
 // The model surface when no field is shown.
 inline QColor tissueColour() { return QColor(235, 200, 175); }
 

@@ -14,7 +14,8 @@
 namespace facehex::gui {
 namespace {
 
-const QStringList kNames = {"loaded", "plane", "fields", "glyphs", "transfer", "quality", "ct", "segmentation"};
+const QStringList kNames = {"loaded",  "plane", "fields",       "glyphs",  "transfer",
+                            "quality", "ct",    "segmentation", "messages"};
 
 // Runs a job and waits for it; a job that could not start or that failed reports through the window.
 bool runAndWait(MainWindow& window, bool started) {
@@ -94,8 +95,9 @@ bool driveToState(MainWindow& window, ScriptedState state) {
       break;
     case ScriptedState::Transfer:
     case ScriptedState::Quality:
+    case ScriptedState::Messages:
       if (!session->transfer() && !runAndWait(window, controller->runTransfer())) return false;
-      analysis->setCurrentIndex(1);
+      analysis->setCurrentIndex(state == ScriptedState::Messages ? 2 : 1);
       d.showHex = true;
       d.measure = state == ScriptedState::Quality ? QualityMeasure::ScaledJacobian : QualityMeasure::Shape;
       d.threshold = state == ScriptedState::Quality ? 0.5 : 1.0;

@@ -11,8 +11,8 @@ class MainWindow;
 
 // Ct: a freshly opened CT, segmented, with its sides and automatic constraints (opened from the bundled CT when no
 // patient is given, see defaultPatient). Segmentation: that, with File > Segment again's dialog open, showing the
-// thresholds and cuts the segmentation found.
-enum class ScriptedState { Loaded, Plane, Fields, Glyphs, Transfer, Quality, Ct, Segmentation };
+// thresholds and cuts the segmentation found. Messages: the transfer with the message log open at its outcome.
+enum class ScriptedState { Loaded, Plane, Fields, Glyphs, Transfer, Quality, Ct, Segmentation, Messages };
 QStringList scriptedStateNames();  // "loaded", "plane", ...
 std::optional<ScriptedState> scriptedStateFromName(const QString& name);
 

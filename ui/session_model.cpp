@@ -4,6 +4,7 @@
 #include <QUndoStack>
 #include <algorithm>
 #include <stdexcept>
+#include <utility>
 
 namespace facehex::gui {
 namespace {
@@ -25,6 +26,8 @@ class ConstraintEditCommand : public QUndoCommand {
 };
 
 bool sameVector(const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return (a - b).cwiseAbs().maxCoeff() == 0; }
+
+constexpr size_t kResultsSetAside = 2;
 
 }  // namespace
 
@@ -63,11 +66,14 @@ void SessionModel::setModel(Role role, LoadedModel model) {
   // Results of the old model go before anyone hears of the new one; views rebuild their pipelines on modelChanged
   // before the other signals refer to them.
   ++revisions_[index(role)];
-  parameterizations_[index(role)].reset();
-  transfer_.reset();
+  results_.parameterizations[index(role)].reset();
+  results_.transfer.reset();
+  setAside_.clear();
+  const bool highlighted = std::exchange(highlight_, std::nullopt).has_value();  // it named the old model
   emit modelChanged(role);
   emit resultsChanged();
   emit constraintsChanged(role);
+  if (highlighted) emit highlightChanged();
   if (role == activeRole_) {
     centrePlaneOn(role);
     updatePlaneSelection();
@@ -160,14 +166,50 @@ void SessionModel::addSideConstraints(Role role) {
 
 void SessionModel::applyConstraints(Role role, const ConstraintList& list) {
   // Showing or hiding a constraint changes no result; anything else makes the fields and the transfer stale.
-  const bool setChanged = to_json(constraints(role).set) != to_json(list.set);
+  const ConstraintState before = constraintState();
   mutableModel(role).constraints = list;
-  if (setChanged) {
+  if (constraintState() != before) {
     updateConstraintVertices(role);
-    clearResults(role);
+    ++revisions_[index(role)];
+    if (highlight_ && highlight_->role == role && highlight_->constraint >= 0) setHighlight(std::nullopt);
+    exchangeResults(role, before);
   }
   emit constraintsChanged(role);
   emit constraintsEdited(role);
+}
+
+SessionModel::ConstraintState SessionModel::constraintState() const {
+  ConstraintState state;
+  for (Role r : kRoles)
+    if (hasModel(r)) state[index(r)] = to_json(constraints(r).set);
+  return state;
+}
+
+void SessionModel::exchangeResults(Role role, const ConstraintState& before) {
+  Results stale;
+  stale.parameterizations[index(role)] = std::exchange(results_.parameterizations[index(role)], std::nullopt);
+  stale.transfer = std::exchange(results_.transfer, std::nullopt);
+  stale.transferExported = results_.transferExported;
+  bool changed = !stale.empty();
+  const ConstraintState now = constraintState();
+  const auto back = std::find_if(setAside_.begin(), setAside_.end(), [&now](const auto& s) { return s.first == now; });
+  if (back != setAside_.end()) {
+    Results& r = back->second;
+    for (Role k : kRoles)
+      if (r.parameterizations[index(k)])
+        results_.parameterizations[index(k)] = std::move(r.parameterizations[index(k)]);
+    if (r.transfer) {
+      results_.transfer = std::move(r.transfer);
+      results_.transferExported = r.transferExported;
+    }
+    setAside_.erase(back);
+    changed = true;
+  }
+  if (!stale.empty()) {
+    setAside_.emplace_front(before, std::move(stale));
+    if (setAside_.size() > kResultsSetAside) setAside_.pop_back();
+  }
+  if (changed) emit resultsChanged();
 }
 
 void SessionModel::updateConstraintVertices(Role role) {
@@ -230,27 +272,25 @@ void SessionModel::setDisplay(const DisplaySettings& display) {
 }
 
 const ModelParameterization* SessionModel::parameterization(Role role) const {
-  const auto& p = parameterizations_[index(role)];
+  const auto& p = results_.parameterizations[index(role)];
   return p ? &*p : nullptr;
 }
 
 void SessionModel::setParameterization(Role role, ModelParameterization p) {
-  parameterizations_[index(role)] = std::move(p);
+  results_.parameterizations[index(role)] = std::move(p);
   emit resultsChanged();
 }
 
 void SessionModel::setTransfer(TransferResult result) {
-  transfer_ = std::move(result);
-  transferExported_ = false;
+  results_.transfer = std::move(result);
+  results_.transferExported = false;
   emit resultsChanged();
 }
 
-void SessionModel::clearResults(Role role) {
-  ++revisions_[index(role)];
-  if (!parameterizations_[index(role)] && !transfer_) return;
-  parameterizations_[index(role)].reset();
-  transfer_.reset();
-  emit resultsChanged();
+void SessionModel::setHighlight(const std::optional<Highlight>& highlight) {
+  if (highlight == highlight_) return;
+  highlight_ = highlight;
+  emit highlightChanged();
 }
 
 }  // namespace facehex::gui

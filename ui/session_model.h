@@ -6,6 +6,7 @@
 #include <QObject>
 #include <QString>
 #include <array>
+#include <deque>
 #include <optional>
 #include <vector>
 
@@ -76,6 +77,17 @@ struct DisplaySettings {
   bool operator==(const DisplaySettings& o) const;
 };
 
+// What a message names and the user asked to see: a vertex of a model (its domain's row, as the core's messages
+// count them), or one of its constraints.
+struct Highlight {
+  Role role = Role::Patient;
+  int vertex = -1;
+  int constraint = -1;
+  bool operator==(const Highlight& o) const {
+    return role == o.role && vertex == o.vertex && constraint == o.constraint;
+  }
+};
+
 class SessionModel : public QObject {
   Q_OBJECT
 
@@ -83,7 +95,8 @@ class SessionModel : public QObject {
   explicit SessionModel(QObject* parent = nullptr);
   ~SessionModel() override;
 
-  // Models. Loading one clears its results, the transfer and the undo history (old edits refer to old vertices).
+  // Models. Loading one clears its results, the transfer, the results set aside and the undo history (old edits
+  // refer to old vertices).
   bool hasModel(Role role) const { return models_[index(role)].has_value(); }
   const LoadedModel& model(Role role) const;  // requires hasModel(role)
   void setModel(Role role, LoadedModel model);
@@ -107,7 +120,9 @@ class SessionModel : public QObject {
   void setNamedConstraints(Role role, const ConstraintSet& set, const QString& what);
   void addSideConstraints(Role role);  // the six shape ends by "side_mask" (setNamedConstraints)
   QUndoStack* undoStack() const { return undo_; }
-  // Installs a constraint list without recording it (the undo command's own entry point).
+  // Installs a constraint list without recording it (the undo command's own entry point). A change of the set makes
+  // the model's fields and the transfer stale: they are set aside, and come back when an undo or a redo brings back
+  // the constraints they were computed with.
   void applyConstraints(Role role, const ConstraintList& list);
 
   // The cutting plane acts on the active model.
@@ -124,11 +139,16 @@ class SessionModel : public QObject {
   // its run holds none.
   const ModelParameterization* parameterization(Role role) const;
   void setParameterization(Role role, ModelParameterization p);
-  const TransferResult* transfer() const { return transfer_ ? &*transfer_ : nullptr; }
+  const TransferResult* transfer() const { return results_.transfer ? &*results_.transfer : nullptr; }
   void setTransfer(TransferResult result);
   // Whether the present transfer's hex mesh was written to a file (quitting without it asks first).
-  bool transferExported() const { return transferExported_; }
-  void markTransferExported() { transferExported_ = true; }
+  bool transferExported() const { return results_.transferExported; }
+  void markTransferExported() { results_.transferExported = true; }
+
+  // The vertex or constraint a message named, shown by the views and the constraint list until another is asked
+  // for or the model changes.
+  const std::optional<Highlight>& highlight() const { return highlight_; }
+  void setHighlight(const std::optional<Highlight>& highlight);
 
  signals:
   void modelChanged(facehex::gui::Role role);        // a model was loaded: everything about it changed
@@ -138,7 +158,8 @@ class SessionModel : public QObject {
   void planeChanged();
   void planeSelectionChanged();
   void displayChanged();
-  void resultsChanged();  // a parameterization or the transfer was set or cleared
+  void resultsChanged();  // a parameterization or the transfer was set, cleared, set aside or restored
+  void highlightChanged();
 
  private:
   static int index(Role role) { return static_cast<int>(role); }
@@ -147,15 +168,29 @@ class SessionModel : public QObject {
   void updateConstraintVertices(Role role);
   void updatePlaneSelection();
   void centrePlaneOn(Role role);
-  void clearResults(Role role);
+
+  // The results of one state of the constraints.
+  struct Results {
+    std::array<std::optional<ModelParameterization>, 2> parameterizations;
+    std::optional<TransferResult> transfer;
+    bool transferExported = false;
+    bool empty() const { return !parameterizations[0] && !parameterizations[1] && !transfer; }
+  };
+  // Both models' constraint sets as JSON: the state results belong to.
+  using ConstraintState = std::array<std::string, 2>;
+  ConstraintState constraintState() const;
+  // After `role`'s constraints changed from `before`: its stale results are set aside under `before`, and those set
+  // aside under the present constraints come back.
+  void exchangeResults(Role role, const ConstraintState& before);
 
   std::array<std::optional<LoadedModel>, 2> models_;
   std::array<quint64, 2> revisions_{};
   std::array<std::vector<std::vector<int>>, 2> constraintVertices_;
   std::array<std::vector<QString>, 2> constraintProblems_;
-  std::array<std::optional<ModelParameterization>, 2> parameterizations_;
-  std::optional<TransferResult> transfer_;
-  bool transferExported_ = false;
+  Results results_;
+  // Most recent first. Bounded: each holds whole parameterizations, and an undo rarely goes further back.
+  std::deque<std::pair<ConstraintState, Results>> setAside_;
+  std::optional<Highlight> highlight_;
   Role activeRole_ = Role::Patient;
   PlanePose plane_;
   std::vector<int> planeSelection_;

@@ -32,6 +32,38 @@ QString sizeText(const LoadedModel& m) {
   return QObject::tr("%1 vertices, %2 cells").arg(count(m.mesh.num_vertices()), count(m.mesh.num_cells()));
 }
 
+// What a transfer gave, a line per fact: the cells, their validity before and after the repair, their quality
+// against the standard's, how far the side vertices lie from the patient's surface, and the time of each stage.
+QStringList transferDetail(const TransferResult& r) {
+  const QualitySummary &q = r.patient_quality.summary, &sq = r.standard_quality.summary;
+  QStringList stages;
+  double total = 0;
+  for (const auto& [stage, seconds] : r.run.seconds) {
+    stages << QString("%1 %2 s").arg(QString::fromStdString(stage).replace('_', ' ')).arg(seconds, 0, 'f', 1);
+    total += seconds;
+  }
+  return {QObject::tr("%1 cells (%2 hexes, %3 wedges)").arg(count(q.cells), count(q.hexes), count(q.wedges)),
+          QObject::tr("%1 inverted, %2 flat (%3 inverted after the plain mapping)")
+              .arg(q.inverted)
+              .arg(q.degenerate)
+              .arg(r.plain_mapping_quality.summary.inverted),
+          QObject::tr("shape mean %1, min %2 (standard: mean %3, min %4)")
+              .arg(q.shape_mean, 0, 'f', 3)
+              .arg(q.shape_min, 0, 'f', 3)
+              .arg(sq.shape_mean, 0, 'f', 3)
+              .arg(sq.shape_min, 0, 'f', 3),
+          QObject::tr("scaled Jacobian min %1, %2% of the cells below 0.3")
+              .arg(q.scaled_jacobian_min, 0, 'f', 3)
+              .arg(100 * q.fraction_scaled_jacobian_below_0_3, 0, 'f', 1),
+          QObject::tr("dihedral angles changed by %1\u00b0 on average, %2\u00b0 at most")
+              .arg(r.patient_quality.distortion.mean_deg, 0, 'f', 1)
+              .arg(r.patient_quality.distortion.max_deg, 0, 'f', 1),
+          QObject::tr("side vertices off the patient's surface: mean %1 mm, max %2 mm")
+              .arg(r.distance.mean, 0, 'f', 2)
+              .arg(r.distance.max, 0, 'f', 2),
+          QObject::tr("time %1 s: %2").arg(total, 0, 'f', 1).arg(stages.join(", "))};
+}
+
 const char* kStale = QT_TRANSLATE_NOOP("TransferController", " (not applied: the models changed meanwhile)");
 
 }  // namespace
@@ -82,16 +114,16 @@ bool TransferController::start(const QString& what, Work work) {
 
 void TransferController::deliver() {
   const Outcome o = watcher_.result();
-  QString summary;
-  if (o.apply) summary = o.apply(*session_);
+  Report report;
+  if (o.apply) report = o.apply(*session_);
   const QString job = std::exchange(job_, QString());
   emit busyChanged(false);
   if (o.cancelled)
-    emit finished(tr("%1: cancelled").arg(job));
+    emit finished(tr("%1: cancelled").arg(job), {});
   else if (!o.error.isEmpty())
     emit failed(o.error);
   else
-    emit finished(summary);
+    emit finished(report.summary, report.detail);
 }
 
 void TransferController::cancel() { cancelRequested_ = true; }
@@ -120,11 +152,16 @@ bool TransferController::openPatient(const QString& path, const SegmentOptions& 
                  auto m = std::make_shared<LoadedModel>(
                      load_patient(p, segmentOptions, values ? &*values : nullptr, progress, *note));
                  return [m, note, ct](SessionModel& s) {
-                   QString text = (ct ? tr("Segmented the CT %1: %2; %3") : tr("Opened the patient %1: %2; %3"))
-                                      .arg(m->name, sizeText(*m), *note);
-                   if (m->segmentation) text += "; " + QString::fromStdString(segmentation_summary(*m->segmentation));
+                   Report r{(ct ? tr("Segmented the CT %1: %2; %3") : tr("Opened the patient %1: %2; %3"))
+                                .arg(m->name, sizeText(*m), *note),
+                            {m->path, sizeText(*m), *note}};
+                   if (m->segmentation) {
+                     const QString used = QString::fromStdString(segmentation_summary(*m->segmentation));
+                     r.summary += "; " + used;
+                     r.detail << used;
+                   }
                    s.setModel(Role::Patient, std::move(*m));
-                   return text;
+                   return r;
                  };
                });
 }
@@ -134,9 +171,9 @@ bool TransferController::openStandard(const QString& nameOrPath) {
   return start(tr("Opening the standard %1").arg(nameOrPath), [n](const ProgressCallback&) -> Apply {
     auto m = std::make_shared<LoadedModel>(load_standard(n.empty() ? default_standard().name : n));
     return [m](SessionModel& s) {
-      const QString text = tr("Opened the standard %1: %2").arg(m->name, sizeText(*m));
+      Report r{tr("Opened the standard %1: %2").arg(m->name, sizeText(*m)), {m->path, sizeText(*m)}};
       s.setModel(Role::Standard, std::move(*m));
-      return text;
+      return r;
     };
   });
 }
@@ -149,10 +186,12 @@ bool TransferController::openDemo(const QString& standardName) {
     const std::map<std::string, double> values = feature_values(standard->constraints.set);
     auto patient = std::make_shared<LoadedModel>(demo_patient(&values, *note));
     return [standard, patient, note](SessionModel& s) {
-      const QString text = tr("Opened the demo: standard %1, patient %2; %3").arg(standard->name, patient->name, *note);
+      Report r{tr("Opened the demo: standard %1, patient %2; %3").arg(standard->name, patient->name, *note),
+               {tr("standard %1: %2").arg(standard->name, sizeText(*standard)),
+                tr("patient %1: %2").arg(patient->name, sizeText(*patient)), *note}};
       s.setModel(Role::Standard, std::move(*standard));
       s.setModel(Role::Patient, std::move(*patient));
-      return text;
+      return r;
     };
   });
 }
@@ -191,7 +230,7 @@ bool TransferController::computeFields() {
                                                      options, part(progress, roleName(in.role), lo, hi)));
     }
     return [inputs, results, fromCache](SessionModel& s) {
-      QStringList parts;
+      QStringList parts, detail;
       for (size_t i = 0; i < inputs.size(); ++i) {
         const ModelParameterization& p = (*results)[i];
         // The angles are in the histogram tab; the status line says what decides whether the transfer can go on.
@@ -200,13 +239,21 @@ bool TransferController::computeFields() {
                            .arg(p.health.inverted)
                            .arg(100.0 * p.health.inverted / std::max(1, p.health.tets), 0, 'f', 2);
         if ((*fromCache)[i]) text += tr(" (from its cache)");
+        detail << tr("%1: %L2 of %L3 tets folded, gradient angles %4\u00b0 from 90\u00b0 on average (%5\u00b0 before "
+                     "the orthogonality improvement)%6")
+                      .arg(roleName(inputs[i].role))
+                      .arg(p.health.inverted)
+                      .arg(p.health.tets)
+                      .arg(p.fields.angles.mean_deviation_from_90, 0, 'f', 1)
+                      .arg(p.fields.angles_initial.mean_deviation_from_90, 0, 'f', 1)
+                      .arg((*fromCache)[i] ? tr(", read from its cache") : QString());
         if (s.revision(inputs[i].role) == inputs[i].revision)
           s.setParameterization(inputs[i].role, std::move((*results)[i]));
         else
           text += tr(kStale);
         parts << text;
       }
-      return tr("Fields computed: ") + parts.join(", ");
+      return Report{tr("Fields computed: ") + parts.join(", "), detail};
     };
   });
 }
@@ -224,20 +271,23 @@ bool TransferController::runTransfer() {
     auto result = std::make_shared<TransferResult>(transfer(*standard, *patient, options, progress));
     return [result, revisions](SessionModel& s) {
       const QualitySummary& q = result->patient_quality.summary;
-      QString text = tr("Transfer done: %1 cells, %2 inverted, mean shape %3 (standard %4)")
-                         .arg(count(q.cells))
-                         .arg(q.inverted)
-                         .arg(q.shape_mean, 0, 'f', 3)
-                         .arg(result->standard_quality.summary.shape_mean, 0, 'f', 3);
-      if (s.revision(Role::Standard) != revisions[0] || s.revision(Role::Patient) != revisions[1])
-        return text + tr(kStale);
+      Report r{tr("Transfer done: %1 cells, %2 inverted, mean shape %3 (standard %4)")
+                   .arg(count(q.cells))
+                   .arg(q.inverted)
+                   .arg(q.shape_mean, 0, 'f', 3)
+                   .arg(result->standard_quality.summary.shape_mean, 0, 'f', 3),
+               transferDetail(*result)};
+      if (s.revision(Role::Standard) != revisions[0] || s.revision(Role::Patient) != revisions[1]) {
+        r.summary += tr(kStale);
+        return r;
+      }
       s.setParameterization(Role::Standard, std::move(result->run.standard));
       s.setParameterization(Role::Patient, std::move(result->run.patient));
       s.setTransfer(std::move(*result));
       DisplaySettings d = s.display();  // the result is what the user waited for: shown at once
       d.showHex = true;
       s.setDisplay(d);
-      return text;
+      return r;
     };
   });
 }

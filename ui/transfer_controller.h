@@ -53,11 +53,16 @@ class TransferController : public QObject {
   void busyChanged(bool busy);
   void progress(const QString& stage, double fraction);
   void failed(const QString& message);
-  void finished(const QString& summary);  // one line for the status bar
+  // summary: one line for the status bar; detail: what the job made, a line per fact, for the message log.
+  void finished(const QString& summary, const QStringList& detail);
 
  private:
-  // Work returns what to do with its result on the GUI thread (that returns the summary line).
-  using Apply = std::function<QString(SessionModel&)>;
+  struct Report {
+    QString summary;
+    QStringList detail;
+  };
+  // Work returns what to do with its result on the GUI thread (that returns the report).
+  using Apply = std::function<Report(SessionModel&)>;
   using Work = std::function<Apply(const ProgressCallback&)>;
   struct Outcome {
     Apply apply;

@@ -4,23 +4,33 @@
 // standard and a bent box patient are opened from files, their fields computed and the transfer run, the hex mesh
 // exported and read back; bad files give the core's error message and the application keeps running; every scripted
 // state renders visible 3D content. (The box pair keeps those computations within seconds and their results exactly
-// checkable.) Each test opens a new main window and sets up the state it needs (openDemo, openBoxes, ...), so any test
-// runs alone: `gui_tests <name>`.
+// checkable.) Results are kept: an undo brings back what an edit made stale, and replacing an unexported result asks
+// first; the layout holds still and fits a laptop screen; the message log keeps every outcome and shows what a
+// message names. Each test opens a new main window and sets up the state it needs (openDemo, openBoxes, ...), so any
+// test runs alone: `gui_tests <name>`.
 #include <QVTKOpenGLNativeWidget.h>
 
 #include <QAction>
 #include <QApplication>
 #include <QCheckBox>
 #include <QComboBox>
+#include <QDockWidget>
 #include <QDoubleSpinBox>
 #include <QFile>
+#include <QLabel>
 #include <QLineEdit>
 #include <QMessageBox>
+#include <QProgressBar>
 #include <QPushButton>
+#include <QScrollArea>
+#include <QScrollBar>
+#include <QSettings>
 #include <QSignalSpy>
+#include <QSlider>
 #include <QStandardPaths>
 #include <QStatusBar>
 #include <QSurfaceFormat>
+#include <QTabWidget>
 #include <QTableWidget>
 #include <QTemporaryDir>
 #include <QTest>
@@ -39,6 +49,7 @@
 #include "tests/core/test_meshes.h"
 #include "ui/autosave.h"
 #include "ui/main_window.h"
+#include "ui/message_log.h"
 #include "ui/model_view.h"
 #include "ui/scripted_states.h"
 #include "ui/segmentation_dialog.h"
@@ -72,6 +83,13 @@ class GuiTest : public QObject {
   void exportWritesWhatRunExportWrites();
   void thresholdIsolatesBadCells();
   void badFilesGiveTheCoreMessageAndTheAppKeepsRunning();
+  void undoBringsBackTheResultAnEditMadeStale();
+  void replacingAnUnexportedResultAsksFirst();
+  void headerTextMovesNoWidget();
+  void everythingIsReachableOnALaptopScreen();
+  void windowLayoutIsKeptBetweenSessions();
+  void constraintListShowsAllAutomaticConstraints();
+  void messageLogKeepsOutcomesAndShowsWhatTheyName();
 
  private:
   int constraintCount() const { return int(session()->constraints(Role::Patient).set.constraints.size()); }
@@ -88,9 +106,14 @@ class GuiTest : public QObject {
   bool openBoxes();
   bool segmentBundledCt();
   bool runTransferAndWait();
+  // Answers the next question box (opened by what the test does next) with `answer`; its text goes to question_.
+  void answerNextQuestion(QMessageBox::StandardButton answer);
+  // The window on a laptop's screen, 1366 x 768 (whatever the test display is), laid out.
+  QRect fitToLaptopScreen();
 
   std::unique_ptr<MainWindow> window_;
   QString error_;
+  QString question_;
   QTemporaryDir dir_;
 };
 
@@ -140,6 +163,23 @@ const Constraint* GuiTest::patientConstraint(const std::string& name) const {
   for (const Constraint& c : session()->constraints(Role::Patient).set.constraints)
     if (c.name == name) return &c;
   return nullptr;
+}
+
+void GuiTest::answerNextQuestion(QMessageBox::StandardButton answer) {
+  question_.clear();
+  QTimer::singleShot(200, [this, answer] {
+    if (auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget())) {
+      question_ = box->text();
+      box->button(answer)->click();
+    }
+  });
+}
+
+QRect GuiTest::fitToLaptopScreen() {
+  const QRect laptop(0, 0, 1366, 768);
+  window_->fitTo(laptop);
+  QTest::qWait(300);  // the layout settles
+  return laptop;
 }
 
 QString GuiTest::openPatient(const QString& path) {
@@ -326,7 +366,7 @@ void GuiTest::transfersTheBundledModelsAndShowsThem() {
   QVERIFY(r->patient_hex.cell_data.count("scaled_jacobian") && r->patient_hex.point_data.count("uvw"));
   for (Role role : kRoles) QVERIFY(session()->parameterization(role));
   QCOMPARE(session()->parameterization(Role::Patient)->V.rows(), session()->model(Role::Patient).mesh.V.rows());
-  checkStates({"transfer", "quality"});
+  checkStates({"transfer", "quality", "messages"});
 }
 
 void GuiTest::cancelStopsTheSegmentation() {
@@ -651,6 +691,268 @@ void GuiTest::badFilesGiveTheCoreMessageAndTheAppKeepsRunning() {
   QCOMPARE(session()->model(Role::Patient).mesh.num_vertices(), vertices);
   QVERIFY(window_->isVisible());
   QVERIFY(!window_->controller()->busy());
+}
+
+void GuiTest::undoBringsBackTheResultAnEditMadeStale() {
+  QVERIFY2(openBoxes(), qPrintable(error_));
+  QVERIFY2(runTransferAndWait(), qPrintable(error_));
+  auto* exportAction = window_->findChild<QAction*>("Export_hex_mesh");
+  const Eigen::MatrixXd first = session()->transfer()->patient_hex.V;
+  QVERIFY(exportAction->isEnabled());
+
+  // A rename changes the set: the result is stale, gone from view and from Export; the undo brings it back.
+  Constraint renamed = session()->constraints(Role::Patient).set.constraints.at(0);
+  renamed.name = "renamed";
+  session()->updateConstraint(Role::Patient, 0, renamed);
+  QVERIFY(!session()->transfer() && !session()->parameterization(Role::Patient));
+  QVERIFY(!exportAction->isEnabled());
+  QCOMPARE(window_->view(Role::Patient)->drawnHexCells(), -1);
+  session()->undoStack()->undo();
+  QVERIFY(session()->transfer() && session()->parameterization(Role::Patient));
+  QVERIFY(session()->transfer()->patient_hex.V == first);
+  QVERIFY(exportAction->isEnabled());
+  QVERIFY(!session()->transferExported());
+  QCOMPARE(window_->view(Role::Patient)->drawnHexCells(), session()->transfer()->patient_hex.num_cells());
+
+  // A second transfer after an edit: undo and redo swap the two results, each with its constraints and its export.
+  session()->undoStack()->redo();
+  QVERIFY(!session()->transfer());
+  const QString path = dir_.filePath("renamed.vtu");
+  QVERIFY2(runTransferAndWait(), qPrintable(error_));
+  QVERIFY(window_->controller()->exportHex(path));
+  const Eigen::MatrixXd second = session()->transfer()->patient_hex.V;
+  session()->undoStack()->undo();
+  QVERIFY(session()->transfer() && session()->transfer()->patient_hex.V == first);
+  QVERIFY(!session()->transferExported());
+  session()->undoStack()->redo();
+  QVERIFY(session()->transfer() && session()->transfer()->patient_hex.V == second);
+  QVERIFY(session()->transferExported());
+
+  // Showing or hiding a constraint makes nothing stale; opening another model drops what was set aside.
+  session()->setConstraintVisible(Role::Patient, 1, false);
+  QVERIFY(session()->transfer());
+  QCOMPARE(openPatient(dir_.filePath("bent.vtu")), QString());
+  QVERIFY(!session()->transfer());
+  session()->addSideConstraints(Role::Patient);  // an edit to undo
+  session()->undoStack()->undo();
+  QVERIFY(!session()->transfer());
+}
+
+void GuiTest::replacingAnUnexportedResultAsksFirst() {
+  QVERIFY2(openBoxes(), qPrintable(error_));
+  QVERIFY2(runTransferAndWait(), qPrintable(error_));
+  const QString standard = session()->model(Role::Standard).path;
+  auto* choice = window_->findChild<QComboBox*>("standardChoice");
+  const int bundled = choice->findData(QString::fromStdString(default_standard().name));
+  QVERIFY(bundled >= 0);
+
+  // Picking another standard: No keeps the standard, the result and the box's name in the choice.
+  answerNextQuestion(QMessageBox::No);
+  choice->setCurrentIndex(bundled);
+  emit choice->activated(bundled);
+  QVERIFY2(question_.contains("has not been exported"), qPrintable(question_));
+  QVERIFY(!window_->controller()->busy());
+  QCOMPARE(session()->model(Role::Standard).path, standard);
+  QCOMPARE(choice->currentText(), session()->model(Role::Standard).name);
+  QVERIFY(session()->transfer());
+
+  // Open demo: No keeps everything; Yes opens it.
+  auto* demo = window_->findChild<QAction*>("Open_demo");
+  answerNextQuestion(QMessageBox::No);
+  demo->trigger();
+  QVERIFY2(question_.contains("has not been exported"), qPrintable(question_));
+  QVERIFY(!window_->controller()->busy() && session()->transfer());
+  answerNextQuestion(QMessageBox::Yes);
+  demo->trigger();
+  QVERIFY(!question_.isEmpty());
+  QVERIFY(window_->controller()->waitUntilIdle());
+  QVERIFY2(error_.isEmpty(), qPrintable(error_));
+  QVERIFY(!session()->transfer());
+  QCOMPARE(session()->model(Role::Standard).name, QString::fromStdString(default_standard().name));
+}
+
+void GuiTest::headerTextMovesNoWidget() {
+  QVERIFY2(openDemo(), qPrintable(error_));
+  fitToLaptopScreen();
+  // Every widget but the rows of the lists (their cell editors), where it is in the window.
+  auto layout = [this] {
+    std::map<QString, QRect> where;
+    int n = 0;
+    for (QWidget* w : window_->findChildren<QWidget*>()) {
+      if (!w->isVisible()) continue;
+      bool inList = false;
+      for (QWidget* p = w->parentWidget(); p && !inList; p = p->parentWidget())
+        inList = qobject_cast<QAbstractItemView*>(p) != nullptr;
+      if (!inList)
+        where[QString("%1 %2 %3").arg(w->metaObject()->className(), w->objectName()).arg(n++)] =
+            QRect(w->mapTo(window_.get(), QPoint(0, 0)), w->size());
+    }
+    return where;
+  };
+  auto* header = window_->findChild<QLabel*>("patientHeader");
+  const std::map<QString, QRect> before = layout();
+  DisplaySettings d = session()->display();
+  for (const auto& [change, note] : std::vector<std::pair<std::function<void()>, QString>>{
+           {[&] { d.showHex = true; }, "no hex mesh yet"}, {[&] { d = {}, d.field = 0; }, "fields not computed"}}) {
+    change();
+    session()->setDisplay(d);
+    QTest::qWait(100);
+    QVERIFY2(header->text().contains(note), qPrintable(header->text()));
+    const std::map<QString, QRect> after = layout();
+    QCOMPARE(after.size(), before.size());
+    for (auto a = after.begin(), b = before.begin(); a != after.end(); ++a, ++b)
+      QVERIFY2(a->first == b->first && a->second == b->second,
+               qPrintable(QString("%1 moved with '%2'").arg(b->first, note)));
+  }
+}
+
+void GuiTest::everythingIsReachableOnALaptopScreen() {
+  QVERIFY2(openDemo(), qPrintable(error_));
+  const QRect screen = fitToLaptopScreen();
+  const QRect frame = window_->frameGeometry();
+  QVERIFY2(screen.contains(frame), qPrintable(QString("the window (%1,%2 %3x%4, at least %5x%6) is off the screen")
+                                                  .arg(frame.x())
+                                                  .arg(frame.y())
+                                                  .arg(frame.width())
+                                                  .arg(frame.height())
+                                                  .arg(window_->minimumSizeHint().width())
+                                                  .arg(window_->minimumSizeHint().height())));
+  // Every control of the right column is on the screen, or the panel it is in scrolls to bring it there.
+  int controls = 0;
+  for (const char* dock : {"constraintsDock", "displayDock"})
+    for (QWidget* w : window_->findChild<QDockWidget*>(dock)->widget()->findChildren<QWidget*>()) {
+      const bool control = qobject_cast<QAbstractButton*>(w) || qobject_cast<QComboBox*>(w) ||
+                           qobject_cast<QAbstractSpinBox*>(w) || qobject_cast<QSlider*>(w) ||
+                           qobject_cast<QLineEdit*>(w) || qobject_cast<QTableWidget*>(w);
+      bool inList = false;
+      for (QWidget* p = w->parentWidget(); p && !inList; p = p->parentWidget())
+        inList = qobject_cast<QAbstractItemView*>(p) != nullptr;
+      if (!control || inList || !w->isVisible()) continue;
+      ++controls;
+      QScrollArea* area = nullptr;
+      for (QWidget* p = w->parentWidget(); p && !area; p = p->parentWidget()) area = qobject_cast<QScrollArea*>(p);
+      if (area) {  // scrolled to show all of it (ensureWidgetVisible shows a spin box's text cursor only)
+        const QPoint centre = w->mapTo(area->widget(), QPoint(w->width() / 2, w->height() / 2));
+        area->ensureVisible(centre.x(), centre.y(), w->width() / 2 + 1, w->height() / 2 + 1);
+      }
+      QApplication::processEvents();
+      const QRect global(w->mapToGlobal(QPoint(0, 0)), w->size());
+      const QWidget* shown = area ? area->viewport() : w->window();
+      const QRect viewport(shown->mapToGlobal(QPoint(0, 0)), shown->size());
+      const QString name = QString("%1 '%2' at %3,%4 %5x%6")
+                               .arg(w->metaObject()->className(), w->objectName())
+                               .arg(global.x())
+                               .arg(global.y())
+                               .arg(global.width())
+                               .arg(global.height());
+      QVERIFY2(screen.contains(global), qPrintable(name + " is off the screen"));
+      QVERIFY2(viewport.contains(global) || (w->height() > viewport.height() && viewport.intersects(global)),
+               qPrintable(name + " cannot be scrolled into view"));
+    }
+  QVERIFY(controls > 20);
+  // The progress bar and the cancel button of a running job.
+  QVERIFY(window_->controller()->computeFields());
+  QTest::qWait(200);
+  for (QWidget* w : {static_cast<QWidget*>(window_->findChild<QProgressBar*>()),
+                     static_cast<QWidget*>(window_->findChild<QPushButton*>("cancelButton"))}) {
+    QVERIFY(w->isVisible());
+    QVERIFY(screen.contains(QRect(w->mapToGlobal(QPoint(0, 0)), w->size())));
+  }
+  window_->controller()->cancel();
+  QVERIFY(window_->controller()->waitUntilIdle());
+}
+
+void GuiTest::windowLayoutIsKeptBetweenSessions() {
+  window_->resize(1300, 800);
+  auto* dock = window_->findChild<QDockWidget*>("constraintsDock");
+  window_->resizeDocks({dock}, {380}, Qt::Horizontal);
+  QTest::qWait(200);
+  const QSize size = window_->size();
+  const int width = dock->width();
+  QVERIFY(window_->close());
+  MainWindow next;
+  next.restoreWindowState();
+  next.show();
+  QVERIFY(QTest::qWaitForWindowExposed(&next));
+  QTest::qWait(200);
+  QCOMPARE(next.size(), size);
+  QCOMPARE(next.findChild<QDockWidget*>("constraintsDock")->width(), width);
+}
+
+void GuiTest::constraintListShowsAllAutomaticConstraints() {
+  QVERIFY2(openDemo(), qPrintable(error_));
+  fitToLaptopScreen();
+  auto* table = window_->findChild<QTableWidget*>("constraintTable");
+  QCOMPARE(table->rowCount(), 6 + int(feature_specs().size()));
+  QCOMPARE(table->verticalScrollBar()->maximum(), 0);  // nothing to scroll to: every row is in view
+  for (int row = 0; row < table->rowCount(); ++row)
+    QVERIFY2(table->viewport()->rect().contains(table->visualRect(table->model()->index(row, 1))),
+             qPrintable(table->item(row, 1)->text()));
+}
+
+void GuiTest::messageLogKeepsOutcomesAndShowsWhatTheyName() {
+  QVERIFY2(openBoxes(), qPrintable(error_));
+  MessageLog* log = window_->messageLog();
+  window_->findChild<QTabWidget*>("analysisTabs")->setCurrentWidget(log);
+  auto find = [log](const QString& start) -> QTreeWidgetItem* {
+    for (int i = log->topLevelItemCount() - 1; i >= 0; --i)
+      if (log->topLevelItem(i)->text(1).startsWith(start)) return log->topLevelItem(i);
+    return nullptr;
+  };
+  QVERIFY(find("Opened the standard") && find("Opened the patient"));
+  QVERIFY2(runTransferAndWait(), qPrintable(error_));
+  QTreeWidgetItem* transfer = find("Transfer done");
+  QVERIFY(transfer);
+  QStringList detail;
+  for (int i = 0; i < transfer->childCount(); ++i) detail << transfer->child(i)->text(1);
+  const QualitySummary& q = session()->transfer()->patient_quality.summary;
+  for (const QString& fact : {QString("%L1 cells").arg(q.cells), QString("%1 inverted").arg(q.inverted),
+                              QString("shape mean %1").arg(q.shape_mean, 0, 'f', 3), QString("time ")})
+    QVERIFY2(detail.filter(fact).size() == 1, qPrintable(fact + " not in: " + detail.join(" | ")));
+  const int outcomes = log->topLevelItemCount();
+
+  auto click = [log](QTreeWidgetItem* item) {
+    log->scrollToItem(item);
+    QTest::mouseClick(log->viewport(), Qt::LeftButton, {}, log->visualItemRect(item).center());
+  };
+  // Two constraints that give one vertex two values of u: the error names the vertex, and a click shows it.
+  const LoadedModel& patient = session()->model(Role::Patient);
+  PlanePose pose = session()->plane();
+  pose.origin = patient.domain.V.colwise().minCoeff().transpose();
+  pose.normal = Eigen::Vector3d::UnitX();
+  pose.band = 2.0;
+  pose.region = "volume";
+  session()->setPlane(pose);
+  session()->addPlaneConstraint(Role::Patient, "clash", 0, 0.5);
+  QVERIFY(window_->controller()->computeFields());
+  QVERIFY(window_->controller()->waitUntilIdle());
+  QVERIFY(takeError().contains("gets two values"));
+  QTreeWidgetItem* clash = log->topLevelItem(log->topLevelItemCount() - 1);
+  QVERIFY(clash->text(1).contains("gets two values"));
+  QCOMPARE(log->topLevelItemCount(), outcomes + 1);  // the transfer's outcome is still there
+  const std::optional<Highlight> named = namedInMessage(clash->text(1), *session());
+  QVERIFY(named && named->role == Role::Patient && named->vertex >= 0);
+  QVERIFY(std::abs(patient.domain.V(named->vertex, 0) - pose.origin.x()) <= 1.0);  // in the clashing slab
+  session()->setActiveRole(Role::Standard);
+  click(clash);
+  QCOMPARE(session()->activeRole(), Role::Patient);
+  QVERIFY(session()->highlight() && *session()->highlight() == *named);
+  QCOMPARE(window_->view(Role::Patient)->highlightedPoints(), 1);
+  QCOMPARE(window_->view(Role::Standard)->highlightedPoints(), 0);
+
+  // A constraint that selects nothing: the error names it, and a click selects its row.
+  session()->undoStack()->undo();
+  pose.origin -= Eigen::Vector3d(100, 0, 0);
+  session()->setPlane(pose);
+  session()->addPlaneConstraint(Role::Patient, "nowhere", 0, 0.5);
+  QVERIFY(window_->controller()->computeFields());
+  QVERIFY(window_->controller()->waitUntilIdle());
+  QVERIFY(takeError().contains("'nowhere' selects no vertex"));
+  click(log->topLevelItem(log->topLevelItemCount() - 1));
+  const int last = constraintCount() - 1;
+  QVERIFY(session()->highlight() && session()->highlight()->constraint == last);
+  QCOMPARE(window_->findChild<QTableWidget*>("constraintTable")->currentRow(), last);
+  QCOMPARE(log->topLevelItemCount(), outcomes + 2);
 }
 
 void GuiTest::checkStates(const QStringList& states) {
