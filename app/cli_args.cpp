@@ -6,8 +6,13 @@
 #include <sstream>
 
 #include "core/util/error.h"
+#include "core/workflow/thread_count.h"
 
 namespace facehex::cli {
+
+Args::Args(std::string command, std::string summary) : command_(std::move(command)), summary_(std::move(summary)) {
+  option("threads", "threads of this process: OpenMP loops, OpenBLAS, VTK imaging (default: all cores)");
+}
 
 Args& Args::positional(const std::string& name, const std::string& help, bool required) {
   specs_.push_back({name, help, "", false, required, true});
@@ -59,6 +64,7 @@ bool Args::parse(const std::vector<std::string>& argv) {
   }
   for (const auto* p : positionals)
     if (p->required && !values_.count(p->name)) throw UsageError(subject, "missing " + p->name + " (see --help)");
+  if (has("threads")) set_thread_count(integer("threads", 1, kMostThreads));
   return true;
 }
 
