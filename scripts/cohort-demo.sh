@@ -10,7 +10,8 @@ cores=${2:?usage: $0 OUT CORES EDGE_LENGTH}
 edge=${3:?usage: $0 OUT CORES EDGE_LENGTH}
 mkdir -p "$out/inputs"
 for v in wide long chin; do
-  [ -f "$out/inputs/$v.mha" ] || { python3 scripts/make_ct_variants.py "$out/inputs" > /dev/null; break; }
+  # Debian's Python, which has VTK (python3-vtk9), whatever python3 comes first on the PATH.
+  [ -f "$out/inputs/$v.mha" ] || { /usr/bin/python3 scripts/make_ct_variants.py "$out/inputs" > /dev/null; break; }
 done
 root=$(pwd)
 {
