@@ -74,7 +74,10 @@ std::string Args::usage() const {
   for (const auto& s : specs_)
     if (s.positional) os << (s.required ? " " + s.name : " [" + s.name + "]");
   os << " [options]\n\n" << summary_ << "\n";
-  for (const auto& s : specs_) {
+  // The command's own first; --threads, which every command has (the first spec), last.
+  std::vector<Spec> listed(specs_.begin() + 1, specs_.end());
+  listed.push_back(specs_.front());
+  for (const auto& s : listed) {
     std::string left = s.positional ? "  " + s.name : "  --" + s.name + (s.is_flag ? "" : " VALUE");
     if (s.name == "output" && !s.positional) left = "  -o, --output VALUE";
     os << left << std::string(left.size() < 30 ? 30 - left.size() : 1, ' ') << s.help;
