@@ -1,9 +1,12 @@
-# The two quick-start commands: `make demo` and `make test`.
+# The two quick-start commands: `make demo` and `make test`; `make cohort-demo` meshes a small cohort (docs/cohorts.md).
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
 DEMO_OUT ?= out/demo
+COHORT_OUT ?= out/cohort-demo
+# Coarse enough for a quick demo, fine enough for the automatic landmarks of the bundled CT to be plausible.
+COHORT_EDGE_LENGTH ?= 3
 
-.PHONY: deps configure build demo test bench clean
+.PHONY: deps configure build demo cohort-demo test bench clean
 
 deps:
 	@bash scripts/install-deps.sh
@@ -17,6 +20,9 @@ build: configure
 # Exit code 3 means the mesh was written but still has inverted or flat cells: reported, not a build failure.
 demo: build
 	@$(BUILD_DIR)/bin/facehex run -o $(DEMO_OUT) || [ $$? -eq 3 ]
+
+cohort-demo: build
+	@bash scripts/cohort-demo.sh $(COHORT_OUT) $(JOBS) $(COHORT_EDGE_LENGTH)
 
 test: build
 	cd $(BUILD_DIR) && xvfb-run -a -s "-screen 0 1600x1000x24" ctest --output-on-failure -j $(JOBS)

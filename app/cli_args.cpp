@@ -6,8 +6,13 @@
 #include <sstream>
 
 #include "core/util/error.h"
+#include "core/workflow/thread_count.h"
 
 namespace facehex::cli {
+
+Args::Args(std::string command, std::string summary) : command_(std::move(command)), summary_(std::move(summary)) {
+  option("threads", "threads of this process: OpenMP loops, OpenBLAS, VTK imaging (default: all cores)");
+}
 
 Args& Args::positional(const std::string& name, const std::string& help, bool required) {
   specs_.push_back({name, help, "", false, required, true});
@@ -59,6 +64,7 @@ bool Args::parse(const std::vector<std::string>& argv) {
   }
   for (const auto* p : positionals)
     if (p->required && !values_.count(p->name)) throw UsageError(subject, "missing " + p->name + " (see --help)");
+  if (has("threads")) set_thread_count(integer("threads", 1, kMostThreads));
   return true;
 }
 
@@ -68,7 +74,10 @@ std::string Args::usage() const {
   for (const auto& s : specs_)
     if (s.positional) os << (s.required ? " " + s.name : " [" + s.name + "]");
   os << " [options]\n\n" << summary_ << "\n";
-  for (const auto& s : specs_) {
+  // The command's own first; --threads, which every command has (the first spec), last.
+  std::vector<Spec> listed(specs_.begin() + 1, specs_.end());
+  listed.push_back(specs_.front());
+  for (const auto& s : listed) {
     std::string left = s.positional ? "  " + s.name : "  --" + s.name + (s.is_flag ? "" : " VALUE");
     if (s.name == "output" && !s.positional) left = "  -o, --output VALUE";
     os << left << std::string(left.size() < 30 ? 30 - left.size() : 1, ' ') << s.help;

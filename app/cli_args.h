@@ -17,7 +17,9 @@ class UsageError : public Error {
 
 class Args {
  public:
-  Args(std::string command, std::string summary) : command_(std::move(command)), summary_(std::move(summary)) {}
+  // Every command also takes --threads N (kMostThreads at most), applied by parse() (core/workflow/thread_count.h).
+  Args(std::string command, std::string summary);
+  static constexpr int kMostThreads = 1024;
 
   Args& positional(const std::string& name, const std::string& help, bool required = true);
   Args& option(const std::string& name, const std::string& help, const std::string& default_value = "");
@@ -29,8 +31,9 @@ class Args {
     return *this;
   }
 
-  // Parses argv (without the program and command names). Returns false when --help was asked (usage printed);
-  // throws facehex::Error("facehex COMMAND", ...) on unknown options, missing values or surplus positionals.
+  // Parses argv (without the program and command names) and sets the process's thread count when --threads is given.
+  // Returns false when --help was asked (usage printed); throws facehex::Error("facehex COMMAND", ...) on unknown
+  // options, missing values or surplus positionals.
   bool parse(const std::vector<std::string>& argv);
 
   std::string usage() const;

@@ -33,6 +33,7 @@ const std::map<std::string, Command>& commands() {
       {"constraints", {cmd_constraints, "sides + feature constraints at the facial landmarks of a model"}},
       {"bench", {cmd_bench, "time each stage of a transfer for patients of several sizes"}},
       {"compare", {cmd_compare, "harmonic transfer vs the mesh-matching baseline: report, tables, plots"}},
+      {"cohort-report", {cmd_cohort_report, "the report of a cohort meshed by workflow/Snakefile: table, plots"}},
   };
   return table;
 }
@@ -42,7 +43,7 @@ void print_usage() {
                "Patient-specific hexahedral meshes of the facial soft tissue by harmonic-field volumetric mapping.\n\n"
                "commands:\n";
   for (const auto& [name, c] : commands())
-    std::cout << "  " << name << std::string(12 - name.size(), ' ') << c.summary << "\n";
+    std::cout << "  " << name << std::string(name.size() < 14 ? 14 - name.size() : 1, ' ') << c.summary << "\n";
   std::cout << "\n'facehex run -o OUT' runs the bundled demo.\n";
 }
 

@@ -2,29 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "app/png_canvas.h"
 #include "core/util/error.h"
 
 namespace facehex::cli {
-namespace {
-
-std::string number(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", x);
-  return buf;
-}
-
-// A step of 1, 2 or 5 times a power of ten giving 4 to 10 ticks up to `top`.
-double tick_step(double top) {
-  const double magnitude = std::pow(10.0, std::floor(std::log10(top)));
-  for (const double m : {0.1, 0.2, 0.5, 1.0, 2.0, 5.0})
-    if (top / (m * magnitude) <= 10) return m * magnitude;
-  return 10 * magnitude;
-}
-
-}  // namespace
 
 std::vector<double> percent_histogram(const Eigen::VectorXd& values, const std::vector<double>& edges) {
   if (edges.size() < 2) throw Error("histogram", "needs at least two bin edges");
@@ -59,22 +41,32 @@ void write_histogram_png(const std::string& path, const HistogramPlot& plot) {
 
   for (double t = 0; t <= top + 1e-9 * top; t += step) {
     canvas.fill(x0, y_of(t), x1, y_of(t) + 1, grid);
-    canvas.text(number(t), x0 - 8, y_of(t), 14, 1.0, 0.5);
+    canvas.text(tick_label(t), x0 - 8, y_of(t), 14, 1.0, 0.5);
   }
   const int ns = static_cast<int>(plot.series.size());
-  for (int b = 0; b < bins; ++b)
-    for (int s = 0; s < ns; ++s) {
-      const double left = b + 0.08 + 0.84 * s / ns, right = b + 0.08 + 0.84 * (s + 1) / ns;
-      canvas.fill(x_of(left), y_of(plot.series[s].percent[b]), std::max(x_of(left) + 1, x_of(right)), y1,
-                  plot.series[s].color);
+  for (int s = 0; s < ns; ++s) {
+    const HistogramSeries& series = plot.series[s];
+    for (int b = 0; b < bins; ++b) {
+      if (!plot.overlaid) {
+        const double left = b + 0.08 + 0.84 * s / ns, right = b + 0.08 + 0.84 * (s + 1) / ns;
+        canvas.fill(x_of(left), y_of(series.percent[b]), std::max(x_of(left) + 1, x_of(right)), y1, series.color);
+        continue;
+      }
+      // The top of the bar, and the step up or down from the bar before (from the axis for the first and to the
+      // axis after the last), two pixels wide.
+      const int y = y_of(series.percent[b]), before = b > 0 ? y_of(series.percent[b - 1]) : y1;
+      canvas.fill(x_of(b), y - 1, x_of(b + 1) + 1, y + 1, series.color);
+      canvas.fill(x_of(b) - 1, std::min(y, before) - 1, x_of(b) + 1, std::max(y, before) + 1, series.color);
+      if (b == bins - 1) canvas.fill(x_of(bins) - 1, y - 1, x_of(bins) + 1, y1, series.color);
     }
+  }
   canvas.fill(x0, y1, x1, y1 + 1, black);
   canvas.fill(x0, y0, x0 + 1, y1, black);
   int label_every = (bins + 11) / 12;  // at most 13 labels, on edges that divide the axis evenly
   while (bins % label_every != 0) ++label_every;
   for (int e = 0; e <= bins; e += label_every) {
     canvas.fill(x_of(e), y1, x_of(e) + 1, y1 + 5, black);
-    canvas.text(number(plot.edges[e]), x_of(e), y1 + 8, 14, 0.5, 0.0);
+    canvas.text(tick_label(plot.edges[e]), x_of(e), y1 + 8, 14, 0.5, 0.0);
   }
   canvas.text(plot.title, width / 2, 16, 18, 0.5, 0.0);
   canvas.text(plot.x_label, (x0 + x1) / 2, height - 30, 15, 0.5, 0.0);

@@ -17,7 +17,8 @@ struct HistogramSeries {
 struct HistogramPlot {
   std::string title, x_label, y_label = "% of all";
   std::vector<double> edges;            // #bins + 1, increasing
-  std::vector<HistogramSeries> series;  // drawn side by side within each bin
+  std::vector<HistogramSeries> series;  // drawn side by side within each bin, or:
+  bool overlaid = false;                // each series as the outline of its bars, over each other (many series)
 };
 
 // Share (in %) of `values` in each bin [edges[i], edges[i+1]); values beyond the last edge count in the last bin,

@@ -10,11 +10,25 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
 
 namespace facehex::cli {
+
+double tick_step(double range) {
+  const double magnitude = std::pow(10.0, std::floor(std::log10(range)));
+  for (const double m : {0.1, 0.2, 0.5, 1.0, 2.0, 5.0})
+    if (range / (m * magnitude) <= 10) return m * magnitude;
+  return 10 * magnitude;
+}
+
+std::string tick_label(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", x);
+  return buf;
+}
 
 void Canvas::fill(int x0, int y0, int x1, int y1, const Rgb& c, double alpha) {
   for (int y = std::max(0, y0); y < std::min(h_, y1); ++y)

@@ -34,4 +34,9 @@ class Canvas {
   std::vector<unsigned char> pixels_;
 };
 
+// A tick step of 1, 2 or 5 times a power of ten giving 4 to 10 ticks over an axis of length `range` (> 0).
+double tick_step(double range);
+// A tick label: the shortest of %g.
+std::string tick_label(double x);
+
 }  // namespace facehex::cli

@@ -11,6 +11,8 @@ packages=(
   libssl-dev  # SHA-256 of a run's outputs in its report's completion record
   calculix-ccx gmsh  # the FE export tests run the CalculiX solver and Gmsh on exported models
   xvfb xauth libgl1-mesa-dri
+  snakemake python3-vtk9  # cohorts: workflow/Snakefile; make cohort-demo warps the bundled CT in Python
+  slurm-wlm munge  # the cohort test on a single-node Slurm cluster (scripts/local-slurm.sh)
 )
 missing=()
 for p in "${packages[@]}"; do

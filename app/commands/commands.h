@@ -21,5 +21,6 @@ int cmd_bench(const Argv& argv);
 int cmd_constraints(const Argv& argv);
 int cmd_segment(const Argv& argv);
 int cmd_compare(const Argv& argv);
+int cmd_cohort_report(const Argv& argv);
 
 }  // namespace facehex::cli

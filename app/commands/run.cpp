@@ -69,6 +69,7 @@ int cmd_run(const Argv& argv) {
   nlohmann::json report = run_report(r.run, r.standard_quality, r.plain_mapping_quality, r.patient_quality, r.distance);
   report["inputs"] = {
       {"patient", input}, {"patient_constraints", t.patient.constraints_path}, {"standard", t.standard.name}};
+  report["landmarks"] = landmarks_json(t.patient.landmarks);
   report["outputs"] = folder.completion_record(written);
   write_json((out_dir / "report.json").string(), report);
   std::cout << run_summary_text(r.run, r.standard_quality, r.plain_mapping_quality, r.patient_quality, r.distance)

@@ -5,6 +5,9 @@
 
 #include "core/fields/constraint_set.h"
 #include "core/mesh/tet_topology.h"
+#include "core/util/error.h"
+#include "core/util/text_file.h"
+#include "core/workflow/thread_count.h"
 
 namespace facehex {
 
@@ -152,6 +155,31 @@ DistanceSummary side_vertex_distances(const TransferRun& run, const VolumeMesh& 
   return side_vertex_distances(run.patient_hex.V, standard, run.patient.V, run.patient.T);
 }
 
+json read_run_report(const std::string& path) {
+  json report;
+  try {
+    report = json::parse(read_text_file(path));
+  } catch (const json::parse_error&) {
+    throw Error(path, "not a JSON file (a run's report.json is written last, whole)");
+  }
+  if (!report.is_object() || report.value("format", "") != "facehex-report")
+    throw Error(path, "not a FaceHex run report (\"format\" is not \"facehex-report\")");
+  const json& version = report["version"];
+  if (!version.is_number_integer() || version.get<int>() != kRunReportVersion)
+    throw Error(path, "report version " + version.dump() + ", this facehex reads version " +
+                          std::to_string(kRunReportVersion) + " (rerun the patient with this facehex)");
+  return report;
+}
+
+json landmarks_json(const std::optional<FaceLandmarks>& landmarks) {
+  if (!landmarks) return nullptr;
+  const size_t estimated = landmarks->estimated.size();
+  return {{"source", landmarks->given ? "given" : "found"},
+          {"found", landmarks->points.size() - estimated},
+          {"estimated", estimated},
+          {"estimated_names", landmarks->estimated}};
+}
+
 json run_report(const TransferRun& run, const MeshQualityReport& standard_quality,
                 const MeshQualityReport& plain_mapping_quality, const MeshQualityReport& patient_quality,
                 const DistanceSummary& distance) {
@@ -159,7 +187,9 @@ json run_report(const TransferRun& run, const MeshQualityReport& standard_qualit
   double total = 0;
   for (const auto& [stage, s] : run.seconds) total += s;
   return {{"format", "facehex-report"},
-          {"version", 1},
+          {"version", kRunReportVersion},
+          {"facehex_version", FACEHEX_VERSION},
+          {"threads", thread_counts().openmp},
           {"seconds", run.seconds},
           {"total_seconds", total},
           {"standard",

@@ -3,8 +3,10 @@
 // the paper (Table 1: dihedral-angle distortion; Table 2: mean element shape), as JSON for scripts and as a short
 // text summary for people.
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
+#include "core/face/face_landmarks.h"
 #include "core/mapping/transfer_pipeline.h"
 #include "core/mesh/mesh.h"
 #include "core/quality/hex_quality.h"
@@ -30,6 +32,19 @@ std::string quality_text(const MeshQualityReport& q);
 DistanceSummary side_vertex_distances(const Eigen::MatrixXd& mapped_V, const VolumeMesh& standard,
                                       const Eigen::MatrixXd& patient_V, const Eigen::MatrixXi& patient_T);
 DistanceSummary side_vertex_distances(const TransferRun& run, const VolumeMesh& standard);
+
+// The schema of report.json, {"format": "facehex-report", "version": kRunReportVersion, ...}: a reader (the cohort
+// report, scripts) checks both. Any change of the keys or of what a value means raises it, so that a reader of one
+// version finds every key it documents (docs/cohorts.md).
+constexpr int kRunReportVersion = 2;
+
+// report.json as written by `facehex run` (or `map`): throws facehex::Error(path, ...) when the file cannot be read
+// or parsed, or is not a facehex-report of version kRunReportVersion.
+nlohmann::json read_run_report(const std::string& path);
+
+// The landmarks the feature constraints were placed at: {"source": "found" or "given", "found": n, "estimated": n,
+// "estimated_names": [...]}; null when there are none (a constraint file was given).
+nlohmann::json landmarks_json(const std::optional<FaceLandmarks>& landmarks);
 
 // plain_mapping_quality: of run.mapped_hex (the mapping before relaxation and repair) against the standard.
 nlohmann::json run_report(const TransferRun& run, const MeshQualityReport& standard_quality,

@@ -17,6 +17,7 @@
 #include "core/quality/hex_quality.h"
 #include "core/segment/ct_volume.h"
 #include "core/util/resources.h"
+#include "core/workflow/report.h"
 #include "tests/core/test_meshes.h"
 
 namespace {
@@ -59,12 +60,19 @@ class Cli : public ::testing::Test {
 
 // The bundled demo: CT -> patient model -> automatic constraints -> fields -> transfer -> repair -> report.
 TEST_F(Cli, DemoRunsTheWholeChainFromTheBundledCt) {
-  const Result r = run("run -o " + path("demo"));
+  const Result r = run("run -o " + path("demo") + " --threads 2");
   ASSERT_EQ(r.status, 0) << r.output;  // 3 would mean inverted or flat cells remain
   for (const char* f : {"patient_model.vtu", "standard_hex.vtu", "patient_hex.vtu", "report.json"})
     EXPECT_TRUE(fs::exists(path("demo/") + f)) << f;
   nlohmann::json report;
   std::ifstream(path("demo/report.json")) >> report;
+  EXPECT_EQ(report["format"], "facehex-report");
+  EXPECT_EQ(report["version"], facehex::kRunReportVersion);
+  EXPECT_EQ(report["threads"], 2);  // --threads, as the process ran
+  // The bundled CT's landmarks are found, those in its field-of-view cut estimated (docs/benchmarks.md).
+  EXPECT_EQ(report["landmarks"]["source"], "found");
+  EXPECT_GT(report["landmarks"]["found"].get<int>(), 0);
+  EXPECT_EQ(report["landmarks"]["estimated"].get<int>(), report["landmarks"]["estimated_names"].size());
   const auto& q = report["patient_hex"]["quality"];
   EXPECT_EQ(q["cells"], 6342);
   EXPECT_EQ(q["hexes"], 6024);
@@ -139,6 +147,7 @@ TEST_F(Cli, UsageErrorsExitTwoAndWriteNothing) {
       {"fields " + tets + " -o " + path("a.vtu") + " --iterations 1e9", "--iterations expects a number from 0 to 100"},
       {"sides " + tets + " -o " + path("a.vtu") + " --max-layers 1e12", "--max-layers expects a number from 1 to 64"},
       {"fields " + tets + " -o " + path("a.vtu") + " --iterations 2.5", "--iterations expects an integer"},
+      {"convert " + tets + " " + path("a.vtu") + " --threads 0", "--threads expects a number from 1 to 1024"},
   };
   for (const auto& [args, needle] : cases) {
     const Result r = run(args);
