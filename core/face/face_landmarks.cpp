@@ -184,8 +184,9 @@ Eigen::Vector3d require(const std::optional<Eigen::Vector3d>& p, const std::stri
   return *p;
 }
 
-constexpr double kTurnTolerance = 1.5;  // mm: the profile's lips deviate from its chords by more than this
-constexpr double kLipsReach = 50.0;     // mm below the nose within which the lips are looked for
+// mm, the Douglas-Peucker tolerances tried for the lips, coarsest first (Profile::turns_below)
+constexpr double kTurnTolerances[] = {1.5, 1.0, 0.5};
+constexpr double kLipsReach = 50.0;  // mm below the nose within which the lips are looked for
 
 // The subnasale: the profile point between the upper lip and the nose (`nose`: its tip, or the lowest point of a
 // field-of-view cut) deepest behind the chord joining them, where the columella meets the lip.
@@ -263,8 +264,14 @@ FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorX
   // The lips: going down from the nose, the profile's turns (Profile::turns_below) are the subnasale's hollow, the
   // upper lip, the stomion and the lower lip. Read in that order rather than in windows of fixed height, they follow
   // a face whose nose or lips are longer or shorter than the usual.
-  std::vector<Profile::Turn> turns = profile.turns_below(nose.z(), kLipsReach, kTurnTolerance);
-  while (!turns.empty() && !turns.front().hollow) turns.erase(turns.begin());  // on the nose's own underside
+  // The coarsest simplification that shows the four: the lips' own turns rather than the skin's ripples, on lips as
+  // pronounced as the standard's and on a flat profile alike.
+  std::vector<Profile::Turn> turns;
+  for (const double tolerance : kTurnTolerances) {
+    turns = profile.turns_below(nose.z(), kLipsReach, tolerance);
+    while (!turns.empty() && !turns.front().hollow) turns.erase(turns.begin());  // on the nose's own underside
+    if (turns.size() >= 4) break;
+  }
   const char* lips[] = {"subnasale", "upper lip", "stomion", "lower lip"};
   if (turns.size() < 4) require(std::nullopt, lips[turns.size()]);
   const Eigen::Vector3d ls = turns[1].point, st = turns[2].point, li = turns[3].point;

@@ -10,7 +10,7 @@
 //    (a band wider than the philtrum's groove would catch its ridges);
 //  - pronasale (nose tip): the most anterior profile point in the middle 80 % of the z range;
 //    the lips below it, from the profile's turns within 50 mm below the nose: the points its Douglas-Peucker
-//    simplification at 1.5 mm keeps, each a hollow if it lies behind the chord of its kept neighbours, else a
+//    simplification keeps (at 1.5 mm, else at 1 or 0.5 mm if that shows fewer than the four), each a hollow if it lies behind the chord of its kept neighbours, else a
 //    prominence (runs of one kind reduced to the deepest or most anterior). After any prominence on the nose's own
 //    underside: the first hollow (the subnasale's), then labrale superius (the next prominence), stomion (the next
 //    hollow, lip contact or the middle of an open mouth) and labrale inferius (the next prominence). Turns measured
