@@ -25,14 +25,16 @@ struct PhantomFace {
   Eigen::MatrixXd V;
   Eigen::VectorXi side_mask;
 
-  PhantomFace() {
+  // lips: the relief of the dip and the lips, 1 as described; a flat profile's lips stand out by less.
+  explicit PhantomFace(double lips = 1.0) {
     const int nx = 261, nz = 261;  // x0 - 60 .. x0 + 70, z -70 .. 60
     V.resize(nx * nz, 3);
     for (int i = 0; i < nx; ++i)
       for (int k = 0; k < nz; ++k) {
         const double x = x0 - 60 + 0.5 * i, z = -70 + 0.5 * k, dx = x - x0;
-        const double wide = -3 * bump(z, -14, 3) + 6 * bump(z, -24, 4) - 4 * bump(z, -31, 2) + 6 * bump(z, -38, 4) -
-                            4 * bump(z, 26, 4) + 6 * bump(z, 40, 5);
+        const double wide =
+            lips * (-3 * bump(z, -14, 3) + 6 * bump(z, -24, 4) - 4 * bump(z, -31, 2) + 6 * bump(z, -38, 4)) -
+            4 * bump(z, 26, 4) + 6 * bump(z, 40, 5);
         const double y = 80 - 0.01 * dx * dx + 20 * bump(z, 0, 6) * bump(dx, 0, 8) + wide * bump(dx, 0, 25);
         V.row(i * nz + k) << x, y, z;
       }
@@ -55,6 +57,17 @@ TEST(FaceLandmarks, PhantomLandmarksWithinOneAndAHalfMillimetres) {
     EXPECT_NEAR(p.x(), PhantomFace::x0, 3.0) << name;  // within the profile band
   }
   EXPECT_NEAR(l.points.at("pronasale").y(), 100.0, 0.1);
+}
+
+TEST(FaceLandmarks, FlatLipsAreFoundInOrder) {
+  // A third of the relief: the lips stand out of the profile's chords by about a millimetre.
+  const PhantomFace face(0.33);
+  const FaceLandmarks l = find_face_landmarks(face.V, face.side_mask);
+  const std::map<std::string, double> expected_z = {
+      {"labrale superius", -24}, {"stomion", -31}, {"labrale inferius", -38}};
+  for (const auto& [name, z] : expected_z) EXPECT_NEAR(l.points.at(name).z(), z, 2.0) << name;
+  EXPECT_GT(l.points.at("subnasale").z(), -20.0);
+  EXPECT_LT(l.points.at("subnasale").z(), -10.0);
 }
 
 TEST(FaceLandmarks, FeatureConstraintsSitOnTheLandmarks) {
