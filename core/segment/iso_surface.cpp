@@ -16,21 +16,11 @@
 #include <map>
 
 #include "core/io/vtk_util.h"
+#include "core/tetgen/tetrahedralize.h"
 #include "core/util/error.h"
 
 namespace facehex {
-namespace {
-
-double enclosed_volume(const SurfaceMesh& s) {
-  double v = 0;
-  for (int f = 0; f < s.F.rows(); ++f) {
-    const Eigen::Vector3d a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
-    v += a.dot(b.cross(c)) / 6;
-  }
-  return v;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 bool is_closed_manifold(const SurfaceMesh& surface) {
   std::map<std::pair<int, int>, int> directed;
@@ -84,8 +74,7 @@ SurfaceMesh zero_level_surface(const Field& phi) {
   SurfaceMesh full = io::triangles_of("surface extraction", compact->GetOutput());
   if (enclosed_volume(full) < 0) full.F.col(1).swap(full.F.col(2));
 
-  if (!is_closed_manifold(full))
-    throw Error("segment", "the soft-tissue surface is not a closed manifold; raise smoothing_sigma");
+  if (!is_closed_manifold(full)) throw NonManifoldSurface();
   return full;
 }
 

@@ -163,6 +163,35 @@ void check_topology(const PatientModel& model) {
   }
 }
 
+// The model's surface: the zero level of model_function. Where a cut plane grazes a fold of the tissue, that level
+// can touch itself (it bounds no solid); the automatic cuts are then moved by a fraction of a voxel, out and in,
+// which keeps the anatomy they were placed by and changes the contour there. Cuts the user gave are never moved.
+// `cuts` becomes the cuts the surface was made with.
+SurfaceMesh level_surface_with_cuts(const Mask& tissue, FaceCuts& cuts, const SegmentOptions& options) {
+  const FaceCutOptions& given = options.cuts;
+  for (const double fraction : {0.0, 0.3, -0.3, 0.6, -0.6}) {
+    const double nudge = fraction * options.working_spacing;
+    FaceCuts moved = cuts;
+    if (!given.top_z) moved.top_z += nudge;
+    if (!given.bottom_z) moved.bottom_z -= nudge;
+    if (!given.posterior_y) moved.posterior_y -= nudge;
+    try {
+      SurfaceMesh surface = zero_level_surface(model_function(tissue, moved, options.smoothing_sigma));
+      cuts = moved;
+      return surface;
+    } catch (const NonManifoldSurface&) {
+    }
+  }
+  std::ostringstream where;
+  where.precision(1);
+  where << std::fixed << "top z " << cuts.top_z << ", bottom z " << cuts.bottom_z << ", posterior y "
+        << cuts.posterior_y;
+  throw Error("segment", "the soft-tissue surface between the cuts (" + where.str() + ", each moved by up to " +
+                             number(0.6 * options.working_spacing) +
+                             " mm) is not a closed manifold; raise --smoothing or place the cuts with --top-cut, "
+                             "--bottom-cut, --posterior-cut");
+}
+
 }  // namespace
 
 PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& options, const ProgressCallback& progress) {
@@ -215,7 +244,7 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   const Field inner_distance = distance_to(inner);
 
   step("the surface", 0.33);
-  SurfaceMesh surface = zero_level_surface(model_function(tissue, model.cuts, options.smoothing_sigma));
+  SurfaceMesh surface = level_surface_with_cuts(tissue, model.cuts, options);
   Eigen::VectorXi sides =
       classify_sides(surface, model.cuts, air_distance, inner_distance, 0.3 * options.working_spacing);
   merge_side_islands(surface.F, sides);
@@ -229,9 +258,9 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   // A vertex where skin touches bone at a zero-thickness rim is left free in w (tetrahedralize_with_sides).
   TetrahedralizeOptions tet_options = options.tets;
   if (options.coarsen_above_tets > 0)
-    tet_options.target_edge_length =
-        std::max(tet_options.target_edge_length,
-                 edge_length_for_tet_count(enclosed_volume(surface), options.coarsen_above_tets, tet_options));
+    tet_options.target_edge_length = std::max(
+        tet_options.target_edge_length,
+        edge_length_for_tet_count(std::abs(enclosed_volume(surface)), options.coarsen_above_tets, tet_options));
   model.edge_length = tet_options.target_edge_length;
   TetrahedralizeResult tets;
   for (const double scale : {1.0, 0.97, 1.03}) {

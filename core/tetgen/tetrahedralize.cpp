@@ -63,7 +63,7 @@ std::string count_text(double n) {
 // minutes (or exhausting the machine).
 void check_tet_budget(const SurfaceMesh& surface, const TetrahedralizeOptions& options) {
   const double budget = options.max_tets > 0 ? options.max_tets : max_tets_for_memory();
-  const double predicted = predicted_tet_count(enclosed_volume(surface), options);
+  const double predicted = predicted_tet_count(std::abs(enclosed_volume(surface)), options);
   if (predicted > budget) {
     char edge[32];
     std::snprintf(edge, sizeof edge, "%.3g", options.target_edge_length);
@@ -282,7 +282,7 @@ double enclosed_volume(const SurfaceMesh& s) {
     const Eigen::Vector3d a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
     six_v += a.dot(b.cross(c));
   }
-  return std::abs(six_v) / 6;
+  return six_v / 6;
 }
 
 double max_tets_for_memory() {

@@ -22,7 +22,8 @@ struct TetrahedralizeOptions {
 double predicted_tet_count(double volume, const TetrahedralizeOptions& options);
 // The edge length at which predicted_tet_count(volume) is `tets` (the other options as given).
 double edge_length_for_tet_count(double volume, double tets, const TetrahedralizeOptions& options);
-// The volume a closed, consistently oriented triangle surface encloses (mm^3).
+// The volume a closed, consistently oriented triangle surface encloses (mm^3), negative if its faces are oriented
+// inwards.
 double enclosed_volume(const SurfaceMesh& surface);
 // How many tets a transfer can handle with this machine's physical memory.
 double max_tets_for_memory();

@@ -246,8 +246,8 @@ TEST_F(Cli, SegmentTakesTheCutsGivenAndRejectsBadOnes) {
 // the segmentation remeshes 3 % finer and goes on.
 TEST_F(Cli, SegmentRemeshesASurfaceThatCrossesItself) {
   // Cuts pinned where this crossing was seen (the automatic ones move with the anatomy rules).
-  const Result r =
-      run("segment " + facehex::default_ct() + " --edge-length 2.5 --top-cut 133 --mid-plane 98.7 -o " + path("p.vtu"));
+  const Result r = run("segment " + facehex::default_ct() +
+                       " --edge-length 2.5 --top-cut 133 --mid-plane 98.7 --posterior-cut 102 -o " + path("p.vtu"));
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("remeshing the surface again"), std::string::npos) << r.output;
   EXPECT_GT(facehex::read_volume_mesh(path("p.vtu")).num_cells(), 200000);
@@ -267,7 +267,9 @@ TEST_F(Cli, TheBundledCtMeshedAt3mmEndsWithNoInvertedCell) {
 }
 
 // The bundled CT stored with other voxel axes (the face towards the file's -z, the top of the head towards +y), read
-// with --anterior -z --superior +y: the same model, moved (the flipped axis starts elsewhere).
+// with --anterior -z --superior +y: the same model, moved (the flipped axis starts elsewhere). The turned CT's
+// resampling differs a little, and its automatic cuts make a surface that touches itself; the cuts moved by a
+// fraction of a voxel make a closed one (level_surface_with_cuts in soft_tissue.cpp).
 TEST_F(Cli, ACtStoredWithOtherAxesGivesTheSameModel) {
   const facehex::CtVolume ct = facehex::read_ct_volume(facehex::default_ct());
   const facehex::GridGeometry& g = ct.intensity.geometry;
@@ -287,10 +289,11 @@ TEST_F(Cli, ACtStoredWithOtherAxesGivesTheSameModel) {
   ASSERT_EQ(b.status, 0) << b.output;
   const facehex::VolumeMesh ma = facehex::read_volume_mesh(path("a.vtu")),
                             mb = facehex::read_volume_mesh(path("b.vtu"));
-  EXPECT_NEAR(mb.num_vertices(), ma.num_vertices(), 0.01 * ma.num_vertices());
+  // Nearly the same: the cuts of one were moved by a third of a millimetre, where the sides slope.
+  EXPECT_NEAR(mb.num_vertices(), ma.num_vertices(), 0.02 * ma.num_vertices());
   const Eigen::RowVector3d extent_a = ma.V.colwise().maxCoeff() - ma.V.colwise().minCoeff(),
                            extent_b = mb.V.colwise().maxCoeff() - mb.V.colwise().minCoeff();
-  EXPECT_LT((extent_a - extent_b).cwiseAbs().maxCoeff(), 1.0) << extent_a << " / " << extent_b;
+  EXPECT_LT((extent_a - extent_b).cwiseAbs().maxCoeff(), 2.0) << extent_a << " / " << extent_b;
   // The same x and z; y shifted by the flipped axis' length (the file's z extent).
   EXPECT_NEAR(mb.V.col(0).minCoeff(), ma.V.col(0).minCoeff(), 1.0);
   EXPECT_NEAR(mb.V.col(2).minCoeff(), ma.V.col(2).minCoeff(), 1.0);
