@@ -61,6 +61,12 @@ SegmentationDialog::SegmentationDialog(QWidget* parent) : QDialog(parent) {
   edgeLength_ = spinBox(0.5, 20, tr(" mm"), "segmentEdgeLength", this);
   edgeLength_->setToolTip(tr("Target mean edge length of the tets (the paper: about 2 mm). Coarser is faster."));
   form->addRow(tr("Tet edge length"), edgeLength_);
+  coarsenLargeFaces_ = new QCheckBox(tr("coarser for a large face"), this);
+  coarsenLargeFaces_->setObjectName("segmentCoarsenLargeFaces");
+  coarsenLargeFaces_->setToolTip(
+      tr("A face whose model would have more tets than the transfer gains from (a fine CT showing the face and neck) "
+         "is meshed with longer edges (docs/segmentation.md). Untick to keep the edge length as given."));
+  form->addRow(QString(), coarsenLargeFaces_);
   anterior_ = axisChoice("segmentAnterior", "+y", this);
   superior_ = axisChoice("segmentSuperior", "+z", this);
   form->addRow(tr("Face looks along"), anterior_);
@@ -125,6 +131,7 @@ void SegmentationDialog::setCt(const QString& path) {
 
 void SegmentationDialog::setOptions(const SegmentOptions& o) {
   edgeLength_->setValue(o.tets.target_edge_length);
+  coarsenLargeFaces_->setChecked(o.coarsen_above_tets > 0);
   selectAxis(anterior_, o.orientation.anterior);
   selectAxis(superior_, o.orientation.superior);
   numbers_[Skin].set(o.skin_threshold);
@@ -141,6 +148,7 @@ void SegmentationDialog::setOptions(const SegmentOptions& o) {
 SegmentOptions SegmentationDialog::options() const {
   SegmentOptions o;
   o.tets.target_edge_length = edgeLength_->value();
+  if (!coarsenLargeFaces_->isChecked()) o.coarsen_above_tets = 0;
   o.orientation.anterior = anterior_->currentData().toString().toStdString();
   o.orientation.superior = superior_->currentData().toString().toStdString();
   o.skin_threshold = numbers_[Skin].get();

@@ -40,6 +40,7 @@ class SegmentationDialog : public QDialog {
 
   QLabel* heading_;
   QDoubleSpinBox *edgeLength_, *browClearance_, *chinClearance_, *earClearance_;
+  QCheckBox* coarsenLargeFaces_;
   QComboBox *anterior_, *superior_;
   std::array<OptionalNumber, kNumbers> numbers_;
 };

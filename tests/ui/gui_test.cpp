@@ -419,6 +419,7 @@ void GuiTest::segmentationDialogRoundTripsItsOptions() {
   const SegmentOptions defaults;
   SegmentOptions o = dialog.options();  // opens with the CLI's defaults: everything automatic
   QCOMPARE(o.tets.target_edge_length, defaults.tets.target_edge_length);
+  QCOMPARE(o.coarsen_above_tets, defaults.coarsen_above_tets);
   QVERIFY(!o.skin_threshold && !o.bone_threshold && !o.cuts.top_z && !o.cuts.bottom_z && !o.cuts.posterior_y &&
           !o.cuts.centre_x);
   QVERIFY(o.orientation.anterior.empty() && o.orientation.superior.empty());
@@ -426,6 +427,7 @@ void GuiTest::segmentationDialogRoundTripsItsOptions() {
 
   SegmentOptions given;
   given.tets.target_edge_length = 3.5;
+  given.coarsen_above_tets = 0;  // the edge length as given
   given.skin_threshold = 600;
   given.cuts.top_z = 120;
   given.cuts.centre_x = -4.5;
@@ -434,6 +436,8 @@ void GuiTest::segmentationDialogRoundTripsItsOptions() {
   dialog.setOptions(given);
   o = dialog.options();
   QCOMPARE(o.tets.target_edge_length, 3.5);
+  QCOMPARE(o.coarsen_above_tets, 0.0);
+  QVERIFY(!dialog.findChild<QCheckBox*>("segmentCoarsenLargeFaces")->isChecked());
   QCOMPARE(*o.skin_threshold, 600.0);
   QVERIFY(!o.bone_threshold);
   QCOMPARE(*o.cuts.top_z, 120.0);
