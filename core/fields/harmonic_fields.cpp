@@ -53,8 +53,8 @@ HarmonicFields::HarmonicFields(const Eigen::MatrixXd& V, const Eigen::MatrixXi& 
   double factor_flops = 0;
   const auto elimination_order = std::make_shared<const std::vector<int>>(fill_reducing_order(K_, &factor_flops));
   // Small (simplicial) factorizations and their solves run concurrently, one per thread. Supernodal ones run one
-  // after the other, each on all BLAS threads: run concurrently they compete for memory bandwidth and BLAS threads
-  // and take longer in all. With the shared order, the results do not depend on which thread factors what.
+  // after the other (on one BLAS thread: SingleThreadedBlas): run concurrently they compete for memory bandwidth and
+  // take longer in all. With the shared order, the results do not depend on which thread factors what.
   concurrent_ = factor_flops < kSupernodalAboveFlops;
   run_jobs(3, concurrent_, [&](int f) {
     if (!concurrent_)

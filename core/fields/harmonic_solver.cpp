@@ -3,6 +3,7 @@
 #include <Eigen/CholmodSupport>
 #include <algorithm>
 
+#include "core/util/blas_threads.h"
 #include "core/util/error.h"
 
 namespace facehex {
@@ -148,7 +149,10 @@ HarmonicSolver::HarmonicSolver(const SparseMatrix& K, const DirichletConditions&
       cholmod.analyzePattern(K_ff);
     }
   }
-  if (cholmod.info() == Eigen::Success) cholmod.factorize(K_ff);
+  if (cholmod.info() == Eigen::Success) {
+    const SingleThreadedBlas blas;
+    cholmod.factorize(K_ff);
+  }
   if (cholmod.info() != Eigen::Success)
     throw Error(name_, "the sparse Cholesky factorization failed (the stiffness matrix is not positive definite)");
 }
@@ -162,6 +166,7 @@ Eigen::VectorXd HarmonicSolver::solve(const Eigen::VectorXd& rhs) const {
   Eigen::VectorXd b(static_cast<Eigen::Index>(free_.size()));
   for (size_t i = 0; i < free_.size(); ++i) b(static_cast<Eigen::Index>(i)) = rhs(free_[i]);
   b -= fixed_part_;
+  const SingleThreadedBlas blas;
   const Eigen::VectorXd x = factorization_->cholmod.solve(b);
   if (factorization_->cholmod.info() != Eigen::Success || !x.allFinite())
     throw Error(name_, "the sparse solve failed (non-finite result)");

@@ -27,7 +27,7 @@ std::vector<int> fill_reducing_order(const SparseMatrix& K, double* factor_flops
 
 // Factorizations predicted to take fewer floating-point operations than this are done simplicial (HarmonicFields
 // factors the three fields' concurrently, one per core), the others supernodal (dense BLAS kernels on supernodes,
-// one field after the other on BLAS threads). On small systems the supernodes are short and the dense kernels'
+// one field after the other, on one BLAS thread: core/util/blas_threads.h). On small systems the supernodes are short and the dense kernels'
 // overhead dominates, so the concurrent simplicial factorizations finish first; the bound is where the sequential
 // supernodal ones catch up on 2 cores (the factorization column of docs/benchmarks.md shows the current times).
 constexpr double kSupernodalAboveFlops = 2e9;
