@@ -8,6 +8,7 @@ packages=(
   libvtk9-dev libvtk9-qt-dev qtbase5-dev libqt5opengl5-dev
   libgdcm-dev  # DICOM series: scanning, any transfer syntax
   libgtest-dev
+  zlib1g-dev  # NIfTI headers of .nii.gz files are checked before VTK reads them
   libssl-dev  # SHA-256 of a run's outputs in its report's completion record
   calculix-ccx gmsh  # the FE export tests run the CalculiX solver and Gmsh on exported models
   xvfb xauth libgl1-mesa-dri
