@@ -3,7 +3,7 @@ BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
 DEMO_OUT ?= out/demo
 
-.PHONY: deps configure build demo test bench clean
+.PHONY: deps configure build demo test bench fuzz clean
 
 deps:
 	@bash scripts/install-deps.sh
@@ -23,6 +23,11 @@ test: build
 
 bench: build
 	$(BUILD_DIR)/bin/facehex bench
+
+# Every reader under libFuzzer for FUZZ_SECONDS each (default 600), in build-fuzz/ (docs/robustness.md).
+fuzz:
+	@bash scripts/install-deps.sh fuzz
+	@bash scripts/fuzz.sh
 
 clean:
 	rm -rf $(BUILD_DIR) $(BUILD_DIR).configure.log

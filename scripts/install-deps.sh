@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages FaceHex needs to build, test and run, only those missing.
+# `install-deps.sh fuzz` adds what the fuzz build needs (scripts/fuzz.sh): clang with libFuzzer and ASan, and the
+# LLVM OpenMP runtime clang links.
 set -euo pipefail
 packages=(
   cmake g++ make pkg-config
@@ -13,6 +15,7 @@ packages=(
   calculix-ccx gmsh  # the FE export tests run the CalculiX solver and Gmsh on exported models
   xvfb xauth libgl1-mesa-dri
 )
+if [ "${1:-}" = fuzz ]; then packages+=(clang libclang-rt-14-dev libomp-dev); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
