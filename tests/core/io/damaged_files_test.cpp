@@ -6,6 +6,7 @@
 
 #include "core/io/mesh_bytes.h"
 #include "core/io/mesh_io.h"
+#include "export_test_meshes.h"
 #include "io_test_util.h"
 
 namespace facehex {
@@ -143,6 +144,48 @@ TEST(DamagedFiles, ASurfaceWithANegativeCountIsAnErrorAndAGoodOneStillReads) {
   test::write_file(dir.file("bad.vtp"), text);
   test::expect_error([&] { read_surface_mesh(dir.file("bad.vtp")); }, "NumberOfPolys=\"-1\" is not a count",
                      dir.file("bad.vtp"));
+}
+
+// An .inp FaceHex wrote, cut at a line end anywhere before its last line, is refused: not read as a smaller mesh.
+TEST(DamagedFiles, AnAbaqusDeckCutAtALineEndIsRefused) {
+  TempDir dir;
+  const std::string whole = dir.file("whole.inp");
+  write_volume_mesh(whole, test::hex_wedge_slab());
+  EXPECT_EQ(read_volume_mesh(whole).num_cells(), test::hex_wedge_slab().num_cells());
+  const std::string text = test::read_file(whole);
+  std::vector<size_t> line_ends;
+  for (size_t at = text.find('\n'); at + 1 < text.size(); at = text.find('\n', at + 1)) line_ends.push_back(at + 1);
+  // Cuts among the nodes, the elements, the side sets and just before the last line.
+  for (const double fraction : {0.1, 0.3, 0.6, 0.9, 1.0}) {
+    const size_t cut = line_ends[std::min(line_ends.size() - 1, static_cast<size_t>(fraction * line_ends.size()))];
+    const std::string file = dir.file("cut" + std::to_string(cut) + ".inp");
+    test::write_prefix(whole, file, cut);
+    test::expect_error([&] { read_volume_mesh(file); }, file + ": ", "cut at byte " + std::to_string(cut));
+    test::expect_error([&] { read_volume_mesh(file); }, "cut short", "cut at byte " + std::to_string(cut));
+  }
+}
+
+// Two elements on the same nodes double the stiffness there, and no solver says so: the FE exports refuse them, even
+// when forced, and leave no file.
+TEST(DamagedFiles, DuplicateCellsAreNotExported) {
+  TempDir dir;
+  VolumeMesh m = test::hex_wedge_slab();
+  const int n = m.num_cells();
+  m.C.conservativeResize(n + 1, Eigen::NoChange);
+  m.C.row(n) = m.C.row(2);
+  std::swap(m.C(n, 0), m.C(n, 1));  // the same nodes in another order
+  m.types.push_back(m.types[2]);
+  for (auto& [name, a] : m.cell_data) a.conservativeResize(n + 1, Eigen::NoChange), a.row(n) = a.row(2);
+  for (const char* name : {"dup.inp", "dup.feb"})
+    for (const bool forced : {false, true}) {
+      MeshWriteOptions options;
+      options.allow_inverted = forced;
+      const std::string file = dir.file(name);
+      test::expect_error([&] { write_volume_mesh(file, m, options); },
+                         file + ": refusing to export: 1 of " + std::to_string(n + 1) +
+                             " elements repeat the nodes of an earlier element (element ids " + std::to_string(n + 1));
+    }
+  EXPECT_TRUE(dir.entries().empty());
 }
 
 TEST(MeshBytes, ASurfaceRoundTripIsBitIdentical) {
