@@ -6,6 +6,7 @@
 
 #include "core/io/mesh_bytes.h"
 #include "core/io/mesh_io.h"
+#include "core/util/child_process.h"
 #include "export_test_meshes.h"
 #include "io_test_util.h"
 
@@ -186,6 +187,25 @@ TEST(DamagedFiles, DuplicateCellsAreNotExported) {
                              " elements repeat the nodes of an earlier element (element ids " + std::to_string(n + 1));
     }
   EXPECT_TRUE(dir.entries().empty());
+}
+
+// A reader that runs out of memory says which file it was reading: here a child process with a small memory budget
+// reads a TetGen file larger than that budget.
+TEST(DamagedFiles, RunningOutOfMemoryNamesTheFile) {
+  TempDir dir;
+  std::string nodes = "2000000 3 0 0\n";
+  for (int i = 0; i < 2000000; ++i) nodes += std::to_string(i) + " 0.5 0.25 0.125\n";
+  test::write_file(dir.file("big.node"), nodes);
+  test::write_file(dir.file("big.ele"), "1 4 0\n0 0 1 2 3\n");
+  ChildLimits limits;
+  limits.memory_bytes = std::size_t{8} << 20;
+  limits.seconds = 60;
+  test::expect_error(
+      [&] {
+        compute_in_child(
+            "the test", "reading", [&] { return io::to_bytes(read_volume_mesh(dir.file("big.node"))); }, limits);
+      },
+      dir.file("big.node") + ": not enough memory to read it");
 }
 
 TEST(MeshBytes, ASurfaceRoundTripIsBitIdentical) {
