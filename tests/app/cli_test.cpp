@@ -140,6 +140,7 @@ TEST_F(Cli, UsageErrorsExitTwoAndWriteNothing) {
       {"fields " + tets + " -o " + path("a.vtu") + " --iterations 1e9", "--iterations expects a number from 0 to 100"},
       {"sides " + tets + " -o " + path("a.vtu") + " --max-layers 1e12", "--max-layers expects a number from 1 to 64"},
       {"fields " + tets + " -o " + path("a.vtu") + " --iterations 2.5", "--iterations expects an integer"},
+      {"bench --sizes 1000000000000", "--sizes: expects tet counts up to"},
   };
   for (const auto& [args, needle] : cases) {
     const Result r = run(args);
@@ -678,6 +679,22 @@ TEST_F(Cli, ErrorsExitOneWithOneLineAndSuggestOnlyOptionsThatExist) {
   }
   EXPECT_FALSE(fs::exists(path("out.vtu")));
   EXPECT_FALSE(fs::exists(path("out")));
+}
+
+// An output that cannot be written is refused before the work starts (segmenting the bundled CT takes a while).
+TEST_F(Cli, OutputsAreCheckedBeforeTheWork) {
+  write("file.txt", "not a folder");
+  const std::string tets = std::string(FACEHEX_TEST_DATA_DIR) + "/io/tets1.node", out = path("file.txt/out");
+  for (const std::string& args :
+       {"segment " + facehex::default_ct() + " -o " + out + ".vtu", "convert " + tets + " " + out + ".vtu",
+        "fields " + tets + " -o " + out + ".vtu", "constraints " + tets + " -o " + out + ".json",
+        "sides " + tets + " -o " + out + ".vtu", "map --patient " + tets + " -o " + out + ".vtu",
+        "segment " + facehex::default_ct() + " -o " + path("m.vtu") + " --write-landmarks " + out + ".json"}) {
+    const Result r = run(args);
+    EXPECT_EQ(r.status, 1) << args << ": " << r.output;
+    EXPECT_NE(r.output.find("error: " + out), std::string::npos) << args << ": " << r.output;
+    EXPECT_EQ(r.output.find("segmentation:"), std::string::npos) << args << ": " << r.output;
+  }
 }
 
 // A mesh with an inverted and a flat tet reads, and info says so.
