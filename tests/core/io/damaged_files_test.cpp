@@ -166,6 +166,31 @@ TEST(DamagedFiles, AnAbaqusDeckCutAtALineEndIsRefused) {
   }
 }
 
+// An XML character reference the FEBio reader cannot decode, or elements nested without end, are errors naming the
+// file (they were an exception naming nothing and a stack overflow); sound references decode.
+TEST(DamagedFiles, FebioCharacterReferencesAndNestingAreChecked) {
+  TempDir dir;
+  const std::string sound = test::read_file(std::string(FACEHEX_TEST_DATA_DIR) + "/export/hex_wedge.feb");
+  const auto with_first_node = [&](const std::string& text) {
+    std::string s = sound;
+    const std::string node = "<node id=\"1\">0,0,0</node>";
+    return s.replace(s.find(node), node.size(), "<node id=\"1\">" + text + "</node>");
+  };
+  test::write_file(dir.file("decoded.feb"), with_first_node("&#50;,&#x33;,0"));
+  EXPECT_EQ(read_volume_mesh(dir.file("decoded.feb")).V.row(0), Eigen::RowVector3d(2, 3, 0));
+  int n = 0;
+  for (const char* reference : {"&#x;", "&#xZZ;", "&#99999999999;", "&#0;", "&#-5;"}) {
+    const std::string file = dir.file("bad" + std::to_string(n++) + ".feb");
+    test::write_file(file, with_first_node(std::string(reference) + ",0,0"));
+    test::expect_error([&] { read_volume_mesh(file); }, file + ": '" + reference + "' is not a character");
+  }
+  std::string deep;
+  for (int i = 0; i < 100000; ++i) deep += "<a>";
+  test::write_file(dir.file("deep.feb"), deep);
+  test::expect_error([&] { read_volume_mesh(dir.file("deep.feb")); },
+                     dir.file("deep.feb") + ": elements nested more than 100 deep");
+}
+
 // Two elements on the same nodes double the stiffness there, and no solver says so: the FE exports refuse them, even
 // when forced, and leave no file.
 TEST(DamagedFiles, DuplicateCellsAreNotExported) {
