@@ -247,6 +247,10 @@ class AbaqusReader {
         const long first = integer(f[0], "first node"), last = integer(f[1], "last node");
         const long step = f.size() == 3 ? integer(f[2], "step") : 1;
         if (step <= 0 || last < first) in_.fail("*NSET, GENERATE needs first <= last and a positive step");
+        // Each id generated must be a node defined before: a damaged range would otherwise fill memory.
+        if ((last - first) / step >= static_cast<long>(node_index_.size()))
+          in_.fail("*NSET, GENERATE covers more ids than the " + std::to_string(node_index_.size()) +
+                   " nodes defined before it");
         for (long id = first; id <= last; id += step) ids.push_back(id);
         continue;
       }

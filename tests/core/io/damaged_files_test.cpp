@@ -191,6 +191,18 @@ TEST(DamagedFiles, FebioCharacterReferencesAndNestingAreChecked) {
                      dir.file("deep.feb") + ": elements nested more than 100 deep");
 }
 
+// A node set generated over a damaged range is refused before it fills memory.
+TEST(DamagedFiles, AnAbaqusNodeSetRangeBeyondTheNodesIsRefused) {
+  TempDir dir;
+  const std::string deck =
+      "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n*ELEMENT, TYPE=C3D4\n1, 1, 2, 3, 4\n"
+      "*NSET, NSET=S, GENERATE\n";
+  test::write_file(dir.file("sound.inp"), deck + "1, 4, 1\n");
+  EXPECT_EQ(read_volume_mesh(dir.file("sound.inp")).num_cells(), 1);
+  test::write_file(dir.file("huge.inp"), deck + "1, 100000000000, 1\n");
+  expect_quick_error(dir.file("huge.inp"), "huge.inp: *NSET, GENERATE covers more ids than the 4 nodes defined");
+}
+
 // Two elements on the same nodes double the stiffness there, and no solver says so: the FE exports refuse them, even
 // when forced, and leave no file.
 TEST(DamagedFiles, DuplicateCellsAreNotExported) {
