@@ -681,6 +681,20 @@ TEST_F(Cli, ErrorsExitOneWithOneLineAndSuggestOnlyOptionsThatExist) {
   EXPECT_FALSE(fs::exists(path("out")));
 }
 
+// README: "Every command has --help": it prints the command's usage and exits 0, as --help of the tool does.
+TEST_F(Cli, EveryCommandHasHelp) {
+  const std::string commands = run("--help").output;
+  int listed = 0;
+  for (const char* command : {"info", "convert", "sides", "fields", "map", "quality", "run", "standards", "template",
+                              "segment", "constraints", "bench", "compare"}) {
+    listed += commands.find(std::string("  ") + command + " ") != std::string::npos;
+    const Result r = run(std::string(command) + " --help");
+    EXPECT_EQ(r.status, 0) << command << ": " << r.output;
+    EXPECT_EQ(r.output.rfind(std::string("usage: facehex ") + command, 0), 0u) << command << ": " << r.output;
+  }
+  EXPECT_EQ(listed, 13) << commands;
+}
+
 // An output that cannot be written is refused before the work starts (segmenting the bundled CT takes a while).
 TEST_F(Cli, OutputsAreCheckedBeforeTheWork) {
   write("file.txt", "not a folder");
