@@ -43,9 +43,9 @@ int cmd_fields(const Argv& argv) {
     throw Error(path, "no constraint set given and the model has no \"side_mask\" array (use --constraints)");
   const ConstraintSet set = args.has("constraints") ? read_constraint_set(args.get("constraints")) : side_constraints();
   TerminalProgress progress;
-  const ModelParameterization p = parameterize_model(domain.V, domain.T, domain.side_mask, set,
-                                                     args.has("constraints") ? args.get("constraints") : path,
-                                                     field_opts, progress.callback());
+  const ModelParameterization p =
+      parameterize_model(domain.V, domain.T, domain.side_mask, set,
+                         args.has("constraints") ? args.get("constraints") : path, field_opts, progress.callback());
   progress.finish();
   VolumeMesh out = parameterized_tet_mesh(p, &mesh);
   if (domain.side_mask.size() == p.V.rows()) out.point_data[kSideMaskArray] = domain.side_mask.cast<double>();
