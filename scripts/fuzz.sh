@@ -37,10 +37,13 @@ status=0
 for reader in "${readers[@]}"; do
   out=$build/fuzz/$reader
   mkdir -p "$out/corpus" "$out/findings"
+  dict=()
+  [ -f "tests/fuzz/dict/$reader.dict" ] && dict=(-dict="tests/fuzz/dict/$reader.dict")
   start=$(date +%s)
   # The first folder receives the new inputs; the committed seeds stay as they are.
   nice -n 10 "$build/bin/fuzz_$reader" -max_total_time="$seconds" -timeout="$timeout_s" -rss_limit_mb="$rss_mb" \
-    -max_len=65536 -print_final_stats=1 -artifact_prefix="$out/findings/" "$out/corpus" "tests/fuzz/corpus/$reader" \
+    -max_len=65536 -print_final_stats=1 -artifact_prefix="$out/findings/" "${dict[@]}" "$out/corpus" \
+    "tests/fuzz/corpus/$reader" \
     > "$out/log.txt" 2>&1 || true
   elapsed=$(($(date +%s) - start))
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$out/log.txt" | tail -1)
