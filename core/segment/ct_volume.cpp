@@ -61,14 +61,16 @@ struct FileVolume {
 CtOrientation nifti_axes(const std::string& path, vtkMatrix4x4* m) {
   constexpr double kAligned = 0.999;  // cosine: within about 2.5 degrees of a patient axis
   CtOrientation axes;
+  bool used[3] = {false, false, false};
   for (int a = 0; a < 3; ++a) {
     const Eigen::Vector3d column =
         Eigen::Vector3d(m->GetElement(0, a), m->GetElement(1, a), m->GetElement(2, a)).normalized();
     int world = 0;
-    if (!(column.cwiseAbs().maxCoeff(&world) > kAligned))
-      throw Error(path, std::string("its NIfTI orientation is oblique (voxel axis ") + char('x' + a) +
-                            " is not along a patient axis): resample it to the patient axes, or give the axes with "
-                            "--anterior and --superior");
+    if (!(column.cwiseAbs().maxCoeff(&world) > kAligned) || used[world])
+      throw Error(path, std::string("its NIfTI orientation is oblique or degenerate (voxel axis ") + char('x' + a) +
+                            " is not along a patient axis of its own): resample it to the patient axes, or give the "
+                            "axes with --anterior and --superior");
+    used[world] = true;
     const std::string axis = std::string(column(world) > 0 ? "+" : "-") + char('x' + a);
     if (world == 1) axes.anterior = axis;
     if (world == 2) axes.superior = axis;
