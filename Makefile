@@ -6,7 +6,7 @@ COHORT_OUT ?= out/cohort-demo
 # Coarse enough for a quick demo, fine enough for the automatic landmarks of the bundled CT to be plausible.
 COHORT_EDGE_LENGTH ?= 3
 
-.PHONY: deps configure build demo cohort-demo test bench clean
+.PHONY: deps configure build demo cohort-demo test bench fuzz clean
 
 deps:
 	@bash scripts/install-deps.sh
@@ -29,6 +29,11 @@ test: build
 
 bench: build
 	$(BUILD_DIR)/bin/facehex bench
+
+# Every reader under libFuzzer for FUZZ_SECONDS each (default 600), in build-fuzz/ (docs/robustness.md).
+fuzz:
+	@bash scripts/install-deps.sh fuzz
+	@bash scripts/fuzz.sh
 
 clean:
 	rm -rf $(BUILD_DIR) $(BUILD_DIR).configure.log

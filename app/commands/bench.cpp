@@ -26,6 +26,7 @@
 #include "core/segment/ct_volume.h"
 #include "core/segment/voxel_grid.h"
 #include "core/standard/parameterization_cache.h"
+#include "core/tetgen/tetrahedralize.h"
 #include "core/util/error.h"
 #include "core/util/resources.h"
 #include "core/util/stopwatch.h"
@@ -228,6 +229,12 @@ int cmd_bench(const Argv& argv) {
     }
   }
   const std::vector<long> sizes = patients.empty() ? parse_counts("--sizes", args.get("sizes")) : std::vector<long>{};
+  const long most = static_cast<long>(max_tets_for_memory());
+  for (const long n : sizes)
+    if (n > most)
+      throw UsageError("--sizes", "expects tet counts up to " + std::to_string(most) +
+                                      ", what this machine's memory carries through a transfer; got " +
+                                      std::to_string(n));
 
   const BenchStandard standard = bench_standard(args);
   nlohmann::json results = nlohmann::json::array();

@@ -7,6 +7,7 @@
 #include "core/face/landmark_file.h"
 #include "core/io/mesh_io.h"
 #include "core/standard/own_feature_values.h"
+#include "core/util/atomic_file.h"
 #include "core/util/error.h"
 #include "core/util/resources.h"
 
@@ -29,6 +30,8 @@ int cmd_constraints(const Argv& argv) {
       .flag("own-values", "take the feature values from the model's own fields (for a standard)");
   if (!args.parse(argv)) return 0;
   if (!args.has("output")) throw UsageError("facehex constraints", "missing -o OUTPUT");
+  check_writable_file(args.get("output"));
+  if (args.has("write-landmarks")) check_writable_file(args.get("write-landmarks"));
   const std::string path = args.get("MODEL");
   const VolumeMesh mesh = read_volume_mesh(path);
   const Eigen::VectorXi mask = side_mask_of(mesh);

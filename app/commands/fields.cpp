@@ -7,6 +7,7 @@
 #include "core/fields/parameterization.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh/mesh_check.h"
+#include "core/util/atomic_file.h"
 #include "core/util/error.h"
 #include "core/workflow/standard_setup.h"
 #include "core/workflow/transfer.h"
@@ -25,6 +26,7 @@ int cmd_fields(const Argv& argv) {
   add_field_options(args);
   if (!args.parse(argv)) return 0;
   if (!args.has("output")) throw UsageError("facehex fields", "missing -o OUTPUT");
+  check_writable_file(args.get("output"));
   const std::string path = args.get("MODEL");
   MeshReadOptions ro;
   ro.target_edge_length = args.number("edge-length", kLeastEdgeLength, kMostEdgeLength);
@@ -41,9 +43,9 @@ int cmd_fields(const Argv& argv) {
     throw Error(path, "no constraint set given and the model has no \"side_mask\" array (use --constraints)");
   const ConstraintSet set = args.has("constraints") ? read_constraint_set(args.get("constraints")) : side_constraints();
   TerminalProgress progress;
-  const ModelParameterization p = parameterize_model(domain.V, domain.T, domain.side_mask, set,
-                                                     args.has("constraints") ? args.get("constraints") : path,
-                                                     field_opts, progress.callback());
+  const ModelParameterization p =
+      parameterize_model(domain.V, domain.T, domain.side_mask, set,
+                         args.has("constraints") ? args.get("constraints") : path, field_opts, progress.callback());
   progress.finish();
   VolumeMesh out = parameterized_tet_mesh(p, &mesh);
   if (domain.side_mask.size() == p.V.rows()) out.point_data[kSideMaskArray] = domain.side_mask.cast<double>();

@@ -4,6 +4,7 @@
 #include "app/commands/commands.h"
 #include "core/fields/constraint_set.h"
 #include "core/io/mesh_io.h"
+#include "core/mesh/corner_jacobian.h"
 #include "core/mesh/sides.h"
 
 namespace facehex::cli {
@@ -26,6 +27,13 @@ int cmd_info(const Argv& argv) {
         return (m & side_bit(static_cast<Side>(s))) != 0;
       });
     std::cout << "\n";
+  }
+  // A mesh with inverted or flat cells reads fine but no solver or transfer can use it: say so.
+  const CornerJacobianCheck cells = check_corner_jacobians(m);
+  std::cout << "  inverted cells " << cells.inverted.size() << ", flat cells " << cells.degenerate.size() << "\n";
+  if (const std::vector<int> unusable = cells.unusable(); !unusable.empty()) {
+    std::cerr << "warning: " << path << ": " << cells.inverted.size() << " inverted and " << cells.degenerate.size()
+              << " flat cells (first: cell " << unusable.front() << ", 0-based)\n";
   }
   std::cout << "  arrays:";
   for (const auto& [name, a] : m.point_data) std::cout << " " << name << "(point," << a.cols() << ")";

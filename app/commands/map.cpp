@@ -8,6 +8,7 @@
 #include "app/transfer_options.h"
 #include "core/io/mesh_io.h"
 #include "core/segment/patient_input.h"
+#include "core/util/atomic_file.h"
 #include "core/util/error.h"
 #include "core/util/resources.h"
 #include "core/workflow/transfer.h"
@@ -44,6 +45,8 @@ int cmd_map(const Argv& argv) {
   add_transfer_options(args);
   if (!args.parse(argv)) return 0;
   if (!args.has("patient") || !args.has("output")) throw UsageError("facehex map", "needs --patient and -o OUTPUT");
+  check_writable_file(args.get("output"));
+  if (args.has("report")) check_writable_file(args.get("report"));
   if (args.get("method") == "mesh-matching") {
     // The baseline registers the surfaces: it needs no constraints, and the standard no parameterization domain.
     const BundledModel standard = find_standard(args.get("standard"));

@@ -9,6 +9,7 @@
 #include "core/mesh/sides.h"
 #include "core/segment/ct_volume.h"
 #include "core/segment/patient_input.h"
+#include "core/util/atomic_file.h"
 #include "core/util/error.h"
 
 namespace facehex::cli {
@@ -27,6 +28,8 @@ int cmd_segment(const Argv& argv) {
   add_segment_options(args);
   if (!args.parse(argv)) return 0;
   if (!args.has("output")) throw UsageError("facehex segment", "missing -o OUTPUT");
+  check_writable_file(args.get("output"));
+  if (args.has("write-landmarks")) check_writable_file(args.get("write-landmarks"));
   const SegmentOptions options = segment_options(args);
   if (!is_ct_input(args.get("CT")))
     throw Error(args.get("CT"), "not a CT volume (.mhd, .mha, .nii, .nii.gz, .nrrd, or a DICOM folder)");

@@ -8,6 +8,7 @@
 
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
+#include "core/util/json_errors.h"
 
 namespace facehex {
 namespace {
@@ -135,7 +136,12 @@ std::vector<NamedLandmark> read_landmark_file(const std::string& path) {
     throw Error(path, std::string("not valid JSON (") + e.what() + ")");
   }
   if (!doc.is_object()) throw Error(path, "a landmark file holds one JSON object");
-  std::vector<NamedLandmark> out = is_slicer(path) ? read_slicer(path, doc) : read_facehex(path, doc);
+  std::vector<NamedLandmark> out;
+  try {
+    out = is_slicer(path) ? read_slicer(path, doc) : read_facehex(path, doc);
+  } catch (const json::exception& e) {  // a value of another type than the format's, e.g. a number for a markup
+    throw Error(path, "a value has the wrong type: " + without_json_error_code(e.what()));
+  }
   if (out.empty()) throw Error(path, "holds no landmark");
   return out;
 }

@@ -7,6 +7,7 @@
 
 #include "core/mesh/tet_topology.h"
 #include "core/util/error.h"
+#include "core/util/json_errors.h"
 #include "core/util/text_file.h"
 
 namespace facehex {
@@ -94,11 +95,8 @@ json selection_json(const Selection& s) {
 // An exception's message for the user: a JSON library error ("[json.exception.type_error.302] type must be number,
 // but is string") as "a value has the wrong type: type must be number, but is string".
 std::string message_of(const std::exception& e) {
-  const std::string what = e.what();
-  if (dynamic_cast<const nlohmann::json::exception*>(&e) == nullptr) return what;
-  const size_t code_end = what.find("] ");
-  return "a value has the wrong type or is missing: " +
-         (code_end == std::string::npos ? what : what.substr(code_end + 2));
+  if (dynamic_cast<const nlohmann::json::exception*>(&e) == nullptr) return e.what();
+  return "a value has the wrong type or is missing: " + without_json_error_code(e.what());
 }
 
 }  // namespace
@@ -108,9 +106,7 @@ ConstraintSet parse_constraint_set(const std::string& json_text, const std::stri
   try {
     root = json::parse(json_text);
   } catch (const json::exception& e) {
-    const std::string what = e.what();  // without the library's error code
-    throw Error(source,
-                "not valid JSON: " + what.substr(what.find("] ") == std::string::npos ? 0 : what.find("] ") + 2));
+    throw Error(source, "not valid JSON: " + without_json_error_code(e.what()));
   }
   ConstraintSet set;
   try {

@@ -7,7 +7,8 @@
 namespace facehex {
 
 GradientFields orthogonal_targets(const GradientFields& gradients, const std::array<int, 3>& order) {
-  const auto [b, s, t] = order;
+  // Plain variables, not a structured binding: OpenMP regions cannot capture bindings before C++20 (clang refuses).
+  const int b = order[0], s = order[1], t = order[2];
   GradientFields out = gradients;
   const Eigen::Index n = gradients[0].rows();
 #pragma omp parallel for schedule(static)

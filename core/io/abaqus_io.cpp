@@ -8,6 +8,7 @@
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <unordered_map>
 
 #include "core/io/fe_sets.h"
@@ -22,7 +23,8 @@ namespace {
 constexpr const char* kMaterial = "SOFT_TISSUE";
 constexpr const char* kDistribution = "FRAMES";
 constexpr const char* kOrientation = "FRAME";
-constexpr int kIdsPerLine = 16;  // the Abaqus limit for data lines of *NSET and *ELSET
+constexpr int kIdsPerLine = 16;                        // the Abaqus limit for data lines of *NSET and *ELSET
+constexpr std::string_view kHeadingSizes = " mesh: ";  // in the heading, before the sizes
 
 const char* abaqus_type(CellType type) {
   switch (type) {
@@ -138,10 +140,14 @@ class AbaqusReader {
         more = read_node_set(kw);
       } else if (kw.name == "DISTRIBUTION") {
         more = read_distribution();
+      } else if (kw.name == "HEADING") {
+        more = read_heading();
       } else {
+        if (kw.name == "SOLID SECTION") saw_solid_section_ = true;
         while (more && !is_keyword(in_.line())) more = advance();
       }
     }
+    check_declared_sizes();
     return build();
   }
 
@@ -241,6 +247,10 @@ class AbaqusReader {
         const long first = integer(f[0], "first node"), last = integer(f[1], "last node");
         const long step = f.size() == 3 ? integer(f[2], "step") : 1;
         if (step <= 0 || last < first) in_.fail("*NSET, GENERATE needs first <= last and a positive step");
+        // Each id generated must be a node defined before: a damaged range would otherwise fill memory.
+        if ((last - first) / step >= static_cast<long>(node_index_.size()))
+          in_.fail("*NSET, GENERATE covers more ids than the " + std::to_string(node_index_.size()) +
+                   " nodes defined before it");
         for (long id = first; id <= last; id += step) ids.push_back(id);
         continue;
       }
@@ -256,6 +266,47 @@ class AbaqusReader {
       }
     }
     return more;
+  }
+
+  // The heading FaceHex writes, "FaceHex VERSION mesh: N nodes, M C3D8, ...; units ...", declares the deck's sizes.
+  bool read_heading() {
+    bool more = true;
+    for (; more && !is_keyword(in_.line()); more = advance()) {
+      const std::string_view line = trim(in_.line());
+      const size_t at = line.find(kHeadingSizes), end = line.find(';');
+      if (line.substr(0, 8) != "FaceHex " || at == std::string_view::npos || end == std::string_view::npos || end < at)
+        continue;
+      std::map<std::string, long> sizes;
+      for (std::string_view item :
+           comma_fields(line.substr(at + kHeadingSizes.size(), end - at - kHeadingSizes.size()))) {
+        const std::vector<std::string_view> words = split_fields(item);
+        long n;
+        if (words.size() != 2 || !parse_integer(words[0], &n)) in_.fail("unreadable sizes in the FaceHex heading");
+        sizes[std::string(words[1])] = n;
+      }
+      declared_sizes_ = sizes;
+    }
+    return more;
+  }
+
+  // A deck FaceHex wrote must hold what its heading declares and reach its *SOLID SECTION, the last line written:
+  // a copy cut short at a line end would otherwise read as a smaller mesh.
+  void check_declared_sizes() const {
+    if (!declared_sizes_) return;
+    std::map<std::string, long> found = {{"nodes", static_cast<long>(coords_.size() / 3)}};
+    for (const Element& e : elements_) ++found[abaqus_type(e.type)];
+    const auto describe = [](const std::map<std::string, long>& sizes) {
+      std::string s;
+      for (const auto& [what, n] : sizes) s += (s.empty() ? "" : ", ") + std::to_string(n) + " " + what;
+      return s;
+    };
+    if (found != *declared_sizes_) {
+      throw Error(in_.path(), "holds " + describe(found) + " where its FaceHex heading declares " +
+                                  describe(*declared_sizes_) + ": the file was cut short or edited");
+    }
+    if (!saw_solid_section_) {
+      throw Error(in_.path(), "ends before its *SOLID SECTION, the last line FaceHex writes: the file was cut short");
+    }
   }
 
   // "*DISTRIBUTION": a default line ", a, b", then "element, a, b" lines; a and b span the local 1-2 plane.
@@ -344,6 +395,8 @@ class AbaqusReader {
   std::unordered_map<long, int> node_index_;
   std::vector<Element> elements_;
   std::map<std::string, std::vector<long>> node_sets_;
+  std::optional<std::map<std::string, long>> declared_sizes_;  // "nodes", "C3D8", ... from a FaceHex heading
+  bool saw_solid_section_ = false;
   bool have_distribution_ = false;
   Eigen::Matrix3d default_frame_ = Eigen::Matrix3d::Identity();
   std::map<long, Eigen::Matrix3d> frames_;
@@ -374,7 +427,7 @@ void write_abaqus(const std::string& file, const VolumeMesh& mesh) {
   std::ofstream out(file);
   if (!out) throw Error(file, "cannot open for writing");
 
-  out << "*HEADING\nFaceHex " << FACEHEX_VERSION << " mesh: " << mesh.num_vertices() << " nodes";
+  out << "*HEADING\nFaceHex " << FACEHEX_VERSION << kHeadingSizes << mesh.num_vertices() << " nodes";
   for (CellType t : types) out << ", " << mesh.count(t) << ' ' << abaqus_type(t);
   out << "; units mm, N, MPa\n"
       << "** The model only: *INCLUDE it in a job that adds the *STEP (docs/export.md).\n"

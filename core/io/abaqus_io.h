@@ -17,7 +17,9 @@
 // The reader takes *NODE, *ELEMENT (C3D8*, C3D6*, C3D4*: linear bricks, wedges, tets with any R/H/I suffix),
 // *NSET (ids, set names, GENERATE) and one *DISTRIBUTION, and skips every other keyword with its data lines. Node and
 // element ids may have gaps; cells are ordered by element id. Node sets named after the sides become point data
-// "side_mask", the distribution becomes cell data "frame_e1".."frame_e3" (fe_sets.h). *INCLUDE is an error.
+// "side_mask", the distribution becomes cell data "frame_e1".."frame_e3" (fe_sets.h). *INCLUDE is an error. A deck
+// with the writer's heading ("FaceHex VERSION mesh: N nodes, M C3D8, ...") must hold those sizes and reach its
+// *SOLID SECTION, else it is refused as cut short; other decks have no counts to check against.
 #include <string>
 
 #include "core/mesh/mesh.h"

@@ -1,6 +1,8 @@
 #include "core/io/fe_sets.h"
 
 #include <algorithm>
+#include <array>
+#include <set>
 
 #include "core/fields/constraint_set.h"
 #include "core/mesh/cell_faces.h"
@@ -21,6 +23,19 @@ std::string describe_cells(const std::vector<int>& cells, int total, const std::
   if (cells.size() > kShown) ids += ", ...";
   return std::to_string(cells.size()) + " of " + std::to_string(total) + " elements " + what + " (element ids " + ids +
          ")";
+}
+
+// Cells whose nodes, in any order, are those of an earlier cell; ascending.
+std::vector<int> repeated_cells(const VolumeMesh& mesh) {
+  std::set<std::array<int, 8>> seen;
+  std::vector<int> repeated;
+  for (int c = 0; c < mesh.num_cells(); ++c) {
+    std::array<int, 8> nodes;
+    for (int k = 0; k < 8; ++k) nodes[k] = mesh.C(c, k);
+    std::sort(nodes.begin(), nodes.end());
+    if (!seen.insert(nodes).second) repeated.push_back(c);
+  }
+  return repeated;
 }
 
 }  // namespace
@@ -111,6 +126,11 @@ void attach_frames(VolumeMesh& mesh, const MaterialFrames& frames) {
 }
 
 void check_fe_exportable(const std::string& path, const VolumeMesh& mesh, bool allow_inverted) {
+  if (const std::vector<int> repeated = repeated_cells(mesh); !repeated.empty()) {
+    throw Error(path, "refusing to export: " +
+                          describe_cells(repeated, mesh.num_cells(), "repeat the nodes of an earlier element") +
+                          ", which would double the stiffness there; remove the duplicates");
+  }
   if (allow_inverted) return;
   const std::string force = "; fix the mesh, or force the export (--force-export)";
   const CornerJacobianCheck check = check_corner_jacobians(mesh);

@@ -74,7 +74,8 @@ void attach_frames(VolumeMesh& mesh, const MaterialFrames& frames);
 
 // FE solvers fail on inverted elements, and an element without a frame would silently get the global axes: unless
 // allow_inverted, throws facehex::Error(path, ...) naming how many elements are inverted (corner_jacobian.h) or have a
-// degenerate frame, and the first of their (1-based) element ids.
+// degenerate frame, and the first of their (1-based) element ids. Elements on the nodes of another are refused even
+// then: a solver takes both without a word and doubles the stiffness there, and FaceHex's own meshes never have them.
 void check_fe_exportable(const std::string& path, const VolumeMesh& mesh, bool allow_inverted);
 
 // The sets and frames as data arrays, for formats without named sets (.vtu, .vtk): point data "nset_<NAME>" (0 or 1

@@ -117,8 +117,7 @@ class XmlParser {
       if (const auto it = named.find(entity); it != named.end()) {
         out += it->second;
       } else if (entity.size() > 1 && entity[0] == '#') {
-        const bool hex = entity[1] == 'x';
-        out += static_cast<char>(std::stoi(std::string(entity.substr(hex ? 2 : 1)), nullptr, hex ? 16 : 10));
+        out += character(entity.substr(1));
       } else {
         fail("unknown entity &" + std::string(entity) + ";");
       }
@@ -126,7 +125,32 @@ class XmlParser {
     }
     return out;
   }
-  XmlElement element() {
+  // "&#65;" or "&#x41;" (given without "&#" and ";"): the character, UTF-8 encoded.
+  std::string character(std::string_view digits) {
+    const bool hex = !digits.empty() && (digits[0] == 'x' || digits[0] == 'X');
+    const std::string_view number = hex ? digits.substr(1) : digits;
+    bool valid = !number.empty() && number.size() <= 8;  // no overflow below
+    unsigned long code = 0;
+    for (const char c : number) {
+      const int d = std::isdigit(static_cast<unsigned char>(c))           ? c - '0'
+                    : hex && std::isxdigit(static_cast<unsigned char>(c)) ? std::tolower(c) - 'a' + 10
+                                                                          : -1;
+      valid = valid && d >= 0;
+      code = code * (hex ? 16 : 10) + (d >= 0 ? d : 0);
+    }
+    if (!valid || code == 0 || code > 0x10FFFF) fail("'&#" + std::string(digits) + ";' is not a character");
+    if (code < 0x80) return std::string(1, static_cast<char>(code));
+    const int more = code < 0x800 ? 1 : code < 0x10000 ? 2 : 3;  // continuation bytes
+    static constexpr unsigned char kLead[] = {0, 0xC0, 0xE0, 0xF0};
+    std::string utf8(1, static_cast<char>(kLead[more] | (code >> (6 * more))));
+    for (int k = more - 1; k >= 0; --k) utf8 += static_cast<char>(0x80 | ((code >> (6 * k)) & 0x3F));
+    return utf8;
+  }
+  // FEBio files nest a few levels; recursion this deep is a damaged or hostile file, and would overflow the stack.
+  static constexpr int kMaxDepth = 100;
+
+  XmlElement element(int depth = 0) {
+    if (depth >= kMaxDepth) fail("elements nested more than " + std::to_string(kMaxDepth) + " deep");
     XmlElement e;
     e.line = line();
     ++pos_;  // '<'
@@ -173,7 +197,7 @@ class XmlParser {
       } else if (starts_with("<!--") || starts_with("<?")) {
         skip_misc();
       } else {
-        e.children.push_back(element());
+        e.children.push_back(element(depth + 1));
       }
     }
   }

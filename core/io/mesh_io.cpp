@@ -16,6 +16,7 @@
 #include "core/tetgen/tetrahedralize.h"
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
+#include "core/util/memory_errors.h"
 
 namespace facehex {
 
@@ -66,7 +67,9 @@ std::vector<std::string> readable_volume_extensions() {
 
 std::vector<std::string> writable_volume_extensions() { return {".vtu", ".vtk", ".msh", ".inp", ".feb"}; }
 
-VolumeMesh read_volume_mesh(const std::string& path, const MeshReadOptions& options) {
+namespace {
+
+VolumeMesh read_volume_mesh_of_kind(const std::string& path, const MeshReadOptions& options) {
   const std::string ext = io::lower_extension(path);
   const std::vector<std::string> readable = readable_volume_extensions();
   if (std::find(readable.begin(), readable.end(), ext) == readable.end()) {
@@ -88,6 +91,12 @@ VolumeMesh read_volume_mesh(const std::string& path, const MeshReadOptions& opti
   } catch (const Error& e) {
     throw Error(path, std::string("cannot tetrahedralize the surface: ") + e.what());
   }
+}
+
+}  // namespace
+
+VolumeMesh read_volume_mesh(const std::string& path, const MeshReadOptions& options) {
+  return naming_memory_errors(path, "read it", [&] { return read_volume_mesh_of_kind(path, options); });
 }
 
 void write_volume_mesh(const std::string& path, const VolumeMesh& mesh, const MeshWriteOptions& options) {

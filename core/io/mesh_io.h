@@ -11,8 +11,8 @@
 // TetGen at MeshReadOptions::target_edge_length.
 //
 // Every failure is a facehex::Error whose message names the file and the problem (unknown extension, missing file,
-// truncated or malformed content, out-of-range node ids, unsupported cell types). Writers never leave a partial
-// file (see core/atomic_file.h).
+// truncated or malformed content, out-of-range node ids, unsupported cell types, not enough memory). Writers never
+// leave a partial file (see core/atomic_file.h).
 #include <set>
 #include <string>
 #include <vector>

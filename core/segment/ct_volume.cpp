@@ -5,6 +5,7 @@
 #include <vtkFloatArray.h>
 #include <vtkImageCast.h>
 #include <vtkImageData.h>
+#include <vtkMatrix4x4.h>
 #include <vtkMetaImageReader.h>
 #include <vtkMetaImageWriter.h>
 #include <vtkNIFTIImageReader.h>
@@ -24,6 +25,8 @@
 #include "core/io/vtk_util.h"
 #include "core/segment/dicom_series.h"
 #include "core/segment/metaimage_header.h"
+#include "core/segment/nifti_header.h"
+#include "core/segment/nrrd_header.h"
 #include "core/util/atomic_file.h"
 #include "core/util/child_process.h"
 #include "core/util/error.h"
@@ -47,8 +50,36 @@ std::pair<int, int> parse_axis(const std::string& text, const std::string& what)
   throw Error("orientation", what + " axis must be one of +x, -x, +y, -y, +z, -z (got '" + text + "')");
 }
 
-// A volume file through VTK's readers (in the file's voxel axes).
-CtVolume read_volume_file_here(const std::string& path) {
+// A volume and the axes of its voxel grid that point anterior and superior by the file (empty: not stated).
+struct FileVolume {
+  CtVolume ct;
+  CtOrientation axes;
+};
+
+// The axes by a NIfTI orientation (VTK image coordinates -> RAS, spacing factored out; vtkNIFTIImageReader has already
+// reversed the slices when qfac is -1). Each voxel axis must lie along a patient axis: an oblique volume is refused.
+CtOrientation nifti_axes(const std::string& path, vtkMatrix4x4* m) {
+  constexpr double kAligned = 0.999;  // cosine: within about 2.5 degrees of a patient axis
+  CtOrientation axes;
+  bool used[3] = {false, false, false};
+  for (int a = 0; a < 3; ++a) {
+    const Eigen::Vector3d column =
+        Eigen::Vector3d(m->GetElement(0, a), m->GetElement(1, a), m->GetElement(2, a)).normalized();
+    int world = 0;
+    if (!(column.cwiseAbs().maxCoeff(&world) > kAligned) || used[world])
+      throw Error(path, std::string("its NIfTI orientation is oblique or degenerate (voxel axis ") + char('x' + a) +
+                            " is not along a patient axis of its own): resample it to the patient axes, or give the "
+                            "axes with --anterior and --superior");
+    used[world] = true;
+    const std::string axis = std::string(column(world) > 0 ? "+" : "-") + char('x' + a);
+    if (world == 1) axes.anterior = axis;
+    if (world == 2) axes.superior = axis;
+  }
+  return axes;
+}
+
+// A volume file through VTK's readers (in the file's voxel axes); `given` axes make the file's own unneeded.
+FileVolume read_volume_file_here(const std::string& path, const CtOrientation& given) {
   const std::string name = lower(path);
   vtkSmartPointer<vtkAlgorithm> reader;
   std::function<double(double)> rescale = [](double v) { return v; };
@@ -77,9 +108,12 @@ CtVolume read_volume_file_here(const std::string& path) {
   cast->SetOutputScalarTypeToFloat();
   io::run_vtk(path, "reading the CT", cast);  // VTK's messages become one line of the exception
 
+  FileVolume out;
   if (auto* nifti = vtkNIFTIImageReader::SafeDownCast(reader)) {
     const double slope = nifti->GetRescaleSlope(), intercept = nifti->GetRescaleIntercept();
     if (slope != 0) rescale = [slope, intercept](double v) { return slope * v + intercept; };
+    vtkMatrix4x4* orientation = nifti->GetSFormMatrix() ? nifti->GetSFormMatrix() : nifti->GetQFormMatrix();
+    if (orientation && (given.anterior.empty() || given.superior.empty())) out.axes = nifti_axes(path, orientation);
   }
 
   vtkImageData* image = cast->GetOutput();
@@ -88,7 +122,7 @@ CtVolume read_volume_file_here(const std::string& path) {
   if (image) image->GetDimensions(dims);
   if (!scalars || scalars->GetNumberOfTuples() == 0) throw Error(path, "could not read a volume");
 
-  CtVolume ct;
+  CtVolume& ct = out.ct;
   ct.source = path;
   GridGeometry& g = ct.intensity.geometry;
   g.dims = {dims[0], dims[1], dims[2]};
@@ -103,14 +137,20 @@ CtVolume read_volume_file_here(const std::string& path) {
   const int components = scalars->GetNumberOfComponents();
   const auto* values = static_cast<const float*>(scalars->GetVoidPointer(0));
   for (size_t i = 0; i < g.size(); ++i) ct.intensity.data[i] = static_cast<float>(rescale(values[i * components]));
-  return ct;
+  return out;
 }
 
-// The volume as bytes (geometry, then the voxels) between the reading child process and its parent.
-std::vector<char> volume_bytes(const CtVolume& ct) {
+// The axes as 2 characters each ("+y", or blanks when not stated).
+constexpr size_t kAxesBytes = 4;
+
+// The volume as bytes (its axes, geometry, then the voxels) between the reading child process and its parent.
+std::vector<char> volume_bytes(const FileVolume& volume) {
+  const CtVolume& ct = volume.ct;
   const GridGeometry& g = ct.intensity.geometry;
-  std::vector<char> bytes(sizeof g.dims + 6 * sizeof(double) + ct.intensity.data.size() * sizeof(float));
+  std::vector<char> bytes(kAxesBytes + sizeof g.dims + 6 * sizeof(double) + ct.intensity.data.size() * sizeof(float));
   char* p = bytes.data();
+  for (const std::string& axis : {volume.axes.anterior, volume.axes.superior})
+    p[0] = axis.empty() ? ' ' : axis[0], p[1] = axis.empty() ? ' ' : axis[1], p += 2;
   std::memcpy(p, g.dims.data(), sizeof g.dims), p += sizeof g.dims;
   std::memcpy(p, g.spacing.data(), 3 * sizeof(double)), p += 3 * sizeof(double);
   std::memcpy(p, g.origin.data(), 3 * sizeof(double)), p += 3 * sizeof(double);
@@ -118,13 +158,16 @@ std::vector<char> volume_bytes(const CtVolume& ct) {
   return bytes;
 }
 
-CtVolume volume_from_bytes(const std::vector<char>& bytes, const std::string& path) {
-  CtVolume ct;
+FileVolume volume_from_bytes(const std::vector<char>& bytes, const std::string& path) {
+  FileVolume out;
+  CtVolume& ct = out.ct;
   ct.source = path;
   GridGeometry& g = ct.intensity.geometry;
-  const size_t header = sizeof g.dims + 6 * sizeof(double);
+  const size_t header = kAxesBytes + sizeof g.dims + 6 * sizeof(double);
   if (bytes.size() < header) throw Error(path, "incomplete volume from the reading process");
   const char* p = bytes.data();
+  for (std::string* axis : {&out.axes.anterior, &out.axes.superior})
+    *axis = p[0] == ' ' ? "" : std::string(p, 2), p += 2;
   std::memcpy(g.dims.data(), p, sizeof g.dims), p += sizeof g.dims;
   std::memcpy(g.spacing.data(), p, 3 * sizeof(double)), p += 3 * sizeof(double);
   std::memcpy(g.origin.data(), p, 3 * sizeof(double)), p += 3 * sizeof(double);
@@ -132,18 +175,20 @@ CtVolume volume_from_bytes(const std::vector<char>& bytes, const std::string& pa
     throw Error(path, "incomplete volume from the reading process");
   ct.intensity.data.resize(g.size());
   std::memcpy(ct.intensity.data.data(), p, g.size() * sizeof(float));
-  return ct;
+  return out;
 }
 
-// VTK's image readers trust the sizes a file declares; a MetaImage header is checked first, and the reading runs in
-// a child process with a time and memory budget that grow with the file (core/util/child_process.h).
-CtVolume read_volume_file(const std::string& path) {
+// VTK's image readers trust the sizes a file declares; a MetaImage, NIfTI or NRRD header is checked first, and the
+// reading runs in a child process with a time and memory budget that grow with the file (core/util/child_process.h).
+FileVolume read_volume_file(const std::string& path, const CtOrientation& given) {
   const std::string name = lower(path);
   if (ends_with(name, ".mhd") || ends_with(name, ".mha")) check_metaimage_header(path);
+  if (ends_with(name, ".nii") || ends_with(name, ".nii.gz")) check_nifti_header(path);
+  if (ends_with(name, ".nrrd") || ends_with(name, ".nhdr")) check_nrrd_header(path);
   const ChildLimits limits = limits_for_reading(path, size_t{4} << 30);  // the voxels, cast to float, and a copy
   return volume_from_bytes(
       compute_in_child(
-          path, "reading the CT", [&] { return volume_bytes(read_volume_file_here(path)); }, limits),
+          path, "reading the CT", [&] { return volume_bytes(read_volume_file_here(path, given)); }, limits),
       path);
 }
 
@@ -160,7 +205,10 @@ CtVolume read_ct_volume(const std::string& path, const CtOrientation& orientatio
     if (axes.anterior.empty()) axes.anterior = dicom.anterior;
     if (axes.superior.empty()) axes.superior = dicom.superior;
   } else {
-    ct = read_volume_file(path);
+    FileVolume volume = read_volume_file(path, orientation);
+    ct = std::move(volume.ct);
+    if (axes.anterior.empty()) axes.anterior = volume.axes.anterior;
+    if (axes.superior.empty()) axes.superior = volume.axes.superior;
   }
   if (axes.anterior.empty()) axes.anterior = "+y";
   if (axes.superior.empty()) axes.superior = "+z";

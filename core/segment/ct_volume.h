@@ -15,8 +15,9 @@ struct CtVolume {
 
 // Which axis of the file's voxel grid points anterior and which superior: "+x", "-x", "+y", "-y", "+z" or "-z".
 // Empty: the file's own orientation where it has one (a DICOM series: from ImageOrientationPatient, see
-// dicom_series.h), else the segmentation frame itself (+y anterior, +z superior; MetaImage, NIfTI and NRRD
-// direction matrices are not read). E.g. a volume stored in LPS order is anterior "-y", superior "+z".
+// dicom_series.h; a NIfTI file: from its sform, else its qform, refused when oblique), else the segmentation frame
+// itself (+y anterior, +z superior; a MetaImage direction matrix must be the identity, NRRD space directions the
+// positive axes). E.g. a volume stored in LPS order is anterior "-y", superior "+z".
 struct CtOrientation {
   std::string anterior;
   std::string superior;

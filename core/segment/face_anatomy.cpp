@@ -23,6 +23,12 @@ constexpr double kChinSoftTissue = 25.0;    // mm: the chin's bone is at most th
 constexpr double kChinGap = 4.0;            // mm of levels without such bone within the chin's run
 constexpr double kChinDepth = 30.0;         // mm the mandible's lower border reaches back from the chin's front
 constexpr double kEarReachTolerance = 3.0;  // mm: rows whose side reaches this close to the widest are the ear
+// A head, an infant's included, is wider and deeper than this, and its nose tip stands at least this far in front of
+// its nasion or of its cheeks kCheekOffset to either side (a nose clipped by the field of view still stands out of
+// one of them); a box or a small phantom is neither.
+constexpr double kMinHeadSize = 80.0;   // mm
+constexpr double kMinNoseRelief = 4.0;  // mm
+constexpr double kCheekOffset = 40.0;   // mm from the mid-sagittal plane
 
 const double kNone = std::numeric_limits<double>::quiet_NaN();
 
@@ -37,6 +43,39 @@ std::string point_text(const Eigen::Vector3d& p) {
   throw Error("segment", "cannot find " + what + " in the CT; check --skin, --anterior and --superior, or place the " +
                              "cuts with " + options);
 }
+
+[[noreturn]] void not_a_head(const std::string& why) {
+  throw Error("segment", "not a plausible head: " + why +
+                             "; if it is one, place the cuts with --top-cut, --bottom-cut, --posterior-cut and "
+                             "--mid-plane");
+}
+
+std::string mm(double x) {
+  std::ostringstream s;
+  s.precision(1);
+  s << std::fixed << x << " mm";
+  return s.str();
+}
+
+}  // namespace
+
+void check_head_size(const Mask& head) {
+  const GridGeometry& g = head.geometry;
+  int lo[2] = {g.dims[0], g.dims[1]}, hi[2] = {-1, -1};
+  for (int k = 0; k < g.dims[2]; ++k)
+    for (int j = 0; j < g.dims[1]; ++j)
+      for (int i = 0; i < g.dims[0]; ++i)
+        if (head(i, j, k)) {
+          lo[0] = std::min(lo[0], i), hi[0] = std::max(hi[0], i);
+          lo[1] = std::min(lo[1], j), hi[1] = std::max(hi[1], j);
+        }
+  const double width = (hi[0] - lo[0] + 1) * g.spacing.x(), depth = (hi[1] - lo[1] + 1) * g.spacing.y();
+  if (!(width >= kMinHeadSize && depth >= kMinHeadSize))
+    throw Error("segment", "not a plausible head: the body found is " + mm(width) + " wide and " + mm(depth) +
+                               " deep, a head at least " + mm(kMinHeadSize) + " both ways");
+}
+
+namespace {
 
 // The head masks' sections, one pass: per slice the x extent, per column (i, k) the most anterior voxel's y.
 struct Sections {
@@ -286,6 +325,19 @@ FaceAnatomy find_face_anatomy(const Mask& head, const Mask& bone) {
   const auto n = profile.extreme(prn->z() + 15, prn->z() + 50, false, tie);
   if (!n) not_found("the nasion above the nose", "--top-cut");
   anatomy.nasion = *n;
+  // The front of the head at the cheeks, level with the nose (an empty column is no obstacle).
+  double cheeks = -std::numeric_limits<double>::infinity();
+  const int k = static_cast<int>(std::lround((prn->z() - g.origin.z()) / g.spacing.z()));
+  for (const double side : {-1.0, 1.0}) {
+    const int i = static_cast<int>(
+        std::lround((anatomy.centre_at(prn->z()) + side * kCheekOffset - g.origin.x()) / g.spacing.x()));
+    if (i >= 0 && i < g.dims[0] && !std::isnan(sections.front[sections.at(i, k)]))
+      cheeks = std::max(cheeks, sections.front[sections.at(i, k)]);
+  }
+  const double relief = std::max(prn->y() - n->y(), prn->y() - cheeks);
+  if (!(relief >= kMinNoseRelief))
+    not_a_head("no nose stands out of the profile (its most anterior point is " + mm(relief) +
+               " in front of the nasion and the cheeks, a face's at least " + mm(kMinNoseRelief) + ")");
   const auto gl = profile.extreme(n->z() + 3, n->z() + 30, true, tie);
   if (!gl) not_found("the glabella above the nasion", "--top-cut");
   anatomy.glabella = *gl;

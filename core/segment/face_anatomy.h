@@ -48,8 +48,13 @@ struct FaceAnatomy {
   double roll_slope = 0, roll_z = 0;  // c(z) = centre_x + roll_slope (z - roll_z)
 };
 
-// Throws facehex::Error("segment", ...) naming what cannot be found and the cut options that place it by hand.
+// Throws facehex::Error("segment", ...) naming what cannot be found and the cut options that place it by hand, or
+// saying that the volume is not a plausible head when no nose stands out of its profile.
 FaceAnatomy find_face_anatomy(const Mask& head, const Mask& bone);
+
+// Throws facehex::Error("segment", "not a plausible head: ...") unless the head (or body) is wide and deep enough for
+// one (a small phantom or a CT of a few voxels is not).
+void check_head_size(const Mask& head);
 
 // "pronasale (x, y, z), ..." on one line, mm.
 std::string face_anatomy_text(const FaceAnatomy& anatomy);

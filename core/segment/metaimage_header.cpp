@@ -1,5 +1,7 @@
 #include "core/segment/metaimage_header.h"
 
+#include <zlib.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -36,6 +38,32 @@ long long element_bytes(const std::string& path, const std::string& type) {
   const auto it = sizes.find(type);
   if (it == sizes.end()) throw Error(path, "ElementType '" + type + "' is not a scalar type this reader knows");
   return it->second;
+}
+
+// The bytes the zlib (or gzip) stream at `offset` of `file` inflates to, counted without keeping them and not beyond
+// limit + 1; -1 when it is not one complete stream.
+long long inflated_size(const std::string& file, long long offset, long long limit) {
+  std::ifstream in(file, std::ios::binary);
+  in.seekg(offset);
+  z_stream z{};
+  if (!in || inflateInit2(&z, 15 + 32) != Z_OK) return -1;
+  std::vector<unsigned char> input(1 << 16), output(1 << 18);
+  long long total = 0;
+  int status = Z_OK;
+  while (status == Z_OK && total <= limit) {
+    if (z.avail_in == 0) {
+      in.read(reinterpret_cast<char*>(input.data()), static_cast<std::streamsize>(input.size()));
+      z.next_in = input.data();
+      z.avail_in = static_cast<unsigned>(in.gcount());
+      if (z.avail_in == 0) break;  // the data ends before the stream does
+    }
+    z.next_out = output.data();
+    z.avail_out = static_cast<unsigned>(output.size());
+    status = inflate(&z, Z_NO_FLUSH);
+    total += static_cast<long long>(output.size() - z.avail_out);
+  }
+  inflateEnd(&z);
+  return status == Z_STREAM_END || total > limit ? total : -1;
 }
 
 }  // namespace
@@ -104,10 +132,11 @@ MetaImageHeader check_metaimage_header(const std::string& path) {
   const bool list = data_file.rfind("LIST", 0) == 0 || data_file.find('%') != std::string::npos;
   if (list || h.fields.count("HeaderSize")) return h;  // sizes checked by the reader (in a child)
   long long present = 0;
+  const std::string data_path = data_file == "LOCAL" ? path : (fs::path(path).parent_path() / data_file).string();
   if (data_file == "LOCAL") {
     present = static_cast<long long>(fs::file_size(path)) - h.header_bytes;
   } else {
-    const fs::path data = fs::path(path).parent_path() / data_file;
+    const fs::path data = data_path;
     std::error_code ec;
     const auto size = fs::file_size(data, ec);
     if (ec) throw Error(path, "its data file '" + data.string() + "' cannot be read: " + ec.message());
@@ -120,6 +149,15 @@ MetaImageHeader check_metaimage_header(const std::string& path) {
     if (numbers(path, "CompressedDataSize", declared->second, 1)[0] != static_cast<double>(present))
       throw Error(path, "CompressedDataSize " + declared->second + " does not match the " + std::to_string(present) +
                             " bytes of compressed data present (a truncated or mismatched file)");
+    // MetaIO reads a damaged stream without an error, as zeros: inflate it here (counting, keeping nothing).
+    const long long inflated = inflated_size(data_path, data_file == "LOCAL" ? h.header_bytes : 0, bytes);
+    if (inflated != bytes)
+      throw Error(path, "DimSize " + field("DimSize") + " of " + field("ElementType") + " needs " +
+                            std::to_string(bytes) + " bytes of data, the compressed data " +
+                            (inflated < 0 ? std::string("is not a complete zlib stream")
+                                          : "inflates to " +
+                                                (inflated > bytes ? std::string("more") : std::to_string(inflated))) +
+                            " (a damaged or mismatched file)");
     return h;
   }
   if (present != bytes)

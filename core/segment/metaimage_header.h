@@ -17,7 +17,9 @@ struct MetaImageHeader {
 
 // Reads and checks the header: NDims 3, three positive DimSize values, positive ElementSpacing, a known ElementType,
 // an identity TransformMatrix (other directions are not applied by the reader: refused rather than ignored), and,
-// for uncompressed data, a data file (or a LOCAL data part) holding exactly the bytes the sizes need.
+// for uncompressed data, a data file (or a LOCAL data part) holding exactly the bytes the sizes need, for compressed
+// data, a stream of CompressedDataSize bytes that inflates to exactly those bytes (MetaIO reads a damaged one as
+// zeros without a word).
 // Throws Error(path, ...) naming the field at fault.
 MetaImageHeader check_metaimage_header(const std::string& path);
 

@@ -6,27 +6,30 @@
 
 #include "core/io/mesh_io.h"
 #include "core/segment/ct_volume.h"
+#include "core/util/memory_errors.h"
 
 namespace facehex {
 
 PatientTetModel load_patient_model(const std::string& path, const SegmentOptions& options,
                                    const ProgressCallback& progress) {
-  PatientTetModel model;
-  if (is_ct_input(path)) {
-    report_progress(progress, "segmentation: reading the CT", 0.0);
-    PatientModel segmented = build_patient_model(read_ct_volume(path, options.orientation), options, progress);
-    model.mesh = std::move(segmented.mesh);
-    CtSegmentation as_used{options, segmented.thresholds, segmented.cuts};
-    as_used.options.tets.target_edge_length = segmented.edge_length;
-    as_used.options.coarsen_above_tets = 0;
-    model.segmentation = as_used;
-  } else {
-    MeshReadOptions read;
-    read.target_edge_length = options.tets.target_edge_length;
-    model.mesh = read_volume_mesh(path, read);
-  }
-  model.check = check_and_orient_tet_mesh(model.mesh, path);
-  return model;
+  return naming_memory_errors(path, "read or segment it", [&] {
+    PatientTetModel model;
+    if (is_ct_input(path)) {
+      report_progress(progress, "segmentation: reading the CT", 0.0);
+      PatientModel segmented = build_patient_model(read_ct_volume(path, options.orientation), options, progress);
+      model.mesh = std::move(segmented.mesh);
+      CtSegmentation as_used{options, segmented.thresholds, segmented.cuts};
+      as_used.options.tets.target_edge_length = segmented.edge_length;
+      as_used.options.coarsen_above_tets = 0;
+      model.segmentation = as_used;
+    } else {
+      MeshReadOptions read;
+      read.target_edge_length = options.tets.target_edge_length;
+      model.mesh = read_volume_mesh(path, read);
+    }
+    model.check = check_and_orient_tet_mesh(model.mesh, path);
+    return model;
+  });
 }
 
 std::string segmentation_summary(const CtSegmentation& segmentation) {

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/segment/distance_transform.h"
+#include "core/segment/face_anatomy.h"
 #include "core/segment/iso_surface.h"
 #include "core/segment/morphology.h"
 #include "core/segment/remesh.h"
@@ -214,6 +215,7 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   if (std::count(raw_body.data.begin(), raw_body.data.end(), 1) == 0)
     throw Error("segment",
                 "no voxel reaches the skin threshold " + number(model.thresholds.skin) + "; lower the skin threshold");
+  check_head_size(raw_body);
   step("the head", 0.05);
   const Mask body = open(raw_body, options.opening_radius);
   // The trachea leaves through the bottom slice and the head through the top: only the x and y faces of the grid
@@ -221,6 +223,10 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   const Mask head = fill_cavities(close(body, options.cavity_closing_radius), {true, true, false});
   Mask bone = at_least(intensity, model.thresholds.bone);
   for (size_t i = 0; i < bone.data.size(); ++i) bone.data[i] &= head.data[i];
+  // Without bone the model would have no depth limit but max_depth and the chin nothing to be found by.
+  if (std::count(bone.data.begin(), bone.data.end(), 1) == 0)
+    throw Error("segment", "not a plausible head: no voxel of the head reaches the bone threshold " +
+                               number(model.thresholds.bone) + "; lower it (--bone) if this is a head CT");
   // The ears, thin, do not survive the opening: the cuts look at the body before it.
   model.cuts = find_face_cuts(raw_body, bone, options.cuts);
 

@@ -70,6 +70,8 @@ std::string mention_target(std::string message, const std::string& tmp, const st
 
 }  // namespace
 
+void check_writable_file(const std::string& path) { checked_parent(path); }
+
 void write_atomically(const std::string& path, const std::function<void(const std::string& tmp_path)>& write) {
   const fs::path parent = checked_parent(path);
   const std::string tmp = temp_name(parent, path);

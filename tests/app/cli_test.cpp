@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -148,6 +149,7 @@ TEST_F(Cli, UsageErrorsExitTwoAndWriteNothing) {
       {"sides " + tets + " -o " + path("a.vtu") + " --max-layers 1e12", "--max-layers expects a number from 1 to 64"},
       {"fields " + tets + " -o " + path("a.vtu") + " --iterations 2.5", "--iterations expects an integer"},
       {"convert " + tets + " " + path("a.vtu") + " --threads 0", "--threads expects a number from 1 to 1024"},
+      {"bench --sizes 1000000000000", "--sizes: expects tet counts up to"},
   };
   for (const auto& [args, needle] : cases) {
     const Result r = run(args);
@@ -639,6 +641,99 @@ TEST_F(Cli, AFailedRunOrTemplateRemovesTheFoldersItCreatedAndKeepsAnExistingOne)
     EXPECT_NE(r.status, 0) << command;
     EXPECT_TRUE(fs::exists(path("existing/earlier.txt"))) << command;
   }
+}
+
+// The options an error names, each "--word" in it.
+std::set<std::string> options_named(const std::string& text) {
+  std::set<std::string> options;
+  for (size_t at = text.find("--"); at != std::string::npos; at = text.find("--", at + 2)) {
+    size_t end = at + 2;
+    while (end < text.size() && (std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '-')) ++end;
+    options.insert(text.substr(at, end - at));
+  }
+  return options;
+}
+
+// README: "1 error (one line on stderr naming the file or stage)". A run on what is no head says so, and every option
+// its error suggests is one `run` has.
+TEST_F(Cli, ErrorsExitOneWithOneLineAndSuggestOnlyOptionsThatExist) {
+  write("garbage.vtu", "this is not a mesh");
+  write("garbage.mha",
+        "ObjectType = Image\nNDims = 3\nDimSize = 4 4 4\nElementType = MET_SHORT\n"
+        "ElementDataFile = LOCAL\ntoo short");
+  facehex::CtVolume box;  // a tall box of soft tissue around a bone core: no face
+  facehex::GridGeometry& g = box.intensity.geometry;
+  g.dims = {34, 40, 64};
+  g.spacing = Eigen::Vector3d::Constant(4.0);
+  box.intensity.data.assign(g.size(), -1000.0f);
+  for (int k = 2; k < 62; ++k)
+    for (int j = 2; j < 38; ++j)
+      for (int i = 2; i < 32; ++i) box.intensity(i, j, k) = (i > 12 && i < 22 && j > 12 && j < 28) ? 1500.0f : 40.0f;
+  facehex::write_ct_volume(path("box.mha"), box);
+  const std::string help = run("run --help").output;
+  for (const auto& [args, file] : std::vector<std::pair<std::string, std::string>>{
+           {"info " + path("garbage.vtu"), path("garbage.vtu")},
+           {"convert " + path("garbage.vtu") + " " + path("out.vtu"), path("garbage.vtu")},
+           {"segment " + path("garbage.mha") + " -o " + path("out.vtu"), path("garbage.mha")},
+           {"run " + path("box.mha") + " -o " + path("out"), "not a plausible head"}}) {
+    const Result r = run_shell("(" + std::string(FACEHEX_CLI) + " " + args + " 2>&1 1>/dev/null)");  // stderr only
+    EXPECT_EQ(r.status, 1) << args << ": " << r.output;
+    // Progress lines may come first; the error is the last line, and the only one.
+    const size_t at = r.output.find("error: ");
+    ASSERT_NE(at, std::string::npos) << args << ": " << r.output;
+    const std::string error = r.output.substr(at);
+    EXPECT_EQ(nonempty_lines(error), 1) << args << ": " << r.output;
+    EXPECT_EQ(r.output.find("\nerror: ", at), std::string::npos) << args << ": " << r.output;
+    EXPECT_NE(error.find(file), std::string::npos) << args << ": " << r.output;
+    if (args.rfind("run ", 0) == 0)
+      for (const std::string& option : options_named(error))
+        EXPECT_NE(help.find(option + " "), std::string::npos) << option << " suggested by: " << error;
+  }
+  EXPECT_FALSE(fs::exists(path("out.vtu")));
+  EXPECT_FALSE(fs::exists(path("out")));
+}
+
+// README: "Every command has --help": it prints the command's usage and exits 0, as --help of the tool does.
+TEST_F(Cli, EveryCommandHasHelp) {
+  const std::string commands = run("--help").output;
+  int listed = 0;
+  for (const char* command : {"info", "convert", "sides", "fields", "map", "quality", "run", "standards", "template",
+                              "segment", "constraints", "bench", "compare"}) {
+    listed += commands.find(std::string("  ") + command + " ") != std::string::npos;
+    const Result r = run(std::string(command) + " --help");
+    EXPECT_EQ(r.status, 0) << command << ": " << r.output;
+    EXPECT_EQ(r.output.rfind(std::string("usage: facehex ") + command, 0), 0u) << command << ": " << r.output;
+  }
+  EXPECT_EQ(listed, 13) << commands;
+}
+
+// An output that cannot be written is refused before the work starts (segmenting the bundled CT takes a while).
+TEST_F(Cli, OutputsAreCheckedBeforeTheWork) {
+  write("file.txt", "not a folder");
+  const std::string tets = std::string(FACEHEX_TEST_DATA_DIR) + "/io/tets1.node", out = path("file.txt/out");
+  for (const std::string& args :
+       {"segment " + facehex::default_ct() + " -o " + out + ".vtu", "convert " + tets + " " + out + ".vtu",
+        "fields " + tets + " -o " + out + ".vtu", "constraints " + tets + " -o " + out + ".json",
+        "sides " + tets + " -o " + out + ".vtu", "map --patient " + tets + " -o " + out + ".vtu",
+        "segment " + facehex::default_ct() + " -o " + path("m.vtu") + " --write-landmarks " + out + ".json"}) {
+    const Result r = run(args);
+    EXPECT_EQ(r.status, 1) << args << ": " << r.output;
+    EXPECT_NE(r.output.find("error: " + out), std::string::npos) << args << ": " << r.output;
+    EXPECT_EQ(r.output.find("segmentation:"), std::string::npos) << args << ": " << r.output;
+  }
+}
+
+// A mesh with an inverted and a flat tet reads, and info says so.
+TEST_F(Cli, InfoReportsInvertedAndFlatCells) {
+  write("bad.node", "5 3 0 0\n0 0 0 0\n1 1 0 0\n2 0 1 0\n3 0 0 1\n4 1 1 1e-9\n");
+  write("bad.ele", "3 4 0\n0 0 1 2 3\n1 1 0 2 3\n2 0 1 2 4\n");  // sound, inverted, flat (height 1e-9)
+  Result r = run("info " + path("bad.node"));
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("inverted cells 1, flat cells 1"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("warning: " + path("bad.node")), std::string::npos) << r.output;
+  r = run("info " + std::string(FACEHEX_TEST_DATA_DIR) + "/io/tets1.node");
+  EXPECT_NE(r.output.find("inverted cells 0, flat cells 0"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;
 }
 
 }  // namespace

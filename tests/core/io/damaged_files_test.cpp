@@ -6,6 +6,8 @@
 
 #include "core/io/mesh_bytes.h"
 #include "core/io/mesh_io.h"
+#include "core/util/child_process.h"
+#include "export_test_meshes.h"
 #include "io_test_util.h"
 
 namespace facehex {
@@ -143,6 +145,104 @@ TEST(DamagedFiles, ASurfaceWithANegativeCountIsAnErrorAndAGoodOneStillReads) {
   test::write_file(dir.file("bad.vtp"), text);
   test::expect_error([&] { read_surface_mesh(dir.file("bad.vtp")); }, "NumberOfPolys=\"-1\" is not a count",
                      dir.file("bad.vtp"));
+}
+
+// An .inp FaceHex wrote, cut at a line end anywhere before its last line, is refused: not read as a smaller mesh.
+TEST(DamagedFiles, AnAbaqusDeckCutAtALineEndIsRefused) {
+  TempDir dir;
+  const std::string whole = dir.file("whole.inp");
+  write_volume_mesh(whole, test::hex_wedge_slab());
+  EXPECT_EQ(read_volume_mesh(whole).num_cells(), test::hex_wedge_slab().num_cells());
+  const std::string text = test::read_file(whole);
+  std::vector<size_t> line_ends;
+  for (size_t at = text.find('\n'); at + 1 < text.size(); at = text.find('\n', at + 1)) line_ends.push_back(at + 1);
+  // Cuts among the nodes, the elements, the side sets and just before the last line.
+  for (const double fraction : {0.1, 0.3, 0.6, 0.9, 1.0}) {
+    const size_t cut = line_ends[std::min(line_ends.size() - 1, static_cast<size_t>(fraction * line_ends.size()))];
+    const std::string file = dir.file("cut" + std::to_string(cut) + ".inp");
+    test::write_prefix(whole, file, cut);
+    test::expect_error([&] { read_volume_mesh(file); }, file + ": ", "cut at byte " + std::to_string(cut));
+    test::expect_error([&] { read_volume_mesh(file); }, "cut short", "cut at byte " + std::to_string(cut));
+  }
+}
+
+// An XML character reference the FEBio reader cannot decode, or elements nested without end, are errors naming the
+// file (they were an exception naming nothing and a stack overflow); sound references decode.
+TEST(DamagedFiles, FebioCharacterReferencesAndNestingAreChecked) {
+  TempDir dir;
+  const std::string sound = test::read_file(std::string(FACEHEX_TEST_DATA_DIR) + "/export/hex_wedge.feb");
+  const auto with_first_node = [&](const std::string& text) {
+    std::string s = sound;
+    const std::string node = "<node id=\"1\">0,0,0</node>";
+    return s.replace(s.find(node), node.size(), "<node id=\"1\">" + text + "</node>");
+  };
+  test::write_file(dir.file("decoded.feb"), with_first_node("&#50;,&#x33;,0"));
+  EXPECT_EQ(read_volume_mesh(dir.file("decoded.feb")).V.row(0), Eigen::RowVector3d(2, 3, 0));
+  int n = 0;
+  for (const char* reference : {"&#x;", "&#xZZ;", "&#99999999999;", "&#0;", "&#-5;"}) {
+    const std::string file = dir.file("bad" + std::to_string(n++) + ".feb");
+    test::write_file(file, with_first_node(std::string(reference) + ",0,0"));
+    test::expect_error([&] { read_volume_mesh(file); }, file + ": '" + reference + "' is not a character");
+  }
+  std::string deep;
+  for (int i = 0; i < 100000; ++i) deep += "<a>";
+  test::write_file(dir.file("deep.feb"), deep);
+  test::expect_error([&] { read_volume_mesh(dir.file("deep.feb")); },
+                     dir.file("deep.feb") + ": elements nested more than 100 deep");
+}
+
+// A node set generated over a damaged range is refused before it fills memory.
+TEST(DamagedFiles, AnAbaqusNodeSetRangeBeyondTheNodesIsRefused) {
+  TempDir dir;
+  const std::string deck =
+      "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n*ELEMENT, TYPE=C3D4\n1, 1, 2, 3, 4\n"
+      "*NSET, NSET=S, GENERATE\n";
+  test::write_file(dir.file("sound.inp"), deck + "1, 4, 1\n");
+  EXPECT_EQ(read_volume_mesh(dir.file("sound.inp")).num_cells(), 1);
+  test::write_file(dir.file("huge.inp"), deck + "1, 100000000000, 1\n");
+  expect_quick_error(dir.file("huge.inp"), "huge.inp: *NSET, GENERATE covers more ids than the 4 nodes defined");
+}
+
+// Two elements on the same nodes double the stiffness there, and no solver says so: the FE exports refuse them, even
+// when forced, and leave no file.
+TEST(DamagedFiles, DuplicateCellsAreNotExported) {
+  TempDir dir;
+  VolumeMesh m = test::hex_wedge_slab();
+  const int n = m.num_cells();
+  m.C.conservativeResize(n + 1, Eigen::NoChange);
+  m.C.row(n) = m.C.row(2);
+  std::swap(m.C(n, 0), m.C(n, 1));  // the same nodes in another order
+  m.types.push_back(m.types[2]);
+  for (auto& [name, a] : m.cell_data) a.conservativeResize(n + 1, Eigen::NoChange), a.row(n) = a.row(2);
+  for (const char* name : {"dup.inp", "dup.feb"})
+    for (const bool forced : {false, true}) {
+      MeshWriteOptions options;
+      options.allow_inverted = forced;
+      const std::string file = dir.file(name);
+      test::expect_error([&] { write_volume_mesh(file, m, options); },
+                         file + ": refusing to export: 1 of " + std::to_string(n + 1) +
+                             " elements repeat the nodes of an earlier element (element ids " + std::to_string(n + 1));
+    }
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+// A reader that runs out of memory says which file it was reading: here a child process with a small memory budget
+// reads a TetGen file larger than that budget.
+TEST(DamagedFiles, RunningOutOfMemoryNamesTheFile) {
+  TempDir dir;
+  std::string nodes = "2000000 3 0 0\n";
+  for (int i = 0; i < 2000000; ++i) nodes += std::to_string(i) + " 0.5 0.25 0.125\n";
+  test::write_file(dir.file("big.node"), nodes);
+  test::write_file(dir.file("big.ele"), "1 4 0\n0 0 1 2 3\n");
+  ChildLimits limits;
+  limits.memory_bytes = std::size_t{8} << 20;
+  limits.seconds = 60;
+  test::expect_error(
+      [&] {
+        compute_in_child(
+            "the test", "reading", [&] { return io::to_bytes(read_volume_mesh(dir.file("big.node"))); }, limits);
+      },
+      dir.file("big.node") + ": not enough memory to read it");
 }
 
 TEST(MeshBytes, ASurfaceRoundTripIsBitIdentical) {

@@ -101,6 +101,27 @@ TEST(CtVolume, ResampledVolumeWrittenAsMetaImageReadsBack) {
   EXPECT_THROW(write_ct_volume("/no/such/folder/fine.mha", resampled), Error);
 }
 
+// MetaIO reads damaged compressed data as zeros, and prints its complaints straight to stderr: the file is refused
+// naming it, and nothing comes before that one-line error.
+TEST(CtVolume, AMetaImageWithDamagedCompressedDataIsRefusedQuietly) {
+  const auto dir = scratch();
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "damaged.mha").string();
+  std::ofstream(path, std::ios::binary) << "ObjectType = Image\nNDims = 3\nBinaryData = True\nCompressedData = True\n"
+                                           "CompressedDataSize = 16\nDimSize = 4 4 4\nElementType = MET_SHORT\n"
+                                           "ElementDataFile = LOCAL\n0123456789abcdef";
+  ::testing::internal::CaptureStderr();
+  try {
+    read_ct_volume(path);
+    ADD_FAILURE() << "read";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.subject(), path) << e.what();
+    EXPECT_NE(std::string(e.what()).find("the compressed data is not a complete zlib stream"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+}
+
 TEST(CtVolume, ErrorsNameTheFile) {
   try {
     read_ct_volume("/no/such/file.nii.gz");

@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <functional>
+#include <limits>
 #include <map>
 #include <set>
 #include <string>
@@ -165,6 +166,37 @@ TEST(SoftTissue, RejectsAVolumeWithoutSkin) {
   o.skin_threshold = 500;
   o.bone_threshold = 1150;
   expect_error([&] { build_patient_model(ct, o); }, "segment", "skin threshold");
+}
+
+// Volumes that are no head are refused with that word when the cuts are to be found in them: a tall box of soft
+// tissue around a bone core (a phantom), a CT of 8 x 8 x 8 voxels, and a head whose bone threshold no voxel reaches.
+TEST(SoftTissue, RefusesWhatIsNotAPlausibleHead) {
+  CtVolume box;
+  box.source = "box";
+  GridGeometry& g = box.intensity.geometry;
+  g.dims = {70, 80, 130};
+  g.spacing = Eigen::Vector3d::Constant(2.0);
+  box.intensity.data.assign(g.size(), 0.0f);
+  for (int k = 5; k < 125; ++k)
+    for (int j = 5; j < 75; ++j)
+      for (int i = 5; i < 65; ++i)
+        box.intensity(i, j, k) = (i >= 25 && i < 45 && j >= 25 && j < 55) ? 2000.0f : 1000.0f;
+  SegmentOptions o;
+  o.working_spacing = 2.0;
+  expect_error([&] { build_patient_model(box, o); }, "segment", "not a plausible head: no nose stands out");
+
+  CtVolume tiny;
+  tiny.intensity.geometry.dims = {8, 8, 8};
+  tiny.intensity.data.assign(512, 0.0f);
+  for (int k = 2; k < 6; ++k)
+    for (int j = 2; j < 6; ++j)
+      for (int i = 2; i < 6; ++i) tiny.intensity(i, j, k) = (i == 3 && j == 3) ? 2000.0f : 1000.0f;
+  expect_error([&] { build_patient_model(tiny, o); }, "segment", "not a plausible head: the body found is");
+
+  SegmentOptions no_bone;
+  no_bone.bone_threshold = std::numeric_limits<double>::infinity();
+  expect_error([&] { build_patient_model(read_ct_volume(default_ct()), no_bone); }, "segment",
+               "not a plausible head: no voxel of the head reaches the bone threshold");
 }
 
 }  // namespace

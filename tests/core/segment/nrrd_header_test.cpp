@@ -1,0 +1,70 @@
+// NRRD files whose header does not match their raw data, or whose directions the reader would ignore, are refused
+// naming the file.
+#include "core/segment/nrrd_header.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+
+#include "core/segment/ct_volume.h"
+#include "core/util/error.h"
+
+namespace facehex {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A 12 x 5 x 6 int16 volume whose voxel (i, j, k) is i + 100 j + 1000 k, attached raw data after `fields`.
+std::string write_nrrd(const std::string& name, const std::string& fields, int voxels = 360,
+                       const std::string& sizes = "12 5 6") {
+  const fs::path dir = fs::temp_directory_path() / ("facehex_nrrd_test_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string path = (dir / name).string();
+  std::ofstream out(path, std::ios::binary);
+  out << "NRRD0004\n# a test volume\ntype: short\ndimension: 3\nsizes: " << sizes << "\nendian: little\nencoding: raw\n"
+      << fields << "\n";
+  for (int v = 0; v < voxels; ++v) {
+    const std::int16_t value = static_cast<std::int16_t>(v % 12 + 100 * (v / 12 % 5) + 1000 * (v / 60));
+    out.write(reinterpret_cast<const char*>(&value), sizeof value);
+  }
+  return path;
+}
+
+void expect_refused(const std::string& path, const std::string& needle) {
+  try {
+    read_ct_volume(path);
+    ADD_FAILURE() << path << " was read";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.subject(), path);
+    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+  }
+}
+
+TEST(NrrdHeader, ASoundFileReads) {
+  for (const char* fields : {"spacings: 1 2 3\n",
+                             "space: left-posterior-superior\n"
+                             "space directions: (1,0,0) (0,2,0) (0,0,3)\n"}) {
+    const CtVolume ct = read_ct_volume(write_nrrd("sound.nrrd", fields));
+    EXPECT_EQ(ct.intensity.geometry.dims, (std::array<int, 3>{12, 5, 6}));
+    EXPECT_TRUE(ct.intensity.geometry.spacing.isApprox(Eigen::Vector3d(1, 2, 3))) << fields;
+    EXPECT_EQ(ct.intensity(11, 4, 5), 5411.0f);
+  }
+}
+
+TEST(NrrdHeader, SizesThatDoNotMatchTheDataAreRefused) {
+  expect_refused(write_nrrd("short.nrrd", "", 359), "need 720 bytes of raw data, the file holds 718");
+  expect_refused(write_nrrd("long.nrrd", "", 361), "the file holds 722");
+  // VTK would read 4 x 5 x 6 as a 5 x 6 image of 4 components.
+  expect_refused(write_nrrd("narrow.nrrd", "", 120, "4 5 6"), "a first axis of fewer than 10 samples");
+}
+
+TEST(NrrdHeader, DirectionsAndSpacingsTheReaderWouldIgnoreAreRefused) {
+  expect_refused(write_nrrd("flip.nrrd", "space directions: (-1,0,0) (0,2,0) (0,0,3)\n"), "space directions");
+  expect_refused(write_nrrd("turn.nrrd", "space directions: (0,1,0) (2,0,0) (0,0,3)\n"), "space directions");
+  expect_refused(write_nrrd("zero.nrrd", "spacings: 1 0 3\n"), "spacings");
+}
+
+}  // namespace
+}  // namespace facehex
