@@ -685,9 +685,10 @@ TEST_F(Cli, ErrorsExitOneWithOneLineAndSuggestOnlyOptionsThatExist) {
     EXPECT_EQ(nonempty_lines(error), 1) << args << ": " << r.output;
     EXPECT_EQ(r.output.find("\nerror: ", at), std::string::npos) << args << ": " << r.output;
     EXPECT_NE(error.find(file), std::string::npos) << args << ": " << r.output;
-    if (args.rfind("run ", 0) == 0)
+    if (args.rfind("run ", 0) == 0) {
       for (const std::string& option : options_named(error))
         EXPECT_NE(help.find(option + " "), std::string::npos) << option << " suggested by: " << error;
+    }
   }
   EXPECT_FALSE(fs::exists(path("out.vtu")));
   EXPECT_FALSE(fs::exists(path("out")));
