@@ -5,7 +5,6 @@
 #include "app/mesh_output.h"
 #include "app/transfer_options.h"
 #include "core/io/mesh_io.h"
-#include "core/util/atomic_file.h"
 
 namespace facehex::cli {
 
@@ -14,7 +13,7 @@ int cmd_convert(const Argv& argv) {
   args.positional("IN", "input mesh").positional("OUT", "output mesh (.vtu, .vtk, .msh, .inp, .feb)");
   args.option("edge-length", "target edge length (mm) for surfaces", "2").flag("force-export", kForceExportHelp);
   if (!args.parse(argv)) return 0;
-  check_writable_file(args.get("OUT"));
+  check_volume_mesh_output(args.get("OUT"));
   MeshReadOptions ro;
   ro.target_edge_length = args.number("edge-length", kLeastEdgeLength, kMostEdgeLength);
   const VolumeMesh m = read_volume_mesh(args.get("IN"), ro);

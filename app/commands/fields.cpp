@@ -7,7 +7,6 @@
 #include "core/fields/parameterization.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh/mesh_check.h"
-#include "core/util/atomic_file.h"
 #include "core/util/error.h"
 #include "core/workflow/standard_setup.h"
 #include "core/workflow/transfer.h"
@@ -26,7 +25,7 @@ int cmd_fields(const Argv& argv) {
   add_field_options(args);
   if (!args.parse(argv)) return 0;
   if (!args.has("output")) throw UsageError("facehex fields", "missing -o OUTPUT");
-  check_writable_file(args.get("output"));
+  check_volume_mesh_output(args.get("output"));
   const std::string path = args.get("MODEL");
   MeshReadOptions ro;
   ro.target_edge_length = args.number("edge-length", kLeastEdgeLength, kMostEdgeLength);

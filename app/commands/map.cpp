@@ -45,7 +45,7 @@ int cmd_map(const Argv& argv) {
   add_transfer_options(args);
   if (!args.parse(argv)) return 0;
   if (!args.has("patient") || !args.has("output")) throw UsageError("facehex map", "needs --patient and -o OUTPUT");
-  check_writable_file(args.get("output"));
+  check_volume_mesh_output(args.get("output"));
   if (args.has("report")) check_writable_file(args.get("report"));
   if (args.get("method") == "mesh-matching") {
     // The baseline registers the surfaces: it needs no constraints, and the standard no parameterization domain.

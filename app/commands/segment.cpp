@@ -28,7 +28,7 @@ int cmd_segment(const Argv& argv) {
   add_segment_options(args);
   if (!args.parse(argv)) return 0;
   if (!args.has("output")) throw UsageError("facehex segment", "missing -o OUTPUT");
-  check_writable_file(args.get("output"));
+  check_volume_mesh_output(args.get("output"));
   if (args.has("write-landmarks")) check_writable_file(args.get("write-landmarks"));
   const SegmentOptions options = segment_options(args);
   if (!is_ct_input(args.get("CT")))

@@ -7,7 +7,6 @@
 #include "core/fields/constraint_set.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh/shell_sides.h"
-#include "core/util/atomic_file.h"
 #include "core/util/error.h"
 
 namespace facehex::cli {
@@ -20,7 +19,7 @@ int cmd_sides(const Argv& argv) {
   args.option("max-layers", "most element layers through the thickness", "8");
   if (!args.parse(argv)) return 0;
   if (!args.has("output")) throw UsageError("facehex sides", "missing -o OUTPUT");
-  check_writable_file(args.get("output"));
+  check_volume_mesh_output(args.get("output"));
   const int max_layers = args.integer("max-layers", 1, 64);
   VolumeMesh m = read_volume_mesh(args.get("MESH"));
   ShellFrame frame = default_shell_frame(m.V);

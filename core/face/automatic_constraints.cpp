@@ -12,9 +12,13 @@ ConstraintSet automatic_constraints(const Eigen::MatrixXd& V, const Eigen::Vecto
                                     const std::map<std::string, double>& values, double band,
                                     FaceLandmarks* landmarks_out, const FaceLandmarks* given) {
   const FaceLandmarks landmarks = given ? *given : find_face_landmarks(V, side_mask);
-  check_plausible(landmarks, given ? "correct the landmark file" : "give the landmarks with --landmarks FILE");
+  const std::string remedy = given ? "correct the landmark file" : "give the landmarks with --landmarks FILE";
+  check_plausible(landmarks, remedy);
   ConstraintSet set = side_constraints();
-  for (auto& c : feature_constraints(landmarks, values, band).constraints) set.constraints.push_back(c);
+  for (auto& c : feature_constraints(landmarks, values, band).constraints) {
+    c.origin += "; " + remedy;
+    set.constraints.push_back(c);
+  }
   if (landmarks_out) *landmarks_out = landmarks;
   return set;
 }

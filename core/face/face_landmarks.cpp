@@ -417,6 +417,11 @@ ConstraintSet feature_constraints(const FaceLandmarks& landmarks, const std::map
     p.band = band;
     p.exclude_sides = side_bit(static_cast<Side>(2 * spec.field)) | side_bit(static_cast<Side>(2 * spec.field + 1));
     const Eigen::Vector3d at = landmarks.points.at(spec.landmark);
+    std::ostringstream origin;
+    origin.precision(1);
+    origin << std::fixed << "placed at the landmark '" << spec.landmark << "', (" << at.x() << ", " << at.y() << ", "
+           << at.z() << ") mm, " << (landmarks.given ? "given" : "found on the model");
+    c.origin = origin.str();
     if (spec.field == 0) {
       p.point = Eigen::Vector3d(landmarks.x_mid, 0, 0);
       p.normal = Eigen::Vector3d::UnitX();

@@ -218,7 +218,9 @@ ResolvedConstraints resolve_constraints(const ConstraintSet& set, const Eigen::M
     } catch (const std::exception& e) {
       throw Error(source, "constraint '" + c.name + "': " + e.what());
     }
-    if (sel.empty()) throw Error(source, "constraint '" + c.name + "' selects no vertex");
+    if (sel.empty())
+      throw Error(source,
+                  "constraint '" + c.name + "' selects no vertex" + (c.origin.empty() ? "" : " (" + c.origin + ")"));
     for (int v : sel) {
       auto [it, inserted] = assigned[c.field].emplace(v, std::make_pair(c.value, i));
       if (!inserted && it->second.first != c.value)

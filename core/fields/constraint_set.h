@@ -57,6 +57,7 @@ struct Constraint {
   int field = 0;  // 0 = u, 1 = v, 2 = w
   double value = 0;
   Selection select;
+  std::string origin;  // for messages: what placed it (e.g. the landmark it sits at); not written to files
 };
 
 struct ConstraintSet {

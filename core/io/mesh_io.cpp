@@ -99,6 +99,14 @@ VolumeMesh read_volume_mesh(const std::string& path, const MeshReadOptions& opti
   return naming_memory_errors(path, "read it", [&] { return read_volume_mesh_of_kind(path, options); });
 }
 
+void check_volume_mesh_output(const std::string& path) {
+  const std::vector<std::string> writable = writable_volume_extensions();
+  const std::string ext = io::lower_extension(path);
+  if (std::find(writable.begin(), writable.end(), ext) == writable.end())
+    throw Error(path, "cannot write volume meshes as '" + ext + "' (writable: " + join(writable) + ")");
+  check_writable_file(path);
+}
+
 void write_volume_mesh(const std::string& path, const VolumeMesh& mesh, const MeshWriteOptions& options) {
   const std::string ext = io::lower_extension(path);
   const std::set<std::string>& single = options.single_precision_arrays;
@@ -108,10 +116,7 @@ void write_volume_mesh(const std::string& path, const VolumeMesh& mesh, const Me
   if (ext == ".msh") write = io::write_gmsh;
   if (ext == ".inp") write = io::write_abaqus;
   if (ext == ".feb") write = io::write_febio;
-  if (!write) {
-    throw Error(path,
-                "cannot write volume meshes as '" + ext + "' (writable: " + join(writable_volume_extensions()) + ")");
-  }
+  if (!write) check_volume_mesh_output(path);
   io::check_volume_mesh(path, mesh);
   if (ext == ".inp" || ext == ".feb") check_fe_exportable(path, mesh, options.allow_inverted);
   write_atomically(path, [&](const std::string& tmp) { write(tmp, mesh); });

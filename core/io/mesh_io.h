@@ -38,6 +38,10 @@ struct MeshWriteOptions {
 
 void write_volume_mesh(const std::string& path, const VolumeMesh& mesh, const MeshWriteOptions& options = {});
 
+// Throws facehex::Error(path, ...) unless a volume mesh can be written to path: a writable extension and a folder that
+// exists and takes files. Commands call it before their work, so that a wrong name costs no time.
+void check_volume_mesh_output(const std::string& path);
+
 // Reads a triangle surface (.stl, .obj, .ply, .vtp). Polygons are triangulated.
 SurfaceMesh read_surface_mesh(const std::string& path);
 void write_surface_mesh(const std::string& path, const SurfaceMesh& surface);  // .vtp, .stl, .ply, .obj

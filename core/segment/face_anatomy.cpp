@@ -23,6 +23,7 @@ constexpr double kChinSoftTissue = 25.0;    // mm: the chin's bone is at most th
 constexpr double kChinGap = 4.0;            // mm of levels without such bone within the chin's run
 constexpr double kChinDepth = 30.0;         // mm the mandible's lower border reaches back from the chin's front
 constexpr double kEarReachTolerance = 3.0;  // mm: rows whose side reaches this close to the widest are the ear
+constexpr double kTopRounding = 3.0;        // mm below the head's highest level left out of the brow's searches
 // A head, an infant's included, is wider and deeper than this, and its nose tip stands at least this far in front of
 // its nasion or of its cheeks kCheekOffset to either side (a nose clipped by the field of view still stands out of
 // one of them); a box or a small phantom is neither.
@@ -322,7 +323,9 @@ FaceAnatomy find_face_anatomy(const Mask& head, const Mask& bone) {
     return hi - lo;
   }();
   anatomy.nose_clipped = front_run > 10.0;
-  const auto n = profile.extreme(prn->z() + 15, prn->z() + 50, false, tie);
+  // The mask rounds off at the head's highest levels, whether they are its vertex or a field-of-view cut.
+  const double usable_top = z_hi - kTopRounding;
+  const auto n = profile.extreme(prn->z() + 15, std::min(prn->z() + 50, usable_top), false, tie);
   if (!n) not_found("the nasion above the nose", "--top-cut");
   anatomy.nasion = *n;
   // The front of the head at the cheeks, level with the nose (an empty column is no obstacle).
@@ -338,9 +341,10 @@ FaceAnatomy find_face_anatomy(const Mask& head, const Mask& bone) {
   if (!(relief >= kMinNoseRelief))
     not_a_head("no nose stands out of the profile (its most anterior point is " + mm(relief) +
                " in front of the nasion and the cheeks, a face's at least " + mm(kMinNoseRelief) + ")");
-  const auto gl = profile.extreme(n->z() + 3, n->z() + 30, true, tie);
-  if (!gl) not_found("the glabella above the nasion", "--top-cut");
-  anatomy.glabella = *gl;
+  const auto gl = profile.extreme(n->z() + 3, std::min(n->z() + 30, usable_top), true, tie);
+  anatomy.brow_cut = !gl;
+  anatomy.glabella = gl ? *gl : *profile.extreme(n->z(), usable_top, true, tie);
+  anatomy.highest_head_z = z_hi;
   find_chin(bone, profile, bottom, anatomy);
   anatomy.ear_front_y = find_ear_front(head, anatomy);
   return anatomy;
@@ -351,8 +355,8 @@ std::string face_anatomy_text(const FaceAnatomy& a) {
   s.precision(1);
   s << std::fixed << "mid-sagittal plane x " << a.centre_x << " (roll " << a.roll_degrees << " deg); pronasale "
     << point_text(a.pronasale) << (a.nose_clipped ? " (nose clipped)" : "") << ", nasion " << point_text(a.nasion)
-    << ", glabella " << point_text(a.glabella) << ", menton " << point_text(a.menton) << ", front of the ears y "
-    << a.ear_front_y;
+    << ", glabella " << point_text(a.glabella) << (a.brow_cut ? " (the scan ends below the brow)" : "") << ", menton "
+    << point_text(a.menton) << ", front of the ears y " << a.ear_front_y;
   if (a.lowest_head_z > -std::numeric_limits<double>::infinity()) s << ", head sections above z " << a.lowest_head_z;
   return s.str();
 }

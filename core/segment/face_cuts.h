@@ -15,7 +15,8 @@
 //   centre_x    = the mid-sagittal plane at the pronasale's level, from the face's mirror symmetry;
 //   bottom_z    = the menton (lowest point of the bony chin) minus chin_clearance, but at least border_margin above
 //                 the CT's bottom;
-//   top_z       = the glabella plus brow_clearance (above the eyebrows), but at least border_margin below the CT's top;
+//   top_z       = the glabella plus brow_clearance (above the eyebrows), but at least border_margin below the CT's top
+//                 and below the head's highest level (a scan that ends within the forehead);
 //   posterior_y = the front of the ears (the tragi) plus ear_clearance;
 //   jaw_z       = just above the highest model voxel on the posterior cut within one voxel of the mid-plane, in the
 //                 lower half of the face (find_jaw_cut, once the soft tissue is known); none if there is none.
@@ -34,7 +35,7 @@ struct FaceCutOptions {
   double brow_clearance = 15.0;                                  // mm above the glabella (the eyebrows lie within it)
   double chin_clearance = 15.0;  // mm below the menton (the chin's soft tissue is about 10 mm thick there)
   double ear_clearance = 10.0;   // mm in front of the front of the ears
-  double border_margin = 3.0;    // mm: top and bottom cuts stay this far inside the CT
+  double border_margin = 3.0;    // mm: top and bottom cuts stay this far inside the CT (and the top inside the head)
 };
 
 // A cut half-space boundary: points p with normal . p > offset are cut away (normal points out of the model).

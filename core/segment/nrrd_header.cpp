@@ -80,6 +80,10 @@ NrrdHeader check_nrrd_header(const std::string& path) {
   if (!in) throw Error(path, "cannot open");
   std::string line;
   if (!std::getline(in, line) || line.rfind("NRRD000", 0) != 0) throw Error(path, "not an NRRD file (no NRRD magic)");
+  // The magic is NRRD0001 to NRRD0005; VTK's reader loops on a magic line with other bytes after its version.
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  if (line.size() != 8 || line[7] < '1' || line[7] > '5')
+    throw Error(path, "the NRRD magic line is not NRRD0001 to NRRD0005");
   std::map<std::string, std::string> fields;
   // The header ends at a blank line (then the data follows) or, in a detached header, at the end of the file.
   constexpr int kMaxHeaderLines = 200;

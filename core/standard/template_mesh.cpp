@@ -173,7 +173,7 @@ ConstraintSet grid_constraints(const TemplateGrid& grid, const ConstraintSet& re
     if (line < 0)
       throw Error("template", "feature '" + c.name + "' (" + kFieldNames[c.field] + " = " + std::to_string(c.value) +
                                   ") is not a grid line");
-    Constraint row{c.name, c.field, c.value, {}};
+    Constraint row{c.name, c.field, c.value, {}, c.origin};
     const std::optional<PlaneSelection>& plane = c.select.plane;
     for (int k = 0; k <= nw; ++k)
       for (int j = 0; j <= nv; ++j)

@@ -722,6 +722,18 @@ TEST_F(Cli, OutputsAreCheckedBeforeTheWork) {
     EXPECT_NE(r.output.find("error: " + out), std::string::npos) << args << ": " << r.output;
     EXPECT_EQ(r.output.find("segmentation:"), std::string::npos) << args << ": " << r.output;
   }
+  // A mesh name without a format is refused before the work too, naming the formats.
+  const std::string no_format = path("model");
+  for (const std::string& args :
+       {"segment " + facehex::default_ct() + " -o " + no_format, "convert " + tets + " " + no_format,
+        "fields " + tets + " -o " + no_format, "sides " + tets + " -o " + no_format,
+        "map --patient " + tets + " -o " + no_format + ".txt"}) {
+    const Result r = run(args);
+    EXPECT_EQ(r.status, 1) << args << ": " << r.output;
+    EXPECT_NE(r.output.find("cannot write volume meshes as"), std::string::npos) << args << ": " << r.output;
+    EXPECT_NE(r.output.find(".vtu, .vtk"), std::string::npos) << args << ": " << r.output;
+    EXPECT_EQ(r.output.find("segmentation:"), std::string::npos) << args << ": " << r.output;
+  }
 }
 
 // A mesh with an inverted and a flat tet reads, and info says so.

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "core/fields/constraint_set.h"
 #include "core/mesh/sides.h"
 #include "core/util/error.h"
 
@@ -90,6 +91,28 @@ TEST(FaceLandmarks, FeatureConstraintsSitOnTheLandmarks) {
     }
   }
   EXPECT_THROW(feature_constraints(l, {}, 2.0), Error);  // the v features need the standard's values
+}
+
+TEST(FaceLandmarks, AFeatureThatSelectsNoVertexNamesItsLandmark) {
+  // A tet at the nose tip: the mid-sagittal line selects it, the eyebrow line (at the glabella, far above) nothing.
+  const PhantomFace face;
+  const FaceLandmarks l = find_face_landmarks(face.V, face.side_mask);
+  const Eigen::Vector3d tip = l.points.at("pronasale");
+  Eigen::MatrixXd V(4, 3);
+  V << tip.transpose(), (tip + Eigen::Vector3d(0.5, 0, 0)).transpose(), (tip + Eigen::Vector3d(0, 1, 0)).transpose(),
+      (tip + Eigen::Vector3d(0, 0, 1)).transpose();
+  const Eigen::MatrixXi T = (Eigen::MatrixXi(1, 4) << 0, 1, 2, 3).finished();
+  const std::map<std::string, double> values = {
+      {"eyebrow line", 0.9}, {"below-nose line", 0.6}, {"middle lip line", 0.5}};
+  try {
+    resolve_constraints(feature_constraints(l, values, 2.0), V, T, Eigen::VectorXi::Zero(4), "model.vtu");
+    ADD_FAILURE() << "expected an error";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    for (const std::string& words : {std::string("model.vtu"), std::string("'eyebrow line' selects no vertex"),
+                                     std::string("landmark 'glabella'"), std::string("found on the model")})
+      EXPECT_NE(what.find(words), std::string::npos) << what << " lacks " << words;
+  }
 }
 
 TEST(FaceLandmarks, AModelWithoutSkinOrLabelsIsAnError) {

@@ -169,6 +169,44 @@ TEST(FaceCuts, CutsStayInsideTheCt) {
   EXPECT_NEAR(find_face_cuts(high.head, high.bone, o).top_z, 177, 1e-9);
 }
 
+// Clears the masks above z = top, the highest level rounded off (its front 6 mm back), as a scan that ends there
+// leaves them.
+void end_scan_at(Head& h, double top) {
+  const GridGeometry& g = h.head.geometry;
+  for (int k = 0; k < g.dims[2]; ++k)
+    for (int j = 0; j < g.dims[1]; ++j)
+      for (int i = 0; i < g.dims[0]; ++i) {
+        const Eigen::Vector3d p = g.point(i, j, k);
+        if (p.z() > top || (p.z() == top && p.y() > 84)) h.head(i, j, k) = h.bone(i, j, k) = 0;
+      }
+}
+
+TEST(FaceCuts, AScanEndingInTheForeheadKeepsTheTopCutInsideTheHead) {
+  // Ending 2 mm above the middle of the nasion's hollow: its rounded top level is not the nasion.
+  Head h;
+  end_scan_at(h, 126);
+  FaceCuts cuts = find_face_cuts(h.head, h.bone, FaceCutOptions());
+  ASSERT_TRUE(cuts.anatomy);
+  EXPECT_NEAR(cuts.anatomy->nasion.y(), 90, 1e-9);
+  EXPECT_GE(cuts.anatomy->nasion.z(), 116);
+  EXPECT_LE(cuts.anatomy->nasion.z(), 122);
+  EXPECT_NEAR(cuts.anatomy->highest_head_z, 126, 1e-9);
+  EXPECT_NEAR(cuts.top_z, 123, 1e-9);  // the head's top less border_margin, below glabella + brow_clearance
+  // Ending within the hollow: nothing above the nasion is left for the glabella; the top cut is the head's top.
+  Head low;
+  end_scan_at(low, 120);
+  cuts = find_face_cuts(low.head, low.bone, FaceCutOptions());
+  ASSERT_TRUE(cuts.anatomy);
+  EXPECT_TRUE(cuts.anatomy->brow_cut);
+  EXPECT_NEAR(cuts.top_z, 117, 1e-9);
+  EXPECT_NE(face_anatomy_text(*cuts.anatomy).find("the scan ends below the brow"), std::string::npos);
+  // A whole head is not flagged.
+  const Head whole;
+  const FaceCuts whole_cuts = find_face_cuts(whole.head, whole.bone, FaceCutOptions());
+  ASSERT_TRUE(whole_cuts.anatomy);
+  EXPECT_FALSE(whole_cuts.anatomy->brow_cut);
+}
+
 TEST(FaceCuts, TheEarsFrontIsTheMostAnteriorRowNearlyAsWideAsTheWidest) {
   Head h;
   // A lobe in front of the ears 96 mm wide (within 5 mm of the ears' 100) and, further forward, one 92 mm wide.

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include "core/segment/ct_volume.h"
 #include "core/util/error.h"
@@ -51,6 +52,24 @@ TEST(NrrdHeader, ASoundFileReads) {
     EXPECT_TRUE(ct.intensity.geometry.spacing.isApprox(Eigen::Vector3d(1, 2, 3))) << fields;
     EXPECT_EQ(ct.intensity(11, 4, 5), 5411.0f);
   }
+}
+
+// VTK's reader loops for its whole time limit on a magic line with bytes after the version (a fuzzer's find).
+TEST(NrrdHeader, OnlyTheFiveMagicLinesAreTaken) {
+  const std::string sound = write_nrrd("magic.nrrd", "");
+  std::ifstream in(sound, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string rest = bytes.substr(bytes.find('\n'));
+  for (const std::string& magic : {std::string("NRRD000\x01\x00"
+                                               "4",
+                                               10),
+                                   std::string("NRRD0009"), std::string("NRRD00041"), std::string("NRRD0004 ")}) {
+    const std::string path = sound + ".bad.nrrd";
+    std::ofstream(path, std::ios::binary) << magic << rest;
+    expect_refused(path, "the NRRD magic line is not NRRD0001 to NRRD0005");
+  }
+  std::ofstream(sound + ".crlf.nrrd", std::ios::binary) << "NRRD0004\r" << rest;
+  EXPECT_EQ(read_ct_volume(sound + ".crlf.nrrd").intensity.geometry.dims, (std::array<int, 3>{12, 5, 6}));
 }
 
 TEST(NrrdHeader, SizesThatDoNotMatchTheDataAreRefused) {
