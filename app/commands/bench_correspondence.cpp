@@ -98,7 +98,7 @@ std::string markdown(const std::vector<CorrespondenceCaseResult>& results, const
   for (const CorrespondenceCaseResult& r : results) {
     md << "| " << r.kind << ": " << r.name << " | ";
     if (!r.failure.empty()) {
-      md << "failed: " << r.failure << " ||||||||||||||\n";
+      md << "failed" << (r.warp.empty() ? "" : " (" + r.warp + ")") << ": " << r.failure << " ||||||||||||||\n";
       continue;
     }
     md << r.patient_tets << " | " << triple(r.error.all) << " | " << fmt("%.0f %%", 100 * r.error.all.within_1mm)
@@ -152,6 +152,7 @@ void add_correspondence_options(Args& args) {
               "random-1,random-2,chin,nose")
       .option("cts", "with --correspondence: CT files warped for equivariance (default: the bundled CT; none: no CT)")
       .option("ct-seeds", "with --correspondence: seeds of the CT warps", "1,2")
+      .flag("keep-warped-cts", "with --correspondence: keep each warped CT in the report's folder (STEM-warp-SEED.mha)")
       .flag("true-landmarks",
             "with --correspondence: a model's feature constraints at the standard's landmarks moved by the warp, not "
             "at those found on it (separates the landmark finder's error)")
@@ -182,6 +183,7 @@ int correspondence_bench(const Args& args) {
   for (const std::string& ct : options.cts)
     if (!std::filesystem::exists(ct)) throw Error(ct, "no such CT file (--cts)");
   OutputFolder folder(args.get("output"));
+  if (args.has("keep-warped-cts")) options.keep_warped_cts = args.get("output");
   const StandardSetup standard = standard_setup(args);
   TerminalProgress progress;
   const auto results = run_correspondence_benchmark(

@@ -207,17 +207,22 @@ std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const Standar
         const SmoothWarp warp =
             random_warp(static_cast<std::uint64_t>(p.ct_seed), original.patient_hex.V.colwise().mean().transpose(),
                         skin_points(original.patient_hex), options.ct_ranges);
-        const fs::path tmp = fs::temp_directory_path() / ("facehex-correspondence-" + std::to_string(::getpid()) + "-" +
-                                                          std::to_string(i) + ".mha");
-        write_ct_volume(tmp.string(), CtVolume{warp_volume(ct.intensity, warp), ct.source + " (warped)"});
+        r.warp = warp_description(warp);
+        const bool keep = !options.keep_warped_cts.empty();
+        const fs::path file =
+            keep ? fs::path(options.keep_warped_cts) /
+                       (fs::path(p.model).stem().string() + "-warp-" + std::to_string(p.ct_seed) + ".mha")
+                 : fs::temp_directory_path() /
+                       ("facehex-correspondence-" + std::to_string(::getpid()) + "-" + std::to_string(i) + ".mha");
+        write_ct_volume(file.string(), CtVolume{warp_volume(ct.intensity, warp), ct.source + " (warped)"});
         PatientSetup warped;
         try {
-          warped = load_patient(tmp.string(), options.segment, "", &values, progress);
+          warped = load_patient(file.string(), options.segment, "", &values, progress);
         } catch (...) {
-          fs::remove(tmp);
+          if (!keep) fs::remove(file);
           throw;
         }
-        fs::remove(tmp);
+        if (!keep) fs::remove(file);
         const Eigen::MatrixXd truth = warp.apply_rows(original.patient_hex.V);
         r = measure(standard, warped, truth, regions, options, progress);
         r.seconds = clock.lap();

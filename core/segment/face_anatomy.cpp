@@ -14,16 +14,16 @@
 namespace facehex {
 namespace {
 
-constexpr double kShoulderWidth = 1.3;      // head sections wider than this times the head's are shoulders
-constexpr double kSymmetryReach = 45.0;     // mm either side of the mid-plane compared for symmetry
-constexpr double kSymmetrySearch = 30.0;    // mm either side of the head's mean x searched for the plane
-constexpr double kProfileBand = 2.0;        // mm either side of the mid-plane for the skin profile
-constexpr double kChinHalfWidth = 6.0;      // mm either side of the mid-plane for the chin's bone
-constexpr double kChinSoftTissue = 25.0;    // mm: the chin's bone is at most this far behind the skin
-constexpr double kChinGap = 4.0;            // mm of levels without such bone within the chin's run
-constexpr double kChinDepth = 30.0;         // mm the mandible's lower border reaches back from the chin's front
-constexpr double kEarReachTolerance = 3.0;  // mm: rows whose side reaches this close to the widest are the ear
-constexpr double kTopRounding = 3.0;        // mm below the head's highest level left out of the brow's searches
+constexpr double kShoulderWidth = 1.3;         // head sections wider than this times the head's are shoulders
+constexpr double kSymmetryReach = 45.0;        // mm either side of the mid-plane compared for symmetry
+constexpr double kSymmetrySearch = 30.0;       // mm either side of the head's mean x searched for the plane
+constexpr double kProfileBand = 2.0;           // mm either side of the mid-plane for the skin profile
+constexpr double kChinHalfWidth = 6.0;         // mm either side of the mid-plane for the chin's bone
+constexpr double kChinSoftTissue = 25.0;       // mm: the chin's bone is at most this far behind the skin
+constexpr double kChinGap = 4.0;               // mm of levels without such bone within the chin's run
+constexpr double kChinDepth = 30.0;            // mm the mandible's lower border reaches back from the chin's front
+constexpr double kEarReachTolerance = 3.0;     // mm: rows whose side reaches this close to the widest are the ear
+constexpr double kBrowReach[2] = {3.0, 30.0};  // mm above the nasion where the brow is looked for
 // A head, an infant's included, is wider and deeper than this, and its nose tip stands at least this far in front of
 // its nasion or of its cheeks kCheekOffset to either side (a nose clipped by the field of view still stands out of
 // one of them); a box or a small phantom is neither.
@@ -184,6 +184,23 @@ struct Profile {
       if (!std::isnan(p.y()) && p.z() >= lo && p.z() <= hi && std::abs(p.y() - *best) <= tie) ties.push_back(&p);
     return *ties[ties.size() / 2];
   }
+  // The least anterior point with z in [lo, hi] that has a point at least as anterior `reach` mm above it (a hollow
+  // below a brow, not the head's top receding); among ties within `tie` mm, the middle one.
+  std::optional<Eigen::Vector3d> hollow(double lo, double hi, const double (&reach)[2], double tie) const {
+    std::vector<const Eigen::Vector3d*> candidates;
+    for (const auto& p : points) {
+      if (std::isnan(p.y()) || p.z() < lo || p.z() > hi) continue;
+      const auto above = extreme(p.z() + reach[0], p.z() + reach[1], true, 0.0);
+      if (above && above->y() >= p.y()) candidates.push_back(&p);
+    }
+    if (candidates.empty()) return std::nullopt;
+    double best = candidates.front()->y();
+    for (const auto* p : candidates) best = std::min(best, p->y());
+    std::vector<const Eigen::Vector3d*> ties;
+    for (const auto* p : candidates)
+      if (p->y() - best <= tie) ties.push_back(p);
+    return *ties[ties.size() / 2];
+  }
 };
 
 // Rule 4: the bony chin below the pronasale.
@@ -323,10 +340,9 @@ FaceAnatomy find_face_anatomy(const Mask& head, const Mask& bone) {
     return hi - lo;
   }();
   anatomy.nose_clipped = front_run > 10.0;
-  // The mask rounds off at the head's highest levels, whether they are its vertex or a field-of-view cut.
-  const double usable_top = z_hi - kTopRounding;
-  const auto n = profile.extreme(prn->z() + 15, std::min(prn->z() + 50, usable_top), false, tie);
-  if (!n) not_found("the nasion above the nose", "--top-cut");
+  const auto hollow = profile.hollow(prn->z() + 15, prn->z() + 50, kBrowReach, tie);
+  anatomy.brow_unseen = !hollow;
+  const Eigen::Vector3d* n = hollow ? &*hollow : &*prn;
   anatomy.nasion = *n;
   // The front of the head at the cheeks, level with the nose (an empty column is no obstacle).
   double cheeks = -std::numeric_limits<double>::infinity();
@@ -337,13 +353,12 @@ FaceAnatomy find_face_anatomy(const Mask& head, const Mask& bone) {
     if (i >= 0 && i < g.dims[0] && !std::isnan(sections.front[sections.at(i, k)]))
       cheeks = std::max(cheeks, sections.front[sections.at(i, k)]);
   }
-  const double relief = std::max(prn->y() - n->y(), prn->y() - cheeks);
+  const double relief = std::max(hollow ? prn->y() - n->y() : 0.0, prn->y() - cheeks);
   if (!(relief >= kMinNoseRelief))
     not_a_head("no nose stands out of the profile (its most anterior point is " + mm(relief) +
                " in front of the nasion and the cheeks, a face's at least " + mm(kMinNoseRelief) + ")");
-  const auto gl = profile.extreme(n->z() + 3, std::min(n->z() + 30, usable_top), true, tie);
-  anatomy.brow_cut = !gl;
-  anatomy.glabella = gl ? *gl : *profile.extreme(n->z(), usable_top, true, tie);
+  anatomy.glabella = hollow ? *profile.extreme(n->z() + kBrowReach[0], n->z() + kBrowReach[1], true, tie)
+                            : *profile.extreme(prn->z(), z_hi, true, tie);
   anatomy.highest_head_z = z_hi;
   find_chin(bone, profile, bottom, anatomy);
   anatomy.ear_front_y = find_ear_front(head, anatomy);
@@ -354,9 +369,10 @@ std::string face_anatomy_text(const FaceAnatomy& a) {
   std::ostringstream s;
   s.precision(1);
   s << std::fixed << "mid-sagittal plane x " << a.centre_x << " (roll " << a.roll_degrees << " deg); pronasale "
-    << point_text(a.pronasale) << (a.nose_clipped ? " (nose clipped)" : "") << ", nasion " << point_text(a.nasion)
-    << ", glabella " << point_text(a.glabella) << (a.brow_cut ? " (the scan ends below the brow)" : "") << ", menton "
-    << point_text(a.menton) << ", front of the ears y " << a.ear_front_y;
+    << point_text(a.pronasale) << (a.nose_clipped ? " (nose clipped)" : "")
+    << (a.brow_unseen ? "" : ", nasion " + point_text(a.nasion)) << ", glabella " << point_text(a.glabella)
+    << (a.brow_unseen ? " (estimated: the profile shows no nasion below a brow, the top cut is the head's top)" : "")
+    << ", menton " << point_text(a.menton) << ", front of the ears y " << a.ear_front_y;
   if (a.lowest_head_z > -std::numeric_limits<double>::infinity()) s << ", head sections above z " << a.lowest_head_z;
   return s.str();
 }

@@ -15,11 +15,11 @@
 //     shoulder). A turned head keeps its plane through the nose, at the depth of the face's features;
 //  3. the skin profile: per head level, the most anterior head voxel within kProfileBand of c(z);
 //     pronasale = the most anterior profile point (the middle of the front plateau when the field of view cut the
-//     nose flat); nasion = the least anterior profile point 15-50 mm above it; glabella = the most anterior profile
-//     point 3-30 mm above the nasion (middles of ties within half a voxel); the levels within kTopRounding of the
-//     head's highest one are left out of both searches (the mask rounds off there); when none above the nasion is
-//     left, the scan ends below the brow and the glabella is the most anterior of the usable levels from the nasion up
-//     (brow_cut);
+//     nose flat); nasion = the least anterior profile point 15-50 mm above it that has a point at least as anterior
+//     3-30 mm above it (a hollow below the brow, not the head's top receding where the scan ends); glabella = the most
+//     anterior profile point 3-30 mm above the nasion (middles of ties within half a voxel). When no point has a
+//     brow above it (the scan ends below the brow, or a field-of-view cut flattens the face), brow_unseen: the
+//     glabella is the most anterior point from the pronasale up and the top cut is the head's top (face_cuts.h);
 //  4. the bony chin: going down from 30 mm below the pronasale (below the head levels too), the levels where bone near
 //  the mid-plane (within
 //     kChinHalfWidth) lies at most kChinSoftTissue behind the skin profile; the first such level starts a run that
@@ -42,7 +42,7 @@ struct FaceAnatomy {
   double roll_degrees = 0;  // the plane's trace leans by this angle from vertical (positive: +x upwards)
   Eigen::Vector3d pronasale, nasion, glabella;  // skin points of the mid-sagittal profile
   bool nose_clipped = false;                    // the front of the nose is a plateau (field-of-view cut)
-  bool brow_cut = false;                        // the scan ends below the glabella (see rule 3)
+  bool brow_unseen = false;                     // no nasion below a brow in the profile (rule 3); nasion = pronasale
   Eigen::Vector3d menton;                       // bone: the lowest point of the chin
   double ear_front_y = 0;                       // y of the front of the ears (tragi)
   double lowest_head_z = 0;                     // below this the slices are shoulders or a support

@@ -40,9 +40,13 @@ FaceCuts find_face_cuts(const Mask& head, const Mask& bone, const FaceCutOptions
   cuts.centre_x = options.centre_x ? *options.centre_x : cuts.anatomy->centre_x;
   cuts.bottom_z =
       options.bottom_z ? *options.bottom_z : std::max(z_min, cuts.anatomy->menton.z() - options.chin_clearance);
-  cuts.top_z = options.top_z ? *options.top_z
-                             : std::min({z_max, cuts.anatomy->highest_head_z - options.border_margin,
-                                         cuts.anatomy->glabella.z() + options.brow_clearance});
+  if (options.top_z) {
+    cuts.top_z = *options.top_z;
+  } else {
+    const FaceAnatomy& a = *cuts.anatomy;
+    cuts.top_z = std::min(z_max, a.highest_head_z - options.border_margin);
+    if (!a.brow_unseen) cuts.top_z = std::min(cuts.top_z, a.glabella.z() + options.brow_clearance);
+  }
   if (!(cuts.top_z > cuts.bottom_z + 10.0))
     throw Error("segment", "the top cut (z = " + mm(cuts.top_z) + ") must be well above the bottom cut (z = " +
                                mm(cuts.bottom_z) + "); check the cut options and the CT's superior axis");

@@ -16,7 +16,8 @@
 //   bottom_z    = the menton (lowest point of the bony chin) minus chin_clearance, but at least border_margin above
 //                 the CT's bottom;
 //   top_z       = the glabella plus brow_clearance (above the eyebrows), but at least border_margin below the CT's top
-//                 and below the head's highest level (a scan that ends within the forehead);
+//                 and below the head's highest level (a scan that ends within the forehead); the head's highest
+//                 level less border_margin when the profile shows no brow (FaceAnatomy::brow_unseen);
 //   posterior_y = the front of the ears (the tragi) plus ear_clearance;
 //   jaw_z       = just above the highest model voxel on the posterior cut within one voxel of the mid-plane, in the
 //                 lower half of the face (find_jaw_cut, once the soft tissue is known); none if there is none.

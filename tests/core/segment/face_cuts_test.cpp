@@ -197,14 +197,14 @@ TEST(FaceCuts, AScanEndingInTheForeheadKeepsTheTopCutInsideTheHead) {
   end_scan_at(low, 120);
   cuts = find_face_cuts(low.head, low.bone, FaceCutOptions());
   ASSERT_TRUE(cuts.anatomy);
-  EXPECT_TRUE(cuts.anatomy->brow_cut);
+  EXPECT_TRUE(cuts.anatomy->brow_unseen);
   EXPECT_NEAR(cuts.top_z, 117, 1e-9);
-  EXPECT_NE(face_anatomy_text(*cuts.anatomy).find("the scan ends below the brow"), std::string::npos);
+  EXPECT_NE(face_anatomy_text(*cuts.anatomy).find("no nasion below a brow"), std::string::npos);
   // A whole head is not flagged.
   const Head whole;
   const FaceCuts whole_cuts = find_face_cuts(whole.head, whole.bone, FaceCutOptions());
   ASSERT_TRUE(whole_cuts.anatomy);
-  EXPECT_FALSE(whole_cuts.anatomy->brow_cut);
+  EXPECT_FALSE(whole_cuts.anatomy->brow_unseen);
 }
 
 TEST(FaceCuts, TheEarsFrontIsTheMostAnteriorRowNearlyAsWideAsTheWidest) {
