@@ -1,9 +1,9 @@
 // Every reader turns a bad file into a facehex::Error naming the file, never a crash or a half-filled mesh: missing,
 // empty, truncated (a good file cut at several points) and garbage files, and unknown extensions.
+#include <gtest/gtest.h>
+
 #include "core/io/mesh_io.h"
 #include "io_test_util.h"
-
-#include <gtest/gtest.h>
 
 namespace facehex {
 namespace {
@@ -185,6 +185,22 @@ TEST(ReaderErrors, VtkConnectivityOutOfRange) {
                    "# vtk DataFile Version 3.0\nx\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n"
                    "0 0 0 1 0 0 0 1 0 0 0 1\nCELLS 1 5\n4 0 1 2 7\nCELL_TYPES 1\n10\n");
   test::expect_error([&] { read_volume_mesh(path); }, "bad.vtk: cell 0 refers to point 7");
+}
+
+// VTK's PLY reader frees a buffer twice when an ASCII file's last line has no end (a fuzzer's find): refused before
+// VTK reads it; with the line end the same file reads.
+TEST(ReaderErrors, AnAsciiPlyWhoseLastLineHasNoEndIsRefused) {
+  TempDir dir;
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 4\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n10 0 0\n0 10 0\n0 0 10\n"
+      "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3";
+  test::write_file(dir.file("tet.ply"), ply + "\n");
+  EXPECT_EQ(read_surface_mesh(dir.file("tet.ply")).F.rows(), 4);
+  for (const std::string& end : {std::string(""), std::string(" "), std::string("\v")}) {
+    test::write_file(dir.file("tet.ply"), ply + end);
+    test::expect_error([&] { read_surface_mesh(dir.file("tet.ply")); }, "ends without a line end");
+  }
 }
 
 }  // namespace
