@@ -18,7 +18,7 @@ PatientTetModel load_patient_model(const std::string& path, const SegmentOptions
       report_progress(progress, "segmentation: reading the CT", 0.0);
       PatientModel segmented = build_patient_model(read_ct_volume(path, options.orientation), options, progress);
       model.mesh = std::move(segmented.mesh);
-      CtSegmentation as_used{options, segmented.thresholds, segmented.cuts};
+      CtSegmentation as_used{segmented.options, segmented.thresholds, segmented.cuts, segmented.repair};
       as_used.options.tets.target_edge_length = segmented.edge_length;
       as_used.options.coarsen_above_tets = 0;
       model.segmentation = as_used;
@@ -42,6 +42,7 @@ std::string segmentation_summary(const CtSegmentation& segmentation) {
   if (std::isfinite(cuts.jaw_z)) text << ", jaw cut rising to z " << cuts.jaw_z << " at the posterior cut";
   if (cuts.anatomy) text << "; found: " << face_anatomy_text(*cuts.anatomy);
   text << "; tets of edge length " << segmentation.options.tets.target_edge_length << " mm";
+  if (!segmentation.repair.empty()) text << "; repaired: " << segmentation.repair;
   return text.str();
 }
 

@@ -19,6 +19,7 @@ struct CtSegmentation {
   SegmentOptions options;
   TissueThresholds thresholds;
   FaceCuts cuts;
+  std::string repair;  // PatientModel::repair
 };
 
 struct PatientTetModel {

@@ -131,6 +131,12 @@ Field model_function(const Mask& model, const FaceCuts& cuts, double sigma) {
   return phi;
 }
 
+// The tunnel repair's steps (build_patient_model): attempt a adds a times these to min_thickness (mm) and to the
+// smoothing's relative width.
+constexpr int kTunnelRepairAttempts = 2;
+constexpr double kTunnelRepairThickness = 1.0;
+constexpr double kTunnelRepairBlur = 0.25;
+
 int euler_characteristic(const Eigen::MatrixXi& faces) {
   std::set<int> vertices;
   std::set<std::pair<int, int>> edges;
@@ -153,8 +159,10 @@ void check_topology(const PatientModel& model) {
   const int chi = euler_characteristic(model.boundary_faces);
   if (chi != 2)
     throw Error("segment", "the model's boundary has Euler characteristic " + std::to_string(chi) +
-                               " instead of 2 (it has tunnels or voids); raise --min-thickness, --bone-gap, "
-                               "--cavity-closing or --smoothing, or lower --max-depth");
+                               " instead of 2 (it has tunnels or voids" +
+                               (model.repair.empty() ? std::string() : "; " + model.repair) +
+                               "); raise --min-thickness, --bone-gap, --cavity-closing or --smoothing, or lower "
+                               "--max-depth");
   for (int s = 0; s < kNumSides; ++s) {
     const int n = count_patches(model.boundary_faces, model.boundary_sides, s);
     if (n != 1)
@@ -234,23 +242,45 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   Mask air = head;
   for (auto& v : air.data) v = !v;
   const Field air_distance = distance_to(air);
-  // The mask reaches this far beyond the cuts, so that its blur does not round the creases where they cut it.
-  const double margin = 3 * options.smoothing_sigma + 2 * options.working_spacing;
   // Bone with its narrow gaps closed (between the teeth, in thin orbital walls) hides what is behind it.
   Mask hiding_bone = close(bone, options.bone_gap_radius);
   for (size_t i = 0; i < hiding_bone.data.size(); ++i) hiding_bone.data[i] &= head.data[i];
-  const Mask tissue = model_mask(head, hiding_bone, air_distance, model.cuts, options, margin);
-  if (std::count(tissue.data.begin(), tissue.data.end(), 1) == 0)
-    throw Error("segment", "no soft tissue between the cuts; check the thresholds and the cut planes");
-  // Clear of the blurred mask's edge, so the posterior cut meets two separate pieces.
-  find_jaw_cut(tissue, 2 * options.smoothing_sigma + options.working_spacing, model.cuts);
 
-  Mask inner = head;
-  for (size_t i = 0; i < inner.data.size(); ++i) inner.data[i] = head.data[i] && !tissue.data[i];
-  const Field inner_distance = distance_to(inner);
-
-  step("the surface", 0.33);
-  SurfaceMesh surface = level_surface_with_cuts(tissue, model.cuts, options);
+  // Where the tissue is only a voxel or two thick (thin skin over bone, a warped or streaky scan), its surface can
+  // pierce it: a tunnel. The surface is then made again with a thicker minimum layer and a wider blur, which fill
+  // such holes and leave the rest of the surface where it was; the attempt used is stated (PatientModel::repair).
+  const FaceCuts automatic_cuts = model.cuts;
+  SurfaceMesh surface;
+  Field inner_distance;
+  int first_chi = 2;
+  for (int attempt = 0;; ++attempt) {
+    model.options = options;
+    model.options.min_thickness += attempt * kTunnelRepairThickness;
+    model.options.smoothing_sigma *= 1 + attempt * kTunnelRepairBlur;
+    const SegmentOptions& used = model.options;
+    model.cuts = automatic_cuts;
+    // The mask reaches this far beyond the cuts, so that its blur does not round the creases where they cut it.
+    const double margin = 3 * used.smoothing_sigma + 2 * used.working_spacing;
+    const Mask tissue = model_mask(head, hiding_bone, air_distance, model.cuts, used, margin);
+    if (std::count(tissue.data.begin(), tissue.data.end(), 1) == 0)
+      throw Error("segment", "no soft tissue between the cuts; check the thresholds and the cut planes");
+    // Clear of the blurred mask's edge, so the posterior cut meets two separate pieces.
+    find_jaw_cut(tissue, 2 * used.smoothing_sigma + used.working_spacing, model.cuts);
+    Mask inner = head;
+    for (size_t i = 0; i < inner.data.size(); ++i) inner.data[i] = head.data[i] && !tissue.data[i];
+    inner_distance = distance_to(inner);
+    step(attempt == 0 ? "the surface" : "the surface again (the first had tunnels)", 0.33);
+    surface = level_surface_with_cuts(tissue, model.cuts, used);
+    const int chi = euler_characteristic(surface.F);
+    if (attempt == 0) first_chi = chi;
+    if (chi == 2 || attempt == kTunnelRepairAttempts) {
+      if (attempt > 0)
+        model.repair = "the first surface had tunnels (Euler characteristic " + std::to_string(first_chi) +
+                       "); made with --min-thickness " + number(used.min_thickness) + " --smoothing " +
+                       number(used.smoothing_sigma) + (chi == 2 ? "" : ", which left tunnels too");
+      break;
+    }
+  }
   Eigen::VectorXi sides =
       classify_sides(surface, model.cuts, air_distance, inner_distance, 0.3 * options.working_spacing);
   merge_side_islands(surface.F, sides);

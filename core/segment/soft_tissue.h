@@ -19,6 +19,8 @@
 //  6. surface = zero level of max(smoothed model mask, cut planes) (iso_surface.h), faces labelled by side
 //     (side_labels.h), remeshed to near-equilateral triangles of target_edge_length keeping the sides (remesh.h);
 //  7. TetGen with the side labels as facet markers, side_mask per vertex from the labelled boundary triangles;
+//     When that surface has tunnels (Euler characteristic other than 2; thin tissue pierced), steps 4-6 run again
+//     with min_thickness and smoothing_sigma raised, up to twice (PatientModel::repair says what was done);
 //  8. checks: one solid, boundary of Euler characteristic 2 (a ball), each of the six sides one connected patch.
 #include <optional>
 #include <string>
@@ -68,6 +70,8 @@ struct PatientModel {
   TissueThresholds thresholds;     // as used
   FaceCuts cuts;                   // as used
   double edge_length = 0;          // mm, the tets' target edge length as used (SegmentOptions::coarsen_above_tets)
+  SegmentOptions options;          // as used: min_thickness and smoothing_sigma raised by a tunnel repair
+  std::string repair;              // the tunnel repair made, or empty
 };
 
 // Throws facehex::Error naming the stage ("thresholds", "segment", "tetgen") with what to change. `progress` hears of
