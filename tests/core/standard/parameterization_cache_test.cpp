@@ -66,7 +66,7 @@ TEST(ParameterizationCache, IsRefusedWhenMadeFromSomethingElseOrDamaged) {
   write_parameterization_cache(path, box.domain, box.computed(), box.set, box.options);
   ConstraintSet other_set = box.set;
   other_set.constraints[0].value = 0.0;
-  other_set.constraints.push_back({"middle", 0, 0.5, {}});
+  other_set.constraints.push_back({"middle", 0, 0.5, {}, ""});
   other_set.constraints.back().select.ids = {7};
   EXPECT_FALSE(read_parameterization_cache(path, box.domain, other_set, box.options, &why));
   EXPECT_NE(why.find("constraint set"), std::string::npos) << why;

@@ -28,12 +28,12 @@ VolumeMesh reference_box() {
 // 12 mm of (20, 10, 9).
 ConstraintSet reference_constraints() {
   ConstraintSet set = side_constraints();
-  Constraint mid{"mid-sagittal line", 0, 0.5, {}};
+  Constraint mid{"mid-sagittal line", 0, 0.5, {}, ""};
   mid.select.plane = PlaneSelection{};
   mid.select.plane->point = Eigen::Vector3d(kWidth / 2, 0, 0);
   mid.select.plane->normal = Eigen::Vector3d::UnitX();
   set.constraints.push_back(mid);
-  Constraint nose{"below-nose line", 1, 0.3, {}};
+  Constraint nose{"below-nose line", 1, 0.3, {}, ""};
   nose.select.plane = PlaneSelection{};
   nose.select.plane->point = Eigen::Vector3d(0, 0, 0.3 * kHeight);
   nose.select.plane->normal = Eigen::Vector3d::UnitZ();
