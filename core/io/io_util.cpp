@@ -5,12 +5,15 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
+#include <vector>
 
 #include "core/util/error.h"
 
@@ -241,6 +244,57 @@ void check_vtk_xml_sizes(const std::string& path) {
       throw Error(path, attribute + "=\"" + text + "\" is not a count from " + std::to_string(int(least)) + " to " +
                             std::to_string(static_cast<long long>(most)) + " (a damaged file)");
   }
+}
+
+void check_legacy_vtk_cells(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t line = data.find("\nCELLS ");
+  if (line == std::string::npos) return;
+  const size_t line_end = data.find('\n', line + 1);
+  if (line_end == std::string::npos) throw Error(path, "ends in its CELLS line");
+  long long n = -1, size = -1;
+  char rest = 0;
+  if (std::sscanf(data.substr(line + 7, line_end - line - 7).c_str(), "%lld %lld %c", &n, &size, &rest) != 2 || n < 0 ||
+      size < 0)
+    throw Error(path, "malformed CELLS line (expected CELLS count size)");
+  if (data.compare(line_end + 1, 7, "OFFSETS") == 0) return;
+  const bool binary = data.find("\nBINARY") != std::string::npos && data.find("\nBINARY") < line;
+  // The numbers of the section, no more than `size` of them: a count that runs past them is the damage found.
+  std::vector<long long> numbers;
+  numbers.reserve(static_cast<size_t>(std::min<long long>(size, static_cast<long long>(data.size()))));
+  if (binary) {
+    const size_t available = (data.size() - line_end - 1) / 4;
+    if (static_cast<unsigned long long>(size) > available)
+      throw Error(path, "CELLS declares " + std::to_string(size) + " numbers, the file holds " +
+                            std::to_string(available) + " after it");
+    for (long long k = 0; k < size; ++k) {
+      const auto* b = reinterpret_cast<const unsigned char*>(data.data() + line_end + 1 + 4 * k);
+      numbers.push_back(static_cast<std::int32_t>(std::uint32_t{b[0]} << 24 | std::uint32_t{b[1]} << 16 |
+                                                  std::uint32_t{b[2]} << 8 | std::uint32_t{b[3]}));
+    }
+  } else {
+    const char* p = data.c_str() + line_end + 1;
+    for (long long k = 0; k < size; ++k) {
+      char* stop = nullptr;
+      errno = 0;
+      const long long v = std::strtoll(p, &stop, 10);
+      if (stop == p || errno != 0)
+        throw Error(path, "CELLS declares " + std::to_string(size) + " numbers, the file holds " + std::to_string(k));
+      numbers.push_back(v);
+      p = stop;
+    }
+  }
+  long long at = 0;
+  for (long long c = 0; c < n; ++c) {
+    if (at >= size || numbers[at] < 0 || numbers[at] >= size - at)
+      throw Error(path, "cell " + std::to_string(c + 1) + " of " + std::to_string(n) +
+                            " runs past the CELLS section's declared " + std::to_string(size) + " numbers");
+    at += 1 + numbers[at];
+  }
+  if (at != size)
+    throw Error(path, "the CELLS section's " + std::to_string(n) + " cells hold " + std::to_string(at) +
+                          " numbers, it declares " + std::to_string(size));
 }
 
 }  // namespace facehex::io

@@ -24,6 +24,11 @@ void check_readable_file(const std::string& path);
 // A VTK XML file's declared sizes (every NumberOf... attribute before its appended data) are counts our readers can
 // hold: 0 .. 2^31-1, components 1 .. 1000. Throws Error(path, ...) naming the attribute.
 void check_vtk_xml_sizes(const std::string& path);
+// A legacy VTK file's CELLS section before format 5.1 ("CELLS n size", then n rows "count id..."; ASCII or big-endian
+// binary int32) holds exactly `size` numbers and its rows' counts add up to them: VTK's reader walks the rows by their
+// counts through a buffer of `size` and runs past its end when they need more. Throws Error(path, ...). Files of
+// format 5.1 (OFFSETS and CONNECTIVITY) and files without CELLS pass.
+void check_legacy_vtk_cells(const std::string& path);
 
 // Text that reads back to exactly the same double (%.17g).
 std::string format_double(double x);

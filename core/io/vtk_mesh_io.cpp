@@ -150,6 +150,7 @@ VolumeMesh read_vtu(const std::string& path) {
 
 VolumeMesh read_legacy_vtk(const std::string& path) {
   check_readable_file(path);
+  check_legacy_vtk_cells(path);
   return read_in_child(path, "reading legacy VTK", [&] {
     vtkNew<vtkUnstructuredGridReader> reader;
     reader->SetFileName(path.c_str());

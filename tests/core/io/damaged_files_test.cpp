@@ -2,7 +2,10 @@
 // runaway allocation or a plausible mesh. The cases are the reproducers found by fuzzing the readers.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdint>
+#include <cstring>
 
 #include "core/io/mesh_bytes.h"
 #include "core/io/mesh_io.h"
@@ -92,15 +95,41 @@ TEST(DamagedFiles, AnIndexPast32BitsIsNotWrappedIntoAValidOne) {
 TEST(DamagedFiles, LegacyVtkWithMoreCellsOrPointsThanItHolds) {
   TempDir dir;
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {legacy_vtk("4", "100 500"), "reading legacy VTK"},
-      {legacy_vtk("4", "1 2000000000"), "reading legacy VTK"},
+      {legacy_vtk("4", "100 500"), "CELLS declares 500 numbers, the file holds 5"},
+      {legacy_vtk("4", "1 2000000000"), "CELLS declares 2000000000 numbers"},
       {legacy_vtk("4000000000", "1 5"), "reading legacy VTK"},
+      // Fewer numbers declared than the row holds: VTK's reader would run past its buffer (a fuzzer's find).
+      {legacy_vtk("4", "1 2"), "cell 1 of 1 runs past the CELLS section's declared 2 numbers"},
+      {legacy_vtk("4", "1 7"), "CELLS declares 7 numbers, the file holds 5"},
+      {legacy_vtk("4", "2 5"), "cell 2 of 2 runs past"},
   };
   for (size_t i = 0; i < cases.size(); ++i) {
     const std::string file = dir.file("bad" + std::to_string(i) + ".vtk");
     test::write_file(file, cases[i].first);
     expect_quick_error(file, cases[i].second);
   }
+}
+
+// The same check on a binary file's CELLS section (format 4: big-endian int32 rows, as older writers make it).
+TEST(DamagedFiles, ABinaryLegacyVtkWhoseCellsRunPastTheirSectionIsRefused) {
+  const auto big_endian = [](auto value) {
+    std::string b(sizeof value, '\0');
+    std::memcpy(b.data(), &value, sizeof value);
+    std::reverse(b.begin(), b.end());
+    return b;
+  };
+  const auto file = [&](std::int32_t count) {
+    std::string f = "# vtk DataFile Version 3.0\ntest\nBINARY\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n";
+    for (const double x : {0., 0., 0., 1., 0., 0., 0., 1., 0., 0., 0., 1.}) f += big_endian(x);
+    f += "\nCELLS 1 5\n";
+    for (const std::int32_t v : {count, 0, 1, 2, 3}) f += big_endian(v);
+    return f + "\nCELL_TYPES 1\n" + big_endian(std::int32_t{10}) + "\n";
+  };
+  TempDir dir;
+  test::write_file(dir.file("good.vtk"), file(4));
+  EXPECT_EQ(read_volume_mesh(dir.file("good.vtk")).num_cells(), 1);
+  test::write_file(dir.file("bad.vtk"), file(5000));
+  expect_quick_error(dir.file("bad.vtk"), "cell 1 of 1 runs past the CELLS section's declared 5 numbers");
 }
 
 TEST(DamagedFiles, EveryByteOfABinaryVtkCutOrFlippedIsAnErrorOrTheSameMesh) {
