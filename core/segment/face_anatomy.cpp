@@ -19,8 +19,9 @@ constexpr double kSymmetryReach = 45.0;        // mm either side of the mid-plan
 constexpr double kSymmetrySearch = 30.0;       // mm either side of the head's mean x searched for the plane
 constexpr double kProfileBand = 2.0;           // mm either side of the mid-plane for the skin profile
 constexpr double kChinHalfWidth = 6.0;         // mm either side of the mid-plane for the chin's bone
+constexpr double kApertureHeight = 6.0;        // mm: a run of levels this tall without bone near the skin is the nose's
 constexpr double kChinSoftTissue = 25.0;       // mm: the chin's bone is at most this far behind the skin
-constexpr double kChinGap = 4.0;               // mm of levels without such bone within the chin's run
+constexpr double kChinGap = 8.0;               // mm of levels without such bone within the chin's run (lips apart)
 constexpr double kChinDepth = 30.0;            // mm the mandible's lower border reaches back from the chin's front
 constexpr double kEarReachTolerance = 3.0;     // mm: rows whose side reaches this close to the widest are the ear
 constexpr double kBrowReach[2] = {3.0, 30.0};  // mm above the nasion where the brow is looked for
@@ -329,7 +330,23 @@ FaceAnatomy find_face_anatomy(const Mask& head, const Mask& bone) {
 
   const Profile profile(head, anatomy, bottom, top);
   const double z_lo = g.point(0, 0, lowest).z(), z_hi = g.point(0, 0, top).z(), tie = 0.5 * g.spacing.y();
-  const auto prn = profile.extreme(z_lo, z_hi, true, tie);
+  // The nose stands in front of the nasal aperture: the highest run of head levels where the mid-plane's bone lies
+  // far behind the skin. A field of view that cuts the face flat can leave the forehead as far forward as the nose.
+  const Profile bone_profile(bone, anatomy, bottom, top);
+  std::optional<std::pair<double, double>> aperture;
+  for (int k = top, run_top = -1; k >= lowest && !aperture; --k) {
+    const double skin = profile.points[k].y(), behind = skin - bone_profile.points[k].y();
+    const bool open = !std::isnan(skin) && !(behind <= kChinSoftTissue);
+    if (open && run_top < 0) run_top = k;
+    if ((!open || k == lowest) && run_top >= 0) {
+      const int run_bottom = open ? k : k + 1;
+      if ((run_top - run_bottom) * g.spacing.z() >= kApertureHeight)
+        aperture = {g.point(0, 0, run_bottom).z(), g.point(0, 0, run_top).z()};
+      run_top = -1;
+    }
+  }
+  const auto prn =
+      aperture ? profile.extreme(aperture->first, aperture->second, true, tie) : profile.extreme(z_lo, z_hi, true, tie);
   if (!prn) not_found("the face's profile", "--top-cut, --bottom-cut and --posterior-cut");
   anatomy.pronasale = *prn;
   // A front plateau longer than a nose's tip: the field of view cut it.

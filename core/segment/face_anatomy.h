@@ -14,8 +14,10 @@
 //     without the levels more than 3 mm off it) is the plane's trace: its slope is the head's roll (tilt towards a
 //     shoulder). A turned head keeps its plane through the nose, at the depth of the face's features;
 //  3. the skin profile: per head level, the most anterior head voxel within kProfileBand of c(z);
-//     pronasale = the most anterior profile point (the middle of the front plateau when the field of view cut the
-//     nose flat); nasion = the least anterior profile point 15-50 mm above it that has a point at least as anterior
+//     pronasale = the most anterior profile point at the levels of the nasal aperture (the highest run, at least
+//     kApertureHeight tall, of levels where the bone within the profile band lies more than kChinSoftTissue behind the
+//     skin or is absent; the whole profile when there is no such run), the middle of the front plateau when the field
+//     of view cut the nose flat (such a cut can leave the forehead as far forward as the nose); nasion = the least anterior profile point 15-50 mm above it that has a point at least as anterior
 //     3-30 mm above it (a hollow below the brow, not the head's top receding where the scan ends); glabella = the most
 //     anterior profile point 3-30 mm above the nasion (middles of ties within half a voxel). When no point has a
 //     brow above it (the scan ends below the brow, or a field-of-view cut flattens the face), brow_unseen: the

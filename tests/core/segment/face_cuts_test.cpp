@@ -131,6 +131,22 @@ TEST(FaceCuts, TheMentonIsTheLowestBoneConnectedToTheChinNearTheSkin) {
   expect_error([&] { find_face_cuts(no_chin.head, no_chin.bone, FaceCutOptions()); }, "--bottom-cut");
 }
 
+// A field of view that cuts the face flat can leave the forehead as far forward as the nose (or further, when the cut
+// is slanted): the nose is the most anterior point in front of the nasal aperture, the highest run of levels without
+// bone near the skin.
+TEST(FaceCuts, TheNoseIsInFrontOfTheNasalAperture) {
+  Head h;
+  fill(h.head, {30, 90, 152}, {90, 106, 170});  // a forehead out to y = 106, in front of the nose's 104
+  fill(h.bone, {54, 80, 114}, {66, 86, 170});   // the frontal and nasal bones behind it
+  fill(h.bone, {54, 76, 56}, {66, 86, 86});     // the maxilla and teeth below the aperture
+  const FaceCuts cuts = find_face_cuts(h.head, h.bone, FaceCutOptions());
+  ASSERT_TRUE(cuts.anatomy);
+  EXPECT_NEAR(cuts.anatomy->pronasale.z(), 100, 2.0) << cuts.anatomy->pronasale.transpose();
+  EXPECT_NEAR(cuts.anatomy->pronasale.y(), 104, 1e-9);
+  // The chin's run goes down from the teeth over the 6 mm between them and the chin's bone (lips apart).
+  EXPECT_NEAR(cuts.anatomy->menton.z(), 40, 1e-9);
+}
+
 TEST(FaceCuts, ATiltedHeadKeepsItsMidPlaneAndLandmarks) {
   // Tilted 15 degrees towards a shoulder (about the y axis): the plane's trace leans by 15 degrees.
   const Head h(rotation(15, Eigen::Vector3d::UnitY()), false);
