@@ -29,18 +29,19 @@ struct Profile {
     return best;
   }
 
-  // The middle (in z) of the bins with z in [lo, hi] within `tie` mm of the most anterior one: a flat brow's centre.
-  std::optional<Eigen::Vector3d> middle_of_front(double lo, double hi, double tie) const {
-    const std::optional<Eigen::Vector3d> front = extreme(lo, hi, true);
-    if (!front) return front;
-    double first = front->z(), last = front->z();
+  // The middle (in z) of the bins with z in [lo, hi] within `tie` mm of the most (max) or least anterior one: a flat
+  // brow's centre, a flat nasion's.
+  std::optional<Eigen::Vector3d> middle_of_extreme(double lo, double hi, bool max, double tie) const {
+    const std::optional<Eigen::Vector3d> best = extreme(lo, hi, max);
+    if (!best) return best;
+    double first = best->z(), last = best->z();
     for (const auto& bin : bins)
-      if (bin && bin->z() >= lo && bin->z() <= hi && bin->y() >= front->y() - tie)
+      if (bin && bin->z() >= lo && bin->z() <= hi && std::abs(bin->y() - best->y()) <= tie)
         first = std::min(first, bin->z()), last = std::max(last, bin->z());
     const double mid = 0.5 * (first + last);
     for (double reach = 0.5; reach <= 0.5 * (last - first) + 0.5; reach += 1)  // the nearest bin holding a point
-      if (const auto p = extreme(mid - reach, mid + reach, true)) return p;
-    return front;
+      if (const auto p = extreme(mid - reach, mid + reach, max)) return p;
+    return best;
   }
 
   // Going down from z, the first bin that is the least anterior within 2 mm either side (a local minimum), within
@@ -187,6 +188,9 @@ Eigen::Vector3d require(const std::optional<Eigen::Vector3d>& p, const std::stri
 // mm, the Douglas-Peucker tolerances tried for the lips, coarsest first (Profile::turns_below)
 constexpr double kTurnTolerances[] = {1.5, 1.0, 0.5};
 constexpr double kLipsReach = 50.0;  // mm below the nose within which the lips are looked for
+// mm: profile points this close to the most or least anterior one are one flat stretch, whose middle is taken (a flat
+// nasion or brow, or a field-of-view cut above the nose).
+constexpr double kFlatTie = 0.5;
 
 // The subnasale: the profile point between the upper lip and the nose (`nose`: its tip, or the lowest point of a
 // field-of-view cut) deepest behind the chord joining them, where the columella meets the lip.
@@ -284,11 +288,12 @@ FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorX
     if (cut)
       prn = require(profile.extreme(0.5 * (cut->first + cut->second) - 1, 0.5 * (cut->first + cut->second) + 1, true),
                     "nose tip");
-    n = require(profile.extreme((cut ? cut->second : prn.z() + 10), prn.z() + 45, false), "nasion");
+    n = require(profile.middle_of_extreme((cut ? cut->second : prn.z() + 10), prn.z() + 45, false, kFlatTie), "nasion");
     // Not within a few mm of the model's top: where a model is cut just above the brow (a standard), the cut's edge
     // is the most anterior point above the nasion, and it is no anatomy.
     constexpr double kTopCutMargin = 5;
-    g = require(profile.middle_of_front(n.z() + 3, std::min(n.z() + 30, zmax - kTopCutMargin), 0.5), "glabella");
+    g = require(profile.middle_of_extreme(n.z() + 3, std::min(n.z() + 30, zmax - kTopCutMargin), true, kFlatTie),
+                "glabella");
     if (cut) l.estimated = {"pronasale"};
   } else {
     auto on_cut = [&](double z) {
