@@ -144,14 +144,17 @@ NrrdHeader check_nrrd_header(const std::string& path) {
              text = encoding == "ascii" || encoding == "text" || encoding == "txt";
   if (!raw && !gzip && !text) throw Error(path, "NRRD encoding '" + encoding + "' is not raw, gzip or text");
   const auto skips = [&](const char* key) { return fields.count(key) && fields[key] != "0"; };
-  // Data after skipped lines or bytes, or a list of files: left to the reader (in a child).
-  if (skips("line skip") || skips("lineskip") || skips("byte skip") || skips("byteskip")) return h;
-  const long long needed = h.dims[0] * h.dims[1] * h.dims[2] * h.bytes_per_voxel;
-  long long present = 0;
+  // Data split over several files (a list, or a numbered name): VTK's reader can loop on a damaged list, and a CT
+  // comes as one file.
   const auto data_file = fields.find("data file") != fields.end() ? fields.find("data file") : fields.find("datafile");
   if (data_file != fields.end() &&
       (data_file->second.rfind("LIST", 0) == 0 || data_file->second.find('%') != std::string::npos))
-    return h;
+    throw Error(path, "its data are split over several files ('data file: " + data_file->second.substr(0, 40) +
+                          "'); join them into one NRRD file");
+  // Data after skipped lines or bytes: left to the reader (in a child).
+  if (skips("line skip") || skips("lineskip") || skips("byte skip") || skips("byteskip")) return h;
+  const long long needed = h.dims[0] * h.dims[1] * h.dims[2] * h.bytes_per_voxel;
+  long long present = 0;
   if (data_file == fields.end()) {
     present = static_cast<long long>(fs::file_size(path)) - header_end;
   } else {

@@ -72,6 +72,12 @@ TEST(NrrdHeader, OnlyTheFiveMagicLinesAreTaken) {
   EXPECT_EQ(read_ct_volume(sound + ".crlf.nrrd").intensity.geometry.dims, (std::array<int, 3>{12, 5, 6}));
 }
 
+// VTK's reader can loop on a damaged list of data files (a fuzzer's find); a CT comes as one file.
+TEST(NrrdHeader, DataSplitOverSeveralFilesAreRefused) {
+  expect_refused(write_nrrd("list.nrrd", "data file: LIST\n"), "its data are split over several files");
+  expect_refused(write_nrrd("numbered.nrrd", "data file: slice%03d.raw 1 8 1\n"), "join them into one NRRD file");
+}
+
 TEST(NrrdHeader, SizesThatDoNotMatchTheDataAreRefused) {
   expect_refused(write_nrrd("short.nrrd", "", 359), "need 720 bytes of raw data, the file holds 718");
   expect_refused(write_nrrd("long.nrrd", "", 361), "the file holds 722");
