@@ -187,7 +187,9 @@ Eigen::Vector3d require(const std::optional<Eigen::Vector3d>& p, const std::stri
 
 // mm, the Douglas-Peucker tolerances tried for the lips, coarsest first (Profile::turns_below)
 constexpr double kTurnTolerances[] = {1.5, 1.0, 0.5};
-constexpr double kLipsReach = 50.0;  // mm below the nose within which the lips are looked for
+// mm below the nose (or a field-of-view cut's lowest point, which can be above the tip) within which the lips are
+// looked for
+constexpr double kLipsReach = 65.0;
 // mm: profile points this close to the most or least anterior one are one flat stretch, whose middle is taken (a flat
 // nasion or brow, or a field-of-view cut above the nose).
 constexpr double kFlatTie = 0.5;
