@@ -1,6 +1,8 @@
 #include "app/commands/bench_correspondence.h"
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -152,6 +154,10 @@ void add_correspondence_options(Args& args) {
               "random-1,random-2,chin,nose")
       .option("cts", "with --correspondence: CT files warped for equivariance (default: the bundled CT; none: no CT)")
       .option("ct-seeds", "with --correspondence: seeds of the CT warps", "1,2")
+      .option("ct-ranges",
+              "with --correspondence: the CT warps' largest scale change, shear, bump (mm) and turn about the "
+              "vertical (degrees)",
+              "0.08,0.04,4,0")
       .flag("keep-warped-cts", "with --correspondence: keep each warped CT in the report's folder (STEM-warp-SEED.mha)")
       .flag("true-landmarks",
             "with --correspondence: a model's feature constraints at the standard's landmarks moved by the warp, not "
@@ -180,6 +186,21 @@ int correspondence_bench(const Args& args) {
       throw UsageError("--ct-seeds", "expects comma-separated whole numbers, got '" + args.get("ct-seeds") + "'");
     }
   }
+  const std::vector<std::string> ranges = list(args.get("ct-ranges"));
+  std::vector<double> r;
+  for (const std::string& v : ranges) {
+    char* end = nullptr;
+    r.push_back(std::strtod(v.c_str(), &end));
+    if (v.empty() || *end != '\0' || !std::isfinite(r.back()) || r.back() < 0) r.clear();
+    if (r.empty()) break;
+  }
+  if (r.size() != 4 || r[0] >= 0.5 || r[1] >= 0.5 || r[2] > 20 || r[3] > 45)
+    throw UsageError("--ct-ranges",
+                     "expects SCALE,SHEAR,BUMP,TURN with scale and shear below 0.5, a bump of at most "
+                     "20 mm and a turn of at most 45 degrees, got '" +
+                         args.get("ct-ranges") + "'");
+  options.ct_ranges.max_scale = r[0], options.ct_ranges.max_shear = r[1], options.ct_ranges.max_bump = r[2];
+  options.ct_ranges.max_turn = r[3];
   for (const std::string& ct : options.cts)
     if (!std::filesystem::exists(ct)) throw Error(ct, "no such CT file (--cts)");
   OutputFolder folder(args.get("output"));

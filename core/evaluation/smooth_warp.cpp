@@ -1,5 +1,6 @@
 #include "core/evaluation/smooth_warp.h"
 
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <Eigen/SVD>
 #include <algorithm>
@@ -25,8 +26,9 @@ double uniform(std::mt19937_64& rng, double lo, double hi) {
 
 }  // namespace
 
-SmoothWarp::SmoothWarp(const Eigen::Vector3d& centre, const Eigen::Matrix3d& linear, std::vector<GaussianBump> bumps)
-    : centre_(centre), linear_(linear), bumps_(std::move(bumps)) {}
+SmoothWarp::SmoothWarp(const Eigen::Vector3d& centre, const Eigen::Matrix3d& linear, std::vector<GaussianBump> bumps,
+                       double turn_degrees)
+    : centre_(centre), linear_(linear), bumps_(std::move(bumps)), turn_degrees_(turn_degrees) {}
 
 Eigen::Vector3d SmoothWarp::apply(const Eigen::Vector3d& x) const {
   Eigen::Vector3d y = centre_ + linear_ * (x - centre_);
@@ -91,11 +93,14 @@ SmoothWarp random_warp(std::uint64_t seed, const Eigen::Vector3d& centre, const 
     b.sigma = uniform(rng, ranges.min_sigma, ranges.max_sigma);
     bumps.push_back(b);
   }
-  SmoothWarp warp(centre, A, bumps);
+  // Drawn last, so that a seed's scale, shear and bumps do not depend on whether the warp turns.
+  const double turn = ranges.max_turn > 0 ? uniform(rng, -ranges.max_turn, ranges.max_turn) : 0.0;
+  A = Eigen::AngleAxisd(turn * M_PI / 180, Eigen::Vector3d::UnitZ()) * A;
+  SmoothWarp warp(centre, A, bumps, turn);
   const double limit = 0.5 * warp.linear_min_singular_value(), L = warp.bump_gradient_bound();
   if (L > limit) {
     for (GaussianBump& b : bumps) b.displacement *= limit / L;
-    warp = SmoothWarp(centre, A, bumps);
+    warp = SmoothWarp(centre, A, bumps, turn);
   }
   return warp;
 }
@@ -120,7 +125,8 @@ double min_jacobian_determinant(const SmoothWarp& warp, const Eigen::Vector3d& l
 }
 
 std::string warp_description(const SmoothWarp& warp) {
-  const Eigen::Matrix3d& A = warp.linear();
+  const Eigen::Matrix3d A =
+      Eigen::AngleAxisd(-warp.turn_degrees() * M_PI / 180, Eigen::Vector3d::UnitZ()).toRotationMatrix() * warp.linear();
   double shear = 0, bump = 0;
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c)
@@ -129,7 +135,10 @@ std::string warp_description(const SmoothWarp& warp) {
   char text[200];
   std::snprintf(text, sizeof text, "scale (%.3f, %.3f, %.3f), shear up to %.3f, %zu bump%s up to %.1f mm", A(0, 0),
                 A(1, 1), A(2, 2), shear, warp.bumps().size(), warp.bumps().size() == 1 ? "" : "s", bump);
-  return text;
+  if (warp.turn_degrees() == 0) return text;
+  char turn[40];
+  std::snprintf(turn, sizeof turn, ", turned %.1f deg", warp.turn_degrees());
+  return text + std::string(turn);
 }
 
 }  // namespace facehex

@@ -25,7 +25,10 @@ struct GaussianBump {
 class SmoothWarp {
  public:
   SmoothWarp() = default;
-  SmoothWarp(const Eigen::Vector3d& centre, const Eigen::Matrix3d& linear, std::vector<GaussianBump> bumps);
+  // turn_degrees: how far `linear` turns about the z axis (linear = R_z(turn) times scale and shear), for
+  // descriptions.
+  SmoothWarp(const Eigen::Vector3d& centre, const Eigen::Matrix3d& linear, std::vector<GaussianBump> bumps,
+             double turn_degrees = 0);
 
   Eigen::Vector3d apply(const Eigen::Vector3d& x) const;
   Eigen::MatrixXd apply_rows(const Eigen::MatrixXd& V) const;  // each row of #V x 3
@@ -39,11 +42,13 @@ class SmoothWarp {
   const Eigen::Vector3d& centre() const { return centre_; }
   const Eigen::Matrix3d& linear() const { return linear_; }
   const std::vector<GaussianBump>& bumps() const { return bumps_; }
+  double turn_degrees() const { return turn_degrees_; }
 
  private:
   Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();
   Eigen::Matrix3d linear_ = Eigen::Matrix3d::Identity();
   std::vector<GaussianBump> bumps_;
+  double turn_degrees_ = 0;
 };
 
 // The ranges a seeded random warp draws from.
@@ -54,6 +59,7 @@ struct RandomWarpRanges {
   double max_bump = 8.0;    // mm, |d_i| up to this (scaled down to keep L <= sigma_min(A) / 2)
   double min_sigma = 25.0;  // mm
   double max_sigma = 40.0;  // mm
+  double max_turn = 0.0;    // degrees: A is turned about the vertical (z) axis by an angle in [-max_turn, max_turn]
 };
 
 // A warp drawn from the ranges with std::mt19937_64(seed) (whose sequence the C++ standard fixes, converted to
@@ -70,7 +76,7 @@ SmoothWarp local_warp(const Eigen::Vector3d& at, const Eigen::Vector3d& displace
 double min_jacobian_determinant(const SmoothWarp& warp, const Eigen::Vector3d& lower, const Eigen::Vector3d& upper,
                                 int steps);
 
-// One line for reports: "scale (1.05, 0.93, 1.10), shear up to 0.04, 4 bumps up to 7.2 mm".
+// One line for reports: "scale (1.05, 0.93, 1.10), shear up to 0.04, 4 bumps up to 7.2 mm[, turned 6.2 deg]".
 std::string warp_description(const SmoothWarp& warp);
 
 }  // namespace facehex

@@ -150,6 +150,9 @@ TEST_F(Cli, UsageErrorsExitTwoAndWriteNothing) {
       {"fields " + tets + " -o " + path("a.vtu") + " --iterations 2.5", "--iterations expects an integer"},
       {"convert " + tets + " " + path("a.vtu") + " --threads 0", "--threads expects a number from 1 to 1024"},
       {"bench --sizes 1000000000000", "--sizes: expects tet counts up to"},
+      {"bench --correspondence -o " + path("c") + " --ct-ranges 0.1,0.04,6",
+       "--ct-ranges: expects SCALE,SHEAR,BUMP,TURN"},
+      {"bench --correspondence -o " + path("c") + " --ct-ranges 0.1,0.04,6,90", "a turn of at most 45 degrees"},
   };
   for (const auto& [args, needle] : cases) {
     const Result r = run(args);

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 
@@ -62,6 +63,30 @@ TEST(SmoothWarp, ASeedGivesTheSameWarpBitForBit) {
   EXPECT_FALSE((a.linear().array() == c.linear().array()).all());
   const Eigen::MatrixXd V = anchors();
   EXPECT_TRUE((a.apply_rows(V).array() == b.apply_rows(V).array()).all());
+}
+
+// A turned warp (a head turned in the scanner) is the same seed's warp with its linear part turned about z: the
+// scale, shear and bumps do not change with the turn, and the description gives both.
+TEST(SmoothWarp, ATurnTurnsTheSameSeedsWarp) {
+  RandomWarpRanges turned;
+  turned.max_turn = 10;
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    const SmoothWarp plain = random_warp(seed, Eigen::Vector3d(5, -3, 2), anchors()),
+                     w = random_warp(seed, Eigen::Vector3d(5, -3, 2), anchors(), turned);
+    EXPECT_LE(std::abs(w.turn_degrees()), 10.0);
+    EXPECT_GT(std::abs(w.turn_degrees()), 0.0);
+    const Eigen::Matrix3d R =
+        Eigen::AngleAxisd(w.turn_degrees() * M_PI / 180, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    EXPECT_TRUE(w.linear().isApprox(R * plain.linear(), 1e-12)) << seed;
+    ASSERT_EQ(w.bumps().size(), plain.bumps().size());
+    for (size_t i = 0; i < w.bumps().size(); ++i) EXPECT_EQ(w.bumps()[i].centre, plain.bumps()[i].centre);
+    EXPECT_EQ(plain.turn_degrees(), 0.0);
+    const std::string a = warp_description(plain), b = warp_description(w);
+    EXPECT_EQ(b.substr(0, a.size()), a) << b;  // the same scale, shear and bumps
+    EXPECT_NE(b.find(", turned "), std::string::npos) << b;
+    EXPECT_EQ(a.find("turned"), std::string::npos) << a;
+    EXPECT_GT(min_jacobian_determinant(w, Eigen::Vector3d::Constant(-100), Eigen::Vector3d::Constant(100), 9), 0);
+  }
 }
 
 TEST(SmoothWarp, InverseUndoesApplyAndTheJacobianIsItsDerivative) {
