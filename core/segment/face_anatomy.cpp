@@ -334,16 +334,19 @@ FaceAnatomy find_face_anatomy(const Mask& head, const Mask& bone) {
   // far behind the skin. A field of view that cuts the face flat can leave the forehead as far forward as the nose.
   const Profile bone_profile(bone, anatomy, bottom, top);
   std::optional<std::pair<double, double>> aperture;
+  // A run must have bone near the skin right above it (the nasal bones) and right below it (the maxilla): the scalp
+  // above the skull's vertex and the neck below the chin have none on one side.
+  bool bone_above = false;
   for (int k = top, run_top = -1; k >= lowest && !aperture; --k) {
     const double skin = profile.points[k].y(), behind = skin - bone_profile.points[k].y();
-    const bool open = !std::isnan(skin) && !(behind <= kChinSoftTissue);
-    if (open && run_top < 0) run_top = k;
-    if ((!open || k == lowest) && run_top >= 0) {
-      const int run_bottom = open ? k : k + 1;
-      if ((run_top - run_bottom) * g.spacing.z() >= kApertureHeight)
-        aperture = {g.point(0, 0, run_bottom).z(), g.point(0, 0, run_top).z()};
+    const bool open = !std::isnan(skin) && !(behind <= kChinSoftTissue), bone = !std::isnan(skin) && !open;
+    if (open && run_top == -1) run_top = bone_above ? k : -2;
+    if (!open) {
+      if (bone && run_top >= 0 && (run_top - k - 1) * g.spacing.z() >= kApertureHeight)
+        aperture = {g.point(0, 0, k + 1).z(), g.point(0, 0, run_top).z()};
       run_top = -1;
     }
+    bone_above = bone;
   }
   const auto prn =
       aperture ? profile.extreme(aperture->first, aperture->second, true, tie) : profile.extreme(z_lo, z_hi, true, tie);

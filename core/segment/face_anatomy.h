@@ -16,12 +16,14 @@
 //  3. the skin profile: per head level, the most anterior head voxel within kProfileBand of c(z);
 //     pronasale = the most anterior profile point at the levels of the nasal aperture (the highest run, at least
 //     kApertureHeight tall, of levels where the bone within the profile band lies more than kChinSoftTissue behind the
-//     skin or is absent; the whole profile when there is no such run), the middle of the front plateau when the field
-//     of view cut the nose flat (such a cut can leave the forehead as far forward as the nose); nasion = the least anterior profile point 15-50 mm above it that has a point at least as anterior
-//     3-30 mm above it (a hollow below the brow, not the head's top receding where the scan ends); glabella = the most
-//     anterior profile point 3-30 mm above the nasion (middles of ties within half a voxel). When no point has a
-//     brow above it (the scan ends below the brow, or a field-of-view cut flattens the face), brow_unseen: the
-//     glabella is the most anterior point from the pronasale up and the top cut is the head's top (face_cuts.h);
+//     skin or is absent, with bone near the skin right above and below it; the whole profile when there is no such
+//     run), the middle of the front plateau when the field of view cut the nose flat (such a cut can leave the forehead
+//     as far forward as the nose); nasion = the least anterior profile point 15-50 mm above it that has a point at
+//     least as anterior 3-30 mm above it (a hollow below the brow, not the head's top receding where the scan ends);
+//     glabella = the most anterior profile point 3-30 mm above the nasion (middles of ties within half a voxel). When
+//     no point has a brow above it (the scan ends below the brow, or a field-of-view cut flattens the face),
+//     brow_unseen: the glabella is the most anterior point from the pronasale up and the top cut is the head's top
+//     (face_cuts.h);
 //  4. the bony chin: going down from 30 mm below the pronasale (below the head levels too), the levels where bone near
 //  the mid-plane (within
 //     kChinHalfWidth) lies at most kChinSoftTissue behind the skin profile; the first such level starts a run that

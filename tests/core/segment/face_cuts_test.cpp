@@ -137,7 +137,7 @@ TEST(FaceCuts, TheMentonIsTheLowestBoneConnectedToTheChinNearTheSkin) {
 TEST(FaceCuts, TheNoseIsInFrontOfTheNasalAperture) {
   Head h;
   fill(h.head, {30, 90, 152}, {90, 106, 170});  // a forehead out to y = 106, in front of the nose's 104
-  fill(h.bone, {54, 80, 114}, {66, 86, 170});   // the frontal and nasal bones behind it
+  fill(h.bone, {54, 80, 114}, {66, 86, 158});   // the frontal and nasal bones behind it, the scalp above without
   fill(h.bone, {54, 76, 56}, {66, 86, 86});     // the maxilla and teeth below the aperture
   const FaceCuts cuts = find_face_cuts(h.head, h.bone, FaceCutOptions());
   ASSERT_TRUE(cuts.anatomy);
