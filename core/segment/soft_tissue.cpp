@@ -248,7 +248,7 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
 
   // Where the tissue is only a voxel or two thick (thin skin over bone, a warped or streaky scan), its surface can
   // pierce it: a tunnel. The surface is then made again with a thicker minimum layer and a wider blur, which fill
-  // such holes and leave the rest of the surface where it was; the attempt used is stated (PatientModel::repair).
+  // such holes at the price of a slightly smoother skin everywhere; the attempt used is stated (PatientModel::repair).
   const FaceCuts automatic_cuts = model.cuts;
   SurfaceMesh surface;
   Field inner_distance;
