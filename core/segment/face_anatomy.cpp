@@ -26,7 +26,7 @@ constexpr double kChinDepth = 30.0;            // mm the mandible's lower border
 constexpr double kEarReachTolerance = 3.0;     // mm: rows whose side reaches this close to the widest are the ear
 constexpr double kBrowReach[2] = {3.0, 30.0};  // mm above the nasion where the brow is looked for
 // A head, an infant's included, is wider and deeper than this, and its nose tip stands at least this far in front of
-// its nasion or of its cheeks kCheekOffset to either side (a nose clipped by the field of view still stands out of
+// its nasion or of its cheeks kCheekOffset to either side (their mean; a nose clipped by the field of view still stands out of
 // one of them); a box or a small phantom is neither.
 constexpr double kMinHeadSize = 80.0;   // mm
 constexpr double kMinNoseRelief = 4.0;  // mm
@@ -364,15 +364,18 @@ FaceAnatomy find_face_anatomy(const Mask& head, const Mask& bone) {
   anatomy.brow_unseen = !hollow;
   const Eigen::Vector3d* n = hollow ? &*hollow : &*prn;
   anatomy.nasion = *n;
-  // The front of the head at the cheeks, level with the nose (an empty column is no obstacle).
-  double cheeks = -std::numeric_limits<double>::infinity();
+  // The front of the head at the cheeks, level with the nose: the mean of the two sides, since a head turned about
+  // the vertical axis brings one cheek as far forward as the other goes back (an empty column is no obstacle).
+  double cheeks_sum = 0;
+  int cheeks_found = 0;
   const int k = static_cast<int>(std::lround((prn->z() - g.origin.z()) / g.spacing.z()));
   for (const double side : {-1.0, 1.0}) {
     const int i = static_cast<int>(
         std::lround((anatomy.centre_at(prn->z()) + side * kCheekOffset - g.origin.x()) / g.spacing.x()));
     if (i >= 0 && i < g.dims[0] && !std::isnan(sections.front[sections.at(i, k)]))
-      cheeks = std::max(cheeks, sections.front[sections.at(i, k)]);
+      cheeks_sum += sections.front[sections.at(i, k)], ++cheeks_found;
   }
+  const double cheeks = cheeks_found > 0 ? cheeks_sum / cheeks_found : -std::numeric_limits<double>::infinity();
   const double relief = std::max(hollow ? prn->y() - n->y() : 0.0, prn->y() - cheeks);
   if (!(relief >= kMinNoseRelief))
     not_a_head("no nose stands out of the profile (its most anterior point is " + mm(relief) +

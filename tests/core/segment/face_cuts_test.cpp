@@ -171,6 +171,30 @@ TEST(FaceCuts, ATurnedHeadKeepsItsMidPlaneNearTheNose) {
   }
 }
 
+// A nearly flat face whose field of view cut the nose into a plateau running up the forehead (no nasion hollow), the
+// nose 10 mm in front of the cheeks 40 mm to either side: turned 10 degrees about the vertical, one cheek comes within
+// 4 mm of the nose. The two cheeks' mean still leaves the nose standing out, so it is a head, not a box.
+TEST(FaceCuts, ATurnedHeadWithAFlatClippedFaceIsAHead) {
+  const Eigen::Vector3d pivot(60, 60, 90);
+  const Eigen::Matrix3d pose = rotation(10, Eigen::Vector3d::UnitZ());
+  Mask head(grid(), 0), bone(grid(), 0);
+  const GridGeometry& g = head.geometry;
+  for (int k = 0; k < g.dims[2]; ++k)
+    for (int j = 0; j < g.dims[1]; ++j)
+      for (int i = 0; i < g.dims[0]; ++i) {
+        const Eigen::Vector3d p = pivot + pose.transpose() * (g.point(i, j, k) - pivot);
+        const auto in = [&](const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+          return (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();
+        };
+        const bool front = p.y() <= 90 - (p.x() - 60) * (p.x() - 60) / 400;  // cheeks 4 mm behind at 40 mm
+        head(i, j, k) = (front && in({6, 20, 10}, {114, 90, 170})) || in({56, 90, 80}, {64, 96, 170});
+        bone(i, j, k) = in({54, 76, 40}, {66, 86, 50});
+      }
+  const FaceCuts cuts = find_face_cuts(head, bone, FaceCutOptions());
+  ASSERT_TRUE(cuts.anatomy);
+  EXPECT_NEAR(cuts.anatomy->menton.z(), 40, 2.0);
+}
+
 TEST(FaceCuts, CutsStayInsideTheCt) {
   // 30 mm lower, the menton is at z = 10 and 10 - 15 lies below the CT: the bottom cut stays border_margin inside.
   const Head low(Eigen::Matrix3d::Identity(), false, -30);
