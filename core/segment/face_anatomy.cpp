@@ -26,8 +26,8 @@ constexpr double kChinDepth = 30.0;            // mm the mandible's lower border
 constexpr double kEarReachTolerance = 3.0;     // mm: rows whose side reaches this close to the widest are the ear
 constexpr double kBrowReach[2] = {3.0, 30.0};  // mm above the nasion where the brow is looked for
 // A head, an infant's included, is wider and deeper than this, and its nose tip stands at least this far in front of
-// its nasion or of its cheeks kCheekOffset to either side (their mean; a nose clipped by the field of view still stands out of
-// one of them); a box or a small phantom is neither.
+// its nasion or of the mean of its cheeks kCheekOffset to either side (a nose clipped by the field of view still stands
+// out of one of them); a box or a small phantom is neither.
 constexpr double kMinHeadSize = 80.0;   // mm
 constexpr double kMinNoseRelief = 4.0;  // mm
 constexpr double kCheekOffset = 40.0;   // mm from the mid-sagittal plane
