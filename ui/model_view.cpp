@@ -792,6 +792,17 @@ void ModelView::onLandmarkDragged(vtkObject* handle, unsigned long event, void*)
   p.landmarkPoints->Modified();
 }
 
+QPoint ModelView::widgetPosition(const Eigen::Vector3d& x) const {
+  vtkRenderer* r = p_->renderer;
+  r->SetWorldPoint(x[0], x[1], x[2], 1.0);
+  r->WorldToDisplay();
+  const double* d = r->GetDisplayPoint();
+  const double scale = p_->widget->devicePixelRatioF();
+  return QPoint(int(std::lround(d[0] / scale)), int(std::lround((p_->window->GetSize()[1] - d[1]) / scale)));
+}
+
+QWidget* ModelView::renderWidget() const { return p_->widget; }
+
 void ModelView::dragLandmark(const std::string& name, const Eigen::Vector3d& point) {
   const auto handle = p_->handles.find(name);
   if (handle == p_->handles.end()) return;

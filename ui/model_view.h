@@ -32,6 +32,9 @@ class ModelView : public QWidget {
   void dragLandmark(const std::string& name, const Eigen::Vector3d& point);
   // The landmark handles where the session's landmarks are (after a move the session refused).
   void showSessionLandmarks();
+  // Where a point of the model appears in the 3D widget (widget pixels; tests drive the mouse there).
+  QPoint widgetPosition(const Eigen::Vector3d& x) const;
+  QWidget* renderWidget() const;
   // Landmark handles shown in this view.
   int shownLandmarks() const;
   // Frames the model in a three-quarter view, and keeps it framed as the view resizes until the user turns it.

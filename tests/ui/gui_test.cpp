@@ -1,8 +1,8 @@
 // The desktop application end to end, as a user drives it: the bundled demo (standard and sample patient, with its
 // automatic constraints) is opened, a constraint is placed with the plane widget, edits undo and redo, the standard
-// is transferred onto the bundled patient; the patient's landmarks are loaded from a file or dragged on the skin and
-// its features follow them; the bundled CT is opened and segmented on the worker thread; a small box
-// standard and a bent box patient are opened from files, their fields computed and the transfer run, the hex mesh
+// is transferred onto the bundled patient; the patient's landmarks are loaded from a file or dragged on the skin (with
+// the mouse, too) and its features follow them; the bundled CT is opened and segmented on the worker thread; a small
+// box standard and a bent box patient are opened from files, their fields computed and the transfer run, the hex mesh
 // exported and read back; bad files give the core's error message and the application keeps running; every scripted
 // state renders visible 3D content. (The box pair keeps those computations within seconds and their results exactly
 // checkable.) Results are kept: an undo brings back what an edit made stale, and replacing an unexported result asks
@@ -73,6 +73,7 @@ class GuiTest : public QObject {
   void landmarkFilePlacesTheFeatures();
   void draggedLandmarkMovesOnTheSkinWithItsFeature();
   void badLandmarkFileIsNamedAndChangesNothing();
+  void mouseDragsALandmarkOnTheSkin();
   void cancelStopsTheWorker();
   void computeFieldsReadsTheStandardsCache();
   void transfersTheBundledModelsAndShowsThem();
@@ -382,6 +383,32 @@ void GuiTest::draggedLandmarkMovesOnTheSkinWithItsFeature() {
   session()->undoStack()->undo();
   QVERIFY((patientLandmark("glabella") - before).norm() < 1e-9);
   QVERIFY(std::abs(patientConstraint(feature_specs().at(1).name)->select.plane->point.z() - before.z()) < 1e-9);
+}
+
+void GuiTest::mouseDragsALandmarkOnTheSkin() {
+  // The user's drag, as mouse events on the 3D widget: press on the nose tip's handle, move, release.
+  QVERIFY2(openDemo(), qPrintable(error_));
+  session()->setActiveRole(Role::Standard);  // no plane widget in the patient's view to catch the press
+  ModelView* view = window_->view(Role::Patient);
+  view->render();
+  QWidget* w = view->renderWidget();
+  const Eigen::Vector3d before = patientLandmark("pronasale");
+  const QPoint from = view->widgetPosition(before), to = view->widgetPosition(before + Eigen::Vector3d(8, 0, 8));
+  auto send = [w](QEvent::Type type, const QPoint& at, Qt::MouseButtons buttons) {
+    QMouseEvent e(type, at, w->mapToGlobal(at), Qt::LeftButton, buttons, Qt::NoModifier);
+    QApplication::sendEvent(w, &e);
+  };
+  send(QEvent::MouseMove, from, Qt::NoButton);
+  send(QEvent::MouseButtonPress, from, Qt::LeftButton);
+  for (int i = 1; i <= 10; ++i) send(QEvent::MouseMove, from + (to - from) * i / 10, Qt::LeftButton);
+  send(QEvent::MouseButtonRelease, to, Qt::NoButton);
+  QVERIFY2(error_.isEmpty(), qPrintable(error_));
+  // It moved up and sideways along the surface, onto a skin vertex.
+  const Eigen::Vector3d after = patientLandmark("pronasale");
+  QVERIFY(after.z() - before.z() > 3.0 && after.x() - before.x() > 3.0);
+  const VolumeMesh& mesh = session()->model(Role::Patient).mesh;
+  QCOMPARE((closest_skin_point(mesh.V, side_mask_of(mesh), after) - after).norm(), 0.0);
+  QCOMPARE(session()->undoStack()->undoText(), QString("move the pronasale"));
 }
 
 void GuiTest::badLandmarkFileIsNamedAndChangesNothing() {
