@@ -18,7 +18,7 @@ if [ ! -x "$gui" ]; then
   exit 1
 fi
 states=("$@")
-[ ${#states[@]} -gt 0 ] || states=(ct segmentation loaded plane fields glyphs transfer quality messages laptop)
+[ ${#states[@]} -gt 0 ] || states=(ct segmentation loaded plane landmarks fields glyphs transfer quality messages laptop)
 
 shot() {  # shot SCREEN FILE STATE
   xvfb-run -a -s "-screen 0 $1x24" env QT_QPA_PLATFORM=xcb "$gui" --screenshot "$2" --state "$3"

@@ -47,6 +47,10 @@ DisplayPanel::DisplayPanel(SessionModel* session, QWidget* parent) : QWidget(par
   thresholdLabel_->setMinimumWidth(thresholdLabel_->fontMetrics().horizontalAdvance("\u2264 0.00 only  "));
   constraints_ = new QCheckBox(tr("constraint vertices"), this);
   plane_ = new QCheckBox(tr("cutting plane and selection"), this);
+  landmarks_ = new QCheckBox(tr("landmarks"), this);
+  landmarks_->setObjectName("showLandmarks");
+  landmarks_->setToolTip(
+      tr("The facial landmarks the feature lines are placed at; drag one along the skin to move it"));
 
   auto* form = new QFormLayout(this);
   form->addRow(tr("Colour by:"), field_);
@@ -55,6 +59,7 @@ DisplayPanel::DisplayPanel(SessionModel* session, QWidget* parent) : QWidget(par
   form->addRow("", row({showHex_, measure_}));
   form->addRow(tr("Threshold:"), row({threshold_, thresholdLabel_}));
   form->addRow(tr("Show:"), row({constraints_, plane_}));
+  form->addRow("", row({landmarks_}));
 
   connect(field_, qOverload<int>(&QComboBox::currentIndexChanged), this,
           [this](int i) { edit([i](DisplaySettings& d) { d.field = i - 1; }); });
@@ -70,6 +75,8 @@ DisplayPanel::DisplayPanel(SessionModel* session, QWidget* parent) : QWidget(par
   connect(constraints_, &QCheckBox::toggled, this,
           [this](bool b) { edit([b](DisplaySettings& d) { d.showConstraints = b; }); });
   connect(plane_, &QCheckBox::toggled, this, [this](bool b) { edit([b](DisplaySettings& d) { d.showPlane = b; }); });
+  connect(landmarks_, &QCheckBox::toggled, this,
+          [this](bool b) { edit([b](DisplaySettings& d) { d.showLandmarks = b; }); });
   connect(session_, &SessionModel::displayChanged, this, &DisplayPanel::refresh);
   refresh();
 }
@@ -83,7 +90,7 @@ void DisplayPanel::edit(const std::function<void(DisplaySettings&)>& change) {
 void DisplayPanel::refresh() {
   const DisplaySettings& d = session_->display();
   const QSignalBlocker b1(field_), b2(isoLines_), b3(clip_), b4(glyphs_), b5(showHex_), b6(measure_), b7(threshold_),
-      b8(constraints_), b9(plane_);
+      b8(constraints_), b9(plane_), b10(landmarks_);
   field_->setCurrentIndex(d.field + 1);
   isoLines_->setChecked(d.isoLines);
   clip_->setChecked(d.clipAtPlane);
@@ -93,6 +100,7 @@ void DisplayPanel::refresh() {
   threshold_->setValue(static_cast<int>(std::lround(d.threshold * 100)));
   constraints_->setChecked(d.showConstraints);
   plane_->setChecked(d.showPlane);
+  landmarks_->setChecked(d.showLandmarks);
   isoLines_->setEnabled(d.field >= 0);
   measure_->setEnabled(d.showHex);
   threshold_->setEnabled(d.showHex);

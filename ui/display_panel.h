@@ -34,6 +34,7 @@ class DisplayPanel : public QWidget {
   QLabel* thresholdLabel_;
   QCheckBox* constraints_;
   QCheckBox* plane_;
+  QCheckBox* landmarks_;
 };
 
 }  // namespace facehex::gui

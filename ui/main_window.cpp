@@ -85,6 +85,7 @@ MainWindow::MainWindow(QWidget* parent)
   for (Role r : kRoles) {
     ModelView* other = view(r == Role::Standard ? Role::Patient : Role::Standard);
     connect(view(r), &ModelView::cameraOrientationChanged, other, &ModelView::setCameraOrientation);
+    connect(view(r), &ModelView::landmarkMoved, this, &MainWindow::moveLandmark);
   }
 
   segmentationDialog_ = new SegmentationDialog(this);
@@ -194,6 +195,12 @@ void MainWindow::createActions() {
       tr("Place the feature lines (mid-sagittal, eyebrow, below the nose, lips) at the model's "
          "landmarks again, valued as the standard's, selected with the band width above; they "
          "replace the ones of the same names"));
+  loadLandmarks_ = action(tr("Landmarks from &file..."), QKeySequence(), &MainWindow::loadLandmarksDialog);
+  loadLandmarks_->setToolTip(
+      tr("Place the feature lines at the landmarks of a file (FaceHex .json or 3D Slicer .mrk.json), as the CLI's "
+         "--landmarks does"));
+  saveLandmarks_ = action(tr("Save l&andmarks..."), QKeySequence(), &MainWindow::saveLandmarksDialog);
+  saveLandmarks_->setToolTip(tr("Save the landmarks the feature lines are placed at (found, loaded or moved)"));
   recover_->setToolTip(tr("Load the constraints autosaved after the last edit of this model (after a crash)"));
   export_ = action(tr("&Export hex mesh..."), QKeySequence(tr("Ctrl+E")), &MainWindow::exportDialog);
   screenshot_ = action(tr("Save screens&hot..."), QKeySequence(), &MainWindow::screenshotDialog);
@@ -234,8 +241,9 @@ void MainWindow::createActions() {
       tr("After the mapping, slide vertices along the patient towards the standard's cell "
          "shapes (the CLI's --shape-relaxation; off: the paper's plain mapping)"));
   about_ = action(tr("&About FaceHex"), QKeySequence(), &MainWindow::about);
-  for (QAction* a : {openPatient_, resegment_, openDicom_, openDemo_, loadConstraints_, mergeConstraints_,
-                     saveConstraints_, export_, computeFields_, transfer_, cancel_, recover_, features_})
+  for (QAction* a :
+       {openPatient_, resegment_, openDicom_, openDemo_, loadConstraints_, mergeConstraints_, saveConstraints_, export_,
+        computeFields_, transfer_, cancel_, recover_, features_, loadLandmarks_, saveLandmarks_})
     a->setObjectName(a->text().remove('&').remove("...").replace(' ', '_'));
 }
 
@@ -255,6 +263,8 @@ void MainWindow::createMenusAndToolbar() {
   standards->addAction(openStandardFile_);
   file->addSeparator();
   for (QAction* a : {loadConstraints_, mergeConstraints_, saveConstraints_, recover_}) file->addAction(a);
+  file->addSeparator();
+  for (QAction* a : {loadLandmarks_, saveLandmarks_}) file->addAction(a);
   file->addSeparator();
   file->addAction(export_);
   file->addAction(screenshot_);
@@ -293,8 +303,10 @@ void MainWindow::createMenusAndToolbar() {
 }
 
 void MainWindow::createDocks() {
-  constraintPanel_ =
-      new ConstraintPanel(session_, {features_, loadConstraints_, mergeConstraints_, saveConstraints_, recover_}, this);
+  constraintPanel_ = new ConstraintPanel(
+      session_,
+      {features_, loadLandmarks_, saveLandmarks_, loadConstraints_, mergeConstraints_, saveConstraints_, recover_},
+      this);
   // The panels on the right run the full height; the analysis tabs sit under the views only.
   setCorner(Qt::BottomRightCorner, Qt::RightDockWidgetArea);
   auto dock = [this](const QString& title, const char* name, QWidget* content, Qt::DockWidgetArea area) {
@@ -342,6 +354,8 @@ void MainWindow::updateActions() {
   for (QAction* a : {loadConstraints_, mergeConstraints_}) a->setEnabled(active && !busy);
   saveConstraints_->setEnabled(active);
   features_->setEnabled(!busy && active && session_->model(session_->activeRole()).domain.side_mask.size() > 0);
+  loadLandmarks_->setEnabled(features_->isEnabled());
+  saveLandmarks_->setEnabled(active && session_->landmarks(session_->activeRole()).has_value());
   recover_->setEnabled(!busy && active && ConstraintAutosave::exists(session_->activeRole()));
   computeFields_->setEnabled(!busy && (session_->hasModel(Role::Standard) || session_->hasModel(Role::Patient)));
   transfer_->setEnabled(!busy && both);
@@ -441,6 +455,30 @@ void MainWindow::saveConstraintsDialog() {
                                                     session_->model(session_->activeRole()).constraintsPath,
                                                     tr("Constraint sets (*.json)"));
   if (!path.isEmpty() && controller_->saveConstraints(session_->activeRole(), path)) note(tr("Saved %1").arg(path));
+}
+
+void MainWindow::loadLandmarksDialog() {
+  const QString path = QFileDialog::getOpenFileName(this, tr("Landmarks from a file"), QString(),
+                                                    tr("Landmark files (*.json *.mrk.json)"));
+  if (!path.isEmpty() && controller_->loadLandmarks(session_->activeRole(), path, session_->plane().band))
+    note(tr("Placed the %1's features at the landmarks of %2").arg(roleName(session_->activeRole()), path));
+}
+
+void MainWindow::saveLandmarksDialog() {
+  const QString path = QFileDialog::getSaveFileName(this, tr("Save the landmarks"), QString(),
+                                                    tr("FaceHex landmarks (*.json);;3D Slicer markups (*.mrk.json)"));
+  if (!path.isEmpty() && controller_->saveLandmarks(session_->activeRole(), path)) note(tr("Saved %1").arg(path));
+}
+
+void MainWindow::moveLandmark(Role role, const std::string& name, const Eigen::Vector3d& point) {
+  // A job reads the constraints as they were when it started: no edit meanwhile (see undoGroup_).
+  if (controller_->busy()) {
+    note(tr(kBusy));
+  } else if (controller_->moveLandmark(role, name, point, session_->plane().band)) {
+    note(tr("Moved the %1's %2 and placed its features again").arg(roleName(role), QString::fromStdString(name)));
+    return;
+  }
+  view(role)->showSessionLandmarks();  // the handle goes back to where the landmark still is
 }
 
 void MainWindow::recoverAutosave() {

@@ -83,6 +83,9 @@ class MainWindow : public QMainWindow {
   void onStandardChosen(int index);
   void constraintsDialog(bool merge);
   void saveConstraintsDialog();
+  void loadLandmarksDialog();
+  void saveLandmarksDialog();
+  void moveLandmark(Role role, const std::string& name, const Eigen::Vector3d& point);
   void recoverAutosave();
   void exportDialog();
   void screenshotDialog();
@@ -103,7 +106,7 @@ class MainWindow : public QMainWindow {
 
   QAction *openPatient_, *resegment_, *openDicom_, *openDemo_, *openStandardFile_, *loadConstraints_,
       *mergeConstraints_, *saveConstraints_, *recover_, *export_, *screenshot_, *quit_, *undo_, *redo_, *computeFields_,
-      *transfer_, *cancel_, *allowInverted_, *shapeRelaxation_, *features_, *about_;
+      *transfer_, *cancel_, *allowInverted_, *shapeRelaxation_, *features_, *loadLandmarks_, *saveLandmarks_, *about_;
   QUndoGroup* undoGroup_ = nullptr;
   QMenu* recentMenu_ = nullptr;
   QComboBox* standardChoice_ = nullptr;

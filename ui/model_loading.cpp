@@ -24,6 +24,7 @@ LoadedModel from_setup(PatientSetup p, QString& constraints_note) {
   m.constraintsPath = QString::fromStdString(p.constraints_path);
   m.constraints.set = std::move(p.constraints);
   m.constraints.visible.assign(m.constraints.set.constraints.size(), true);
+  m.constraints.landmarks = std::move(p.landmarks);
   constraints_note = QString::fromStdString(p.constraints_note);
   return m;
 }
@@ -84,6 +85,7 @@ PatientSetup patient_setup(const LoadedModel& patient) {
   p.domain = patient.domain;
   p.constraints = patient.constraints.set;
   p.constraints_path = patient.constraintsPath.toStdString();
+  p.landmarks = patient.constraints.landmarks;
   return p;
 }
 

@@ -2,6 +2,7 @@
 
 #include <QVTKOpenGLNativeWidget.h>
 #include <vtkActor.h>
+#include <vtkActor2D.h>
 #include <vtkArrowSource.h>
 #include <vtkCamera.h>
 #include <vtkCellArray.h>
@@ -13,18 +14,23 @@
 #include <vtkExtractGeometry.h>
 #include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkGlyph3D.h>
+#include <vtkHandleWidget.h>
 #include <vtkIdTypeArray.h>
 #include <vtkImplicitPlaneRepresentation.h>
 #include <vtkImplicitPlaneWidget2.h>
 #include <vtkInteractorStyleTrackballCamera.h>
+#include <vtkLabeledDataMapper.h>
 #include <vtkPlane.h>
 #include <vtkPointData.h>
+#include <vtkPointHandleRepresentation3D.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkPolyDataNormals.h>
+#include <vtkPolygonalSurfacePointPlacer.h>
 #include <vtkProperty.h>
 #include <vtkRenderer.h>
 #include <vtkScalarBarActor.h>
+#include <vtkStringArray.h>
 #include <vtkTextProperty.h>
 #include <vtkThreshold.h>
 #include <vtkUnsignedCharArray.h>
@@ -34,6 +40,7 @@
 #include <QStackedWidget>
 #include <QVBoxLayout>
 #include <algorithm>
+#include <map>
 #include <optional>
 #include <set>
 
@@ -178,6 +185,15 @@ struct ModelView::Pipeline {
   Ptr<vtkGlyph3D> glyphs = make<vtkGlyph3D>();
   Ptr<vtkActor> glyphActor = make<vtkActor>();
 
+  // The landmarks: a marker and a name each, and a handle each that slides on the model's surface (the placer picks
+  // the surface actor). Handles are kept by name, so a release that re-places the features keeps its own handle.
+  Ptr<vtkPolyData> landmarkPoints = make<vtkPolyData>();
+  Ptr<vtkActor> landmarkActor = pointActor(landmarkPoints, 12);
+  Ptr<vtkLabeledDataMapper> labelMapper = make<vtkLabeledDataMapper>();
+  Ptr<vtkActor2D> labelActor = make<vtkActor2D>();
+  Ptr<vtkPolygonalSurfacePointPlacer> placer = make<vtkPolygonalSurfacePointPlacer>();
+  std::map<std::string, Ptr<vtkHandleWidget>> handles;
+
   Ptr<vtkImplicitPlaneRepresentation> planeRep = make<vtkImplicitPlaneRepresentation>();
   Ptr<vtkImplicitPlaneWidget2> planeWidget = make<vtkImplicitPlaneWidget2>();
 
@@ -187,6 +203,7 @@ struct ModelView::Pipeline {
   void setUpHexDisplay();  // the hex cells under the quality threshold, the rest as a faint context
   void setUpScalarBar();
   void setUpGlyphs();  // gradient arrows
+  void setUpLandmarks();
 };
 
 void ModelView::Pipeline::setUpSurface() {
@@ -265,6 +282,22 @@ void ModelView::Pipeline::setUpGlyphs() {
   glyphActor->SetMapper(glyphMapper);
 }
 
+void ModelView::Pipeline::setUpLandmarks() {
+  labelMapper->SetInputData(landmarkPoints);
+  labelMapper->SetLabelModeToLabelFieldData();
+  labelMapper->SetFieldDataName("name");
+  vtkTextProperty* text = labelMapper->GetLabelTextProperty();
+  text->SetFontSize(14);
+  text->SetBold(true);
+  text->ItalicOff();
+  text->SetShadow(true);
+  text->SetColor(1, 1, 1);
+  text->SetJustificationToLeft();
+  text->SetVerticalJustificationToCentered();
+  labelActor->SetMapper(labelMapper);
+  placer->AddProp(surfaceActor);
+}
+
 ModelView::ModelView(SessionModel* session, Role role, QWidget* parent)
     : QWidget(parent), session_(session), role_(role), p_(std::make_unique<Pipeline>()) {
   setObjectName(roleName(role) + "View");
@@ -314,6 +347,7 @@ ModelView::ModelView(SessionModel* session, Role role, QWidget* parent)
   p.setUpHexDisplay();
   p.setUpScalarBar();
   p.setUpGlyphs();
+  p.setUpLandmarks();
   for (vtkProp* prop :
        {static_cast<vtkProp*>(p.surfaceActor), static_cast<vtkProp*>(p.isoActor), static_cast<vtkProp*>(p.hexActor),
         static_cast<vtkProp*>(p.contextActor), static_cast<vtkProp*>(p.constraintActor),
@@ -321,6 +355,8 @@ ModelView::ModelView(SessionModel* session, Role role, QWidget* parent)
     p.renderer->AddViewProp(prop);
   p.overlay->AddActor(p.selectionActor);
   p.overlay->AddActor(p.highlightActor);
+  p.overlay->AddActor(p.landmarkActor);
+  p.overlay->AddActor(p.labelActor);
 
   p.planeRep->SetPlaceFactor(1.05);
   p.planeRep->OutlineTranslationOff();
@@ -345,6 +381,7 @@ void ModelView::connectSession() {
   connect(session_, &SessionModel::constraintsChanged, this, [this](Role r) {
     if (r != role_) return;
     updateConstraints();
+    updateLandmarks();
     render();
   });
   connect(session_, &SessionModel::activeRoleChanged, this, &ModelView::refresh);
@@ -368,6 +405,10 @@ ModelView::~ModelView() {
   // The observers point at this widget: stop them before it goes.
   p_->planeWidget->Off();
   p_->planeWidget->RemoveAllObservers();
+  for (auto& [name, handle] : p_->handles) {
+    handle->Off();
+    handle->RemoveAllObservers();
+  }
   if (auto* style = p_->widget->interactor()->GetInteractorStyle()) style->RemoveAllObservers();
   p_->renderer->RemoveAllObservers();
 }
@@ -421,6 +462,7 @@ void ModelView::refresh() {
   updateHighlight();
   updateGlyphs();
   updatePlaneWidget();
+  updateLandmarks();
   render();
 }
 
@@ -676,6 +718,97 @@ void ModelView::onPlaneInteraction() {
   pose.origin = Eigen::Vector3d(p_->planeRep->GetOrigin());
   pose.normal = Eigen::Vector3d(p_->planeRep->GetNormal());
   session_->setPlane(pose);
+}
+
+void ModelView::updateLandmarks() {
+  Pipeline& p = *p_;
+  const std::optional<FaceLandmarks>& landmarks = session_->landmarks(role_);
+  const bool shown = landmarks && session_->display().showLandmarks && !p.hexShown;
+  PointCloud markers;
+  auto names = make<vtkStringArray>();
+  names->SetName("name");
+  std::map<std::string, Ptr<vtkHandleWidget>> handles;
+  if (shown) {
+    for (const auto& [name, x] : landmarks->points) {
+      markers.add(x, landmarkColour());
+      names->InsertNextValue("   " + name);  // clear of the marker
+      Ptr<vtkHandleWidget>& handle = handles[name];
+      const auto old = p.handles.find(name);
+      if (old != p.handles.end()) {
+        handle = old->second;
+      } else {
+        auto rep = make<vtkPointHandleRepresentation3D>();
+        rep->SetPointPlacer(p.placer);
+        rep->SmoothMotionOff();  // the handle follows the pointer onto the surface, not a motion in the focal plane
+        rep->SetHandleSize(24);
+        rep->GetProperty()->SetColor(1, 1, 1);
+        handle = make<vtkHandleWidget>();
+        handle->SetRepresentation(rep);
+        handle->SetInteractor(p.widget->interactor());
+        handle->SetCurrentRenderer(p.renderer);
+        handle->AddObserver(vtkCommand::InteractionEvent, this, &ModelView::onLandmarkDragged);
+        handle->AddObserver(vtkCommand::EndInteractionEvent, this, &ModelView::onLandmarkDragged);
+      }
+      handle->GetHandleRepresentation()->SetWorldPosition(const_cast<double*>(x.data()));
+      handle->EnabledOn();
+    }
+  }
+  for (auto& [name, handle] : p.handles)
+    if (!handles.count(name)) {
+      handle->Off();
+      handle->RemoveAllObservers();
+    }
+  p.handles = std::move(handles);
+  markers.install(p.landmarkPoints);
+  p.landmarkPoints->GetPointData()->AddArray(names);
+  p.landmarkActor->SetVisibility(shown);
+  p.labelActor->SetVisibility(shown);
+}
+
+void ModelView::showSessionLandmarks() {
+  if (!session_->hasModel(role_)) return;
+  updateLandmarks();
+  render();
+}
+
+int ModelView::shownLandmarks() const {
+  return p_->landmarkActor->GetVisibility() ? static_cast<int>(p_->handles.size()) : 0;
+}
+
+void ModelView::onLandmarkDragged(vtkObject* handle, unsigned long event, void*) {
+  Pipeline& p = *p_;
+  const auto dragged = std::find_if(p.handles.begin(), p.handles.end(),
+                                    [handle](const auto& h) { return h.second.GetPointer() == handle; });
+  if (dragged == p.handles.end()) return;
+  const Eigen::Vector3d x(dragged->second->GetHandleRepresentation()->GetWorldPosition());
+  if (event == vtkCommand::EndInteractionEvent) {
+    const std::string name = dragged->first;  // the handles are rebuilt when the session takes the move
+    emit landmarkMoved(role_, name, x);
+    return;
+  }
+  // While dragging only the marker moves: the features are placed again on release.
+  const vtkIdType i = std::distance(p.handles.begin(), dragged);
+  p.landmarkPoints->GetPoints()->SetPoint(i, x.data());
+  p.landmarkPoints->Modified();
+}
+
+QPoint ModelView::widgetPosition(const Eigen::Vector3d& x) const {
+  vtkRenderer* r = p_->renderer;
+  r->SetWorldPoint(x[0], x[1], x[2], 1.0);
+  r->WorldToDisplay();
+  const double* d = r->GetDisplayPoint();
+  const double scale = p_->widget->devicePixelRatioF();
+  return QPoint(int(std::lround(d[0] / scale)), int(std::lround((p_->window->GetSize()[1] - d[1]) / scale)));
+}
+
+QWidget* ModelView::renderWidget() const { return p_->widget; }
+
+void ModelView::dragLandmark(const std::string& name, const Eigen::Vector3d& point) {
+  const auto handle = p_->handles.find(name);
+  if (handle == p_->handles.end()) return;
+  handle->second->GetHandleRepresentation()->SetWorldPosition(const_cast<double*>(point.data()));
+  onLandmarkDragged(handle->second, vtkCommand::InteractionEvent, nullptr);
+  onLandmarkDragged(handle->second, vtkCommand::EndInteractionEvent, nullptr);
 }
 
 void ModelView::onCameraInteraction() {

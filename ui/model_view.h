@@ -2,7 +2,9 @@
 // One 3D view of a model (the standard or the patient), rendered from the session: the surface, plain or coloured by
 // a field with iso-lines and optionally cut open at the plane; the vertices of the visible constraints; on the active
 // model, the cutting-plane widget and the vertices it selects; gradient glyphs; and the hex mesh coloured by quality
-// with a threshold. Dragging the plane widget moves the session's plane: the view never edits anything else.
+// with a threshold; the model's facial landmarks as labelled handles on its surface. Dragging the plane widget moves
+// the session's plane; releasing a dragged landmark is reported (landmarkMoved) for the controller to place its
+// features again: the view never edits anything else.
 #include <Eigen/Core>
 #include <QWidget>
 #include <array>
@@ -11,6 +13,7 @@
 #include "ui/session_model.h"
 
 class QLabel;
+class vtkObject;
 class QStackedWidget;
 
 namespace facehex::gui {
@@ -25,6 +28,15 @@ class ModelView : public QWidget {
   Role role() const { return role_; }
   // Moves the plane widget as a drag by the user would; the session's plane follows (scripted states, tests).
   void movePlaneWidget(const Eigen::Vector3d& origin, const Eigen::Vector3d& normal);
+  // Moves a landmark's handle to `point` and releases it, as a drag by the user would (tests).
+  void dragLandmark(const std::string& name, const Eigen::Vector3d& point);
+  // The landmark handles where the session's landmarks are (after a move the session refused).
+  void showSessionLandmarks();
+  // Where a point of the model appears in the 3D widget (widget pixels; tests drive the mouse there).
+  QPoint widgetPosition(const Eigen::Vector3d& x) const;
+  QWidget* renderWidget() const;
+  // Landmark handles shown in this view.
+  int shownLandmarks() const;
   // Frames the model in a three-quarter view, and keeps it framed as the view resizes until the user turns it.
   void resetCamera();
   // Turns the camera to look along `direction` with `viewUp`, keeping its focal point and distance (linked views).
@@ -38,6 +50,8 @@ class ModelView : public QWidget {
 
  signals:
   void cameraOrientationChanged(const Eigen::Vector3d& direction, const Eigen::Vector3d& viewUp);
+  // A landmark's handle was released at `point` (on the model's surface).
+  void landmarkMoved(facehex::gui::Role role, const std::string& name, const Eigen::Vector3d& point);
 
  private:
   struct Pipeline;
@@ -56,6 +70,8 @@ class ModelView : public QWidget {
   void updateHighlight();
   void updateGlyphs();
   void updatePlaneWidget();
+  void updateLandmarks();
+  void onLandmarkDragged(vtkObject* handle, unsigned long event, void*);
   void onPlaneInteraction();
   void onCameraInteraction();
   void onRenderStart();

@@ -15,6 +15,8 @@ QColor fieldColour(int field);
 inline QColor selectionColour() { return QColor(255, 230, 0); }
 // What a message named and the user asked to see: apart from every constraint colour and the selection.
 inline QColor highlightColour() { return QColor(255, 0, 255); }
+// The facial landmarks' markers: pure white stands out of the tinted constraint paint (the skin's is cyan).
+inline QColor landmarkColour() { return QColor(255, 255, 255); }
 // The model surface when no field is shown.
 inline QColor tissueColour() { return QColor(235, 200, 175); }
 

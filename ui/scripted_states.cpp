@@ -14,8 +14,8 @@
 namespace facehex::gui {
 namespace {
 
-const QStringList kNames = {"loaded",  "plane", "fields",       "glyphs",  "transfer",
-                            "quality", "ct",    "segmentation", "messages"};
+const QStringList kNames = {"loaded",  "plane", "fields",       "glyphs",   "transfer",
+                            "quality", "ct",    "segmentation", "messages", "landmarks"};
 
 // Runs a job and waits for it; a job that could not start or that failed reports through the window.
 bool runAndWait(MainWindow& window, bool started) {
@@ -69,6 +69,18 @@ bool driveToState(MainWindow& window, ScriptedState state) {
         window.openPatient(session->model(Role::Patient).path);
       }
       break;
+    case ScriptedState::Landmarks: {
+      d.showPlane = false;
+      window.findChild<QTableWidget*>("constraintTable")->scrollToBottom();
+      const std::optional<FaceLandmarks>& landmarks = session->landmarks(Role::Patient);
+      if (!landmarks) {
+        window.reportError(QObject::tr("the landmarks state needs a patient with facial landmarks"));
+        return false;
+      }
+      const Eigen::Vector3d glabella = landmarks->points.at("glabella") - 5.0 * Eigen::Vector3d::UnitZ();
+      window.view(Role::Patient)->dragLandmark("glabella", glabella);
+      break;
+    }
     case ScriptedState::Plane: {
       // A feature line as a user places one: a horizontal plane at the eyebrows, on the skin.
       const LoadedModel& patient = session->model(Role::Patient);

@@ -12,7 +12,8 @@ class MainWindow;
 // Ct: a freshly opened CT, segmented, with its sides and automatic constraints (opened from the bundled CT when no
 // patient is given, see defaultPatient). Segmentation: that, with File > Segment again's dialog open, showing the
 // thresholds and cuts the segmentation found. Messages: the transfer with the message log open at its outcome.
-enum class ScriptedState { Loaded, Plane, Fields, Glyphs, Transfer, Quality, Ct, Segmentation, Messages };
+// Landmarks: the patient's landmarks on its skin, the glabella dragged 5 mm down and its eyebrow line following.
+enum class ScriptedState { Loaded, Plane, Fields, Glyphs, Transfer, Quality, Ct, Segmentation, Messages, Landmarks };
 QStringList scriptedStateNames();  // "loaded", "plane", ...
 std::optional<ScriptedState> scriptedStateFromName(const QString& name);
 

@@ -41,7 +41,7 @@ std::string LoadedModel::source() const {
 bool DisplaySettings::operator==(const DisplaySettings& o) const {
   return field == o.field && isoLines == o.isoLines && clipAtPlane == o.clipAtPlane && glyphs == o.glyphs &&
          showHex == o.showHex && measure == o.measure && threshold == o.threshold &&
-         showConstraints == o.showConstraints && showPlane == o.showPlane;
+         showConstraints == o.showConstraints && showPlane == o.showPlane && showLandmarks == o.showLandmarks;
 }
 
 SessionModel::SessionModel(QObject* parent) : QObject(parent), undo_(new QUndoStack(this)) {}
@@ -135,7 +135,7 @@ void SessionModel::setConstraintVisible(Role role, int i, bool visible) {
 }
 
 void SessionModel::replaceConstraints(Role role, const ConstraintSet& set, const QString& what) {
-  edit(role, {set, std::vector<bool>(set.constraints.size(), true)}, what);
+  edit(role, {set, std::vector<bool>(set.constraints.size(), true), std::nullopt}, what);  // placed at no landmarks
 }
 
 void SessionModel::mergeConstraints(Role role, const ConstraintSet& set, const QString& what) {
@@ -146,6 +146,17 @@ void SessionModel::mergeConstraints(Role role, const ConstraintSet& set, const Q
 }
 
 void SessionModel::setNamedConstraints(Role role, const ConstraintSet& set, const QString& what) {
+  edit(role, withNamed(role, set), what);
+}
+
+void SessionModel::setFeatureConstraints(Role role, const ConstraintSet& features, const FaceLandmarks& landmarks,
+                                         const QString& what) {
+  ConstraintList list = withNamed(role, features);
+  list.landmarks = landmarks;
+  edit(role, std::move(list), what);
+}
+
+ConstraintList SessionModel::withNamed(Role role, const ConstraintSet& set) const {
   ConstraintList list = constraints(role);
   auto& cs = list.set.constraints;
   for (const Constraint& c : set.constraints) {
@@ -157,7 +168,7 @@ void SessionModel::setNamedConstraints(Role role, const ConstraintSet& set, cons
       list.visible.push_back(true);
     }
   }
-  edit(role, std::move(list), what);
+  return list;
 }
 
 void SessionModel::addSideConstraints(Role role) {

@@ -27,10 +27,12 @@ enum class Role { Standard = 0, Patient = 1 };
 constexpr std::array<Role, 2> kRoles = {Role::Standard, Role::Patient};
 QString roleName(Role role);  // "standard", "patient"
 
-// A constraint set as the user edits it: the set and, per constraint, whether its vertices are drawn.
+// A constraint set as the user edits it: the set, per constraint whether its vertices are drawn, and the facial
+// landmarks its feature constraints were placed at (found, loaded or moved; undone with the constraints they placed).
 struct ConstraintList {
   ConstraintSet set;
   std::vector<bool> visible;  // parallel to set.constraints
+  std::optional<FaceLandmarks> landmarks;
 };
 
 // A model ready for constraint placement and parameterization (built from a file by the controller).
@@ -74,6 +76,7 @@ struct DisplaySettings {
   double threshold = 1.0;  // draw only the cells whose quality is at most this
   bool showConstraints = true;
   bool showPlane = true;
+  bool showLandmarks = true;
   bool operator==(const DisplaySettings& o) const;
 };
 
@@ -118,6 +121,10 @@ class SessionModel : public QObject {
   void mergeConstraints(Role role, const ConstraintSet& set, const QString& what);
   // Each constraint of `set` replaces the model's constraint of the same name, in its place, or is appended.
   void setNamedConstraints(Role role, const ConstraintSet& set, const QString& what);
+  // setNamedConstraints with the feature constraints placed at `landmarks`, which become the model's landmarks.
+  void setFeatureConstraints(Role role, const ConstraintSet& features, const FaceLandmarks& landmarks,
+                             const QString& what);
+  const std::optional<FaceLandmarks>& landmarks(Role role) const { return constraints(role).landmarks; }
   void addSideConstraints(Role role);  // the six shape ends by "side_mask" (setNamedConstraints)
   QUndoStack* undoStack() const { return undo_; }
   // Installs a constraint list without recording it (the undo command's own entry point). A change of the set makes
@@ -165,6 +172,7 @@ class SessionModel : public QObject {
   static int index(Role role) { return static_cast<int>(role); }
   LoadedModel& mutableModel(Role role);
   void edit(Role role, ConstraintList after, const QString& what);
+  ConstraintList withNamed(Role role, const ConstraintSet& set) const;
   void updateConstraintVertices(Role role);
   void updatePlaneSelection();
   void centrePlaneOn(Role role);

@@ -302,16 +302,50 @@ bool TransferController::reportErrors(const std::function<void()>& f) {
   }
 }
 
+void TransferController::placeFeatures(Role role, double band, const FaceLandmarks* given, const QString& what) {
+  if (!session_->hasModel(role)) throw Error("features", "open the " + roleName(role).toStdString() + " model first");
+  if (!session_->hasModel(Role::Standard))
+    throw Error("features", "open a standard first: the features take the values of its constraint set");
+  const VolumeMesh& mesh = session_->model(role).mesh;
+  FaceLandmarks landmarks;
+  const ConstraintSet features = feature_constraints_at(
+      mesh.V, side_mask_of(mesh), feature_values(session_->constraints(Role::Standard).set), band, given, landmarks);
+  session_->setFeatureConstraints(role, features, landmarks, what);
+}
+
 bool TransferController::placeFeatureConstraints(Role role, double band) {
+  return reportErrors([&] { placeFeatures(role, band, nullptr, tr("place the facial features")); });
+}
+
+bool TransferController::loadLandmarks(Role role, const QString& path, double band) {
   return reportErrors([&] {
-    if (!session_->hasModel(role)) throw Error("features", "open the " + roleName(role).toStdString() + " model first");
-    if (!session_->hasModel(Role::Standard))
-      throw Error("features", "open a standard first: the features take the values of its constraint set");
+    const std::string p = path.toStdString();
+    const FaceLandmarks given = landmarks_from(read_landmark_file(p), p);
+    placeFeatures(role, band, &given, tr("landmarks from %1").arg(QFileInfo(path).fileName()));
+  });
+}
+
+bool TransferController::saveLandmarks(Role role, const QString& path) {
+  return reportErrors([&] {
+    const std::string p = path.toStdString();
+    if (!session_->hasModel(role) || !session_->landmarks(role))
+      throw Error(p, "the " + roleName(role).toStdString() + " model has no landmarks");
+    write_landmark_file(p, named_landmarks(*session_->landmarks(role)));
+  });
+}
+
+bool TransferController::moveLandmark(Role role, const std::string& name, const Eigen::Vector3d& point, double band) {
+  return reportErrors([&] {
+    if (!session_->hasModel(role) || !session_->landmarks(role))
+      throw Error("landmarks", "the " + roleName(role).toStdString() + " model has no landmarks");
+    std::vector<NamedLandmark> named = named_landmarks(*session_->landmarks(role));
+    const auto moved = std::find_if(named.begin(), named.end(), [&](const NamedLandmark& n) { return n.name == name; });
+    if (moved == named.end()) throw Error("landmarks", "no landmark '" + name + "'");
     const VolumeMesh& mesh = session_->model(role).mesh;
-    const FaceLandmarks landmarks = find_face_landmarks(mesh.V, side_mask_of(mesh));
-    session_->setNamedConstraints(
-        role, feature_constraints(landmarks, feature_values(session_->constraints(Role::Standard).set), band),
-        tr("place the facial features"));
+    moved->position = closest_skin_point(mesh.V, side_mask_of(mesh), point);
+    moved->status = LandmarkStatus::given;
+    const FaceLandmarks given = landmarks_from(named, "the moved " + name);
+    placeFeatures(role, band, &given, tr("move the %1").arg(QString::fromStdString(name)));
   });
 }
 

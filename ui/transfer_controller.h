@@ -45,6 +45,11 @@ class TransferController : public QObject {
   // features of the same names and selected by slabs `band` mm wide: they replace the model's features (re-computed
   // after a change of standard, band or model) or are added, as one undoable edit.
   bool placeFeatureConstraints(Role role, double band);
+  // The same at the landmarks of a landmark file (core/face/landmark_file.h), as the CLI's --landmarks places them.
+  bool loadLandmarks(Role role, const QString& path, double band);
+  bool saveLandmarks(Role role, const QString& path);
+  // The named landmark moved to the skin point closest to `point` (a drag's release), its features placed again.
+  bool moveLandmark(Role role, const std::string& name, const Eigen::Vector3d& point, double band);
   bool loadConstraints(Role role, const QString& path, bool merge);
   bool saveConstraints(Role role, const QString& path);
   bool exportHex(const QString& path);
@@ -72,6 +77,8 @@ class TransferController : public QObject {
   bool start(const QString& what, Work work);
   void deliver();
   bool reportErrors(const std::function<void()>& f);
+  // The model's feature constraints placed at `given` landmarks, else at those found (one undoable edit).
+  void placeFeatures(Role role, double band, const FaceLandmarks* given, const QString& what);
 
   SessionModel* session_;
   TransferOptions options_;

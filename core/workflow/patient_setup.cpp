@@ -1,10 +1,13 @@
 #include "core/workflow/patient_setup.h"
 
+#include <algorithm>
 #include <filesystem>
+#include <limits>
 #include <optional>
 
 #include "core/face/automatic_constraints.h"
 #include "core/mesh/mesh_check.h"
+#include "core/mesh/sides.h"
 #include "core/mesh/synthetic_shell.h"
 #include "core/segment/ct_volume.h"
 #include "core/tetgen/tetrahedralize.h"
@@ -53,6 +56,34 @@ void choose_constraints(PatientSetup& patient, const std::string& constraints_fi
     patient.features_problem = e.what();
     patient.constraints_note += " only: no facial features (" + patient.features_problem + ")";
   }
+}
+
+ConstraintSet feature_constraints_at(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
+                                     const std::map<std::string, double>& feature_values, double band,
+                                     const FaceLandmarks* given, FaceLandmarks& landmarks) {
+  ConstraintSet set = automatic_constraints(V, side_mask, feature_values, band, &landmarks, given);
+  const ConstraintSet sides = side_constraints();
+  auto& cs = set.constraints;
+  cs.erase(std::remove_if(cs.begin(), cs.end(),
+                          [&sides](const Constraint& c) {
+                            return std::any_of(sides.constraints.begin(), sides.constraints.end(),
+                                               [&c](const Constraint& s) { return s.name == c.name; });
+                          }),
+           cs.end());
+  return set;
+}
+
+Eigen::Vector3d closest_skin_point(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
+                                   const Eigen::Vector3d& point) {
+  int best = -1;
+  double best_d2 = std::numeric_limits<double>::infinity();
+  for (Eigen::Index v = 0; v < side_mask.size(); ++v) {
+    if (!(side_mask(v) & side_bit(W1))) continue;
+    const double d2 = (V.row(v).transpose() - point).squaredNorm();
+    if (d2 < best_d2) best_d2 = d2, best = static_cast<int>(v);
+  }
+  if (best < 0) throw Error("landmarks", "the model has no skin (side w1) to place a landmark on");
+  return V.row(best).transpose();
 }
 
 PatientSetup load_patient(const std::string& path, const SegmentOptions& segment, const std::string& constraints_file,

@@ -1,7 +1,8 @@
 // The desktop application end to end, as a user drives it: the bundled demo (standard and sample patient, with its
 // automatic constraints) is opened, a constraint is placed with the plane widget, edits undo and redo, the standard
-// is transferred onto the bundled patient; the bundled CT is opened and segmented on the worker thread; a small box
-// standard and a bent box patient are opened from files, their fields computed and the transfer run, the hex mesh
+// is transferred onto the bundled patient; the patient's landmarks are loaded from a file or dragged on the skin (with
+// the mouse, too) and its features follow them; the bundled CT is opened and segmented on the worker thread; a small
+// box standard and a bent box patient are opened from files, their fields computed and the transfer run, the hex mesh
 // exported and read back; bad files give the core's error message and the application keeps running; every scripted
 // state renders visible 3D content. (The box pair keeps those computations within seconds and their results exactly
 // checkable.) Results are kept: an undo brings back what an edit made stale, and replacing an unexported result asks
@@ -69,6 +70,10 @@ class GuiTest : public QObject {
   void planeWidgetPlacesAConstraint();
   void undoAndRedoAConstraintEdit();
   void facialFeaturesAreRecomputedByTheButton();
+  void landmarkFilePlacesTheFeatures();
+  void draggedLandmarkMovesOnTheSkinWithItsFeature();
+  void badLandmarkFileIsNamedAndChangesNothing();
+  void mouseDragsALandmarkOnTheSkin();
   void cancelStopsTheWorker();
   void computeFieldsReadsTheStandardsCache();
   void transfersTheBundledModelsAndShowsThem();
@@ -95,6 +100,8 @@ class GuiTest : public QObject {
   int constraintCount() const { return int(session()->constraints(Role::Patient).set.constraints.size()); }
   // The patient's constraint of that name, or null.
   const Constraint* patientConstraint(const std::string& name) const;
+  // The patient's landmark of that name (it must have it).
+  Eigen::Vector3d patientLandmark(const std::string& name) const;
   // Opens a patient on the worker thread and waits; the error it reported, or empty.
   QString openPatient(const QString& path);
   SessionModel* session() const { return window_->session(); }
@@ -163,6 +170,10 @@ const Constraint* GuiTest::patientConstraint(const std::string& name) const {
   for (const Constraint& c : session()->constraints(Role::Patient).set.constraints)
     if (c.name == name) return &c;
   return nullptr;
+}
+
+Eigen::Vector3d GuiTest::patientLandmark(const std::string& name) const {
+  return session()->landmarks(Role::Patient)->points.at(name);
 }
 
 void GuiTest::answerNextQuestion(QMessageBox::StandardButton answer) {
@@ -310,6 +321,117 @@ void GuiTest::facialFeaturesAreRecomputedByTheButton() {
   QCOMPARE(patientConstraint(eyebrow)->select.plane->band, kFeatureBand);
   session()->undoStack()->undo();
   QCOMPARE(constraintCount(), n);
+}
+
+void GuiTest::landmarkFilePlacesTheFeatures() {
+  QVERIFY2(openDemo(), qPrintable(error_));
+  ModelView* view = window_->view(Role::Patient);
+  QCOMPARE(view->shownLandmarks(), int(session()->landmarks(Role::Patient)->points.size()));
+  // The bundled patient's landmarks with the glabella 4 mm lower: the eyebrow line follows the file.
+  std::vector<NamedLandmark> given = read_landmark_file(FACEHEX_TEST_DATA_DIR "/landmarks/headsq.json");
+  for (NamedLandmark& l : given)
+    if (l.name == "glabella") l.position.z() -= 4.0;
+  const QString path = dir_.filePath("headsq-lower-brow.mrk.json");
+  write_landmark_file(path.toStdString(), given);
+  const Eigen::Vector3d glabella = read_landmark_file(path.toStdString()).at(0).position;
+  QVERIFY((patientLandmark("glabella") - glabella).norm() > 1.0);
+
+  QVERIFY2(window_->controller()->loadLandmarks(Role::Patient, path, kFeatureBand), qPrintable(error_));
+  QVERIFY(session()->landmarks(Role::Patient)->given);
+  QVERIFY((patientLandmark("glabella") - glabella).norm() < 1e-9);
+  const Constraint* eyebrow = patientConstraint(feature_specs().at(1).name);
+  QVERIFY(eyebrow && eyebrow->select.plane);
+  QVERIFY(std::abs(eyebrow->select.plane->normal.dot(glabella - eyebrow->select.plane->point)) < 1e-9);
+  const int row = int(eyebrow - session()->constraints(Role::Patient).set.constraints.data());
+  QVERIFY(!session()->constraintVertices(Role::Patient, row).empty());
+  // The same constraints as the CLI's --landmarks places.
+  const std::map<std::string, double> values = feature_values(session()->constraints(Role::Standard).set);
+  const PatientSetup cli = setup_patient({session()->model(Role::Patient).mesh, {}, std::nullopt},
+                                         default_patient().mesh, "", &values, path.toStdString());
+  for (const FeatureSpec& spec : feature_specs()) {
+    const auto same = std::find_if(cli.constraints.constraints.begin(), cli.constraints.constraints.end(),
+                                   [&](const Constraint& c) { return c.name == spec.name; });
+    QVERIFY(same != cli.constraints.constraints.end());
+    QCOMPARE(QString::fromStdString(to_json(ConstraintSet{{*same}})),
+             QString::fromStdString(to_json(ConstraintSet{{*patientConstraint(spec.name)}})));
+  }
+  // Saved and undone as the constraints are.
+  const QString saved = dir_.filePath("saved.json");
+  QVERIFY(window_->controller()->saveLandmarks(Role::Patient, saved));
+  QVERIFY((landmarks_from(read_landmark_file(saved.toStdString()), "saved").points.at("glabella") - glabella).norm() <
+          1e-9);
+  session()->undoStack()->undo();
+  QVERIFY(!session()->landmarks(Role::Patient)->given);
+  QVERIFY((patientLandmark("glabella") - glabella).norm() > 1.0);
+}
+
+void GuiTest::draggedLandmarkMovesOnTheSkinWithItsFeature() {
+  QVERIFY2(openDemo(), qPrintable(error_));
+  const VolumeMesh& mesh = session()->model(Role::Patient).mesh;
+  const Eigen::Vector3d before = patientLandmark("glabella");
+  // Dropped 5 mm in front of the skin and 3 mm lower: it lands on the closest skin vertex.
+  const Eigen::Vector3d dropped = before + Eigen::Vector3d(0, 5, -3);
+  const Eigen::Vector3d onSkin = closest_skin_point(mesh.V, side_mask_of(mesh), dropped);
+  QVERIFY((onSkin - dropped).norm() > 1.0);
+  window_->view(Role::Patient)->dragLandmark("glabella", dropped);
+  QVERIFY2(error_.isEmpty(), qPrintable(error_));
+  QVERIFY((patientLandmark("glabella") - onSkin).norm() < 1e-9);
+  const Constraint* eyebrow = patientConstraint(feature_specs().at(1).name);
+  QVERIFY(std::abs(eyebrow->select.plane->normal.dot(onSkin - eyebrow->select.plane->point)) < 1e-9);
+  QVERIFY(std::abs(eyebrow->select.plane->point.z() - before.z()) > 1.0);
+  // One undoable edit: the landmark and its feature go back together.
+  session()->undoStack()->undo();
+  QVERIFY((patientLandmark("glabella") - before).norm() < 1e-9);
+  QVERIFY(std::abs(patientConstraint(feature_specs().at(1).name)->select.plane->point.z() - before.z()) < 1e-9);
+}
+
+void GuiTest::mouseDragsALandmarkOnTheSkin() {
+  // The user's drag, as mouse events on the 3D widget: press on the nose tip's handle, move, release.
+  QVERIFY2(openDemo(), qPrintable(error_));
+  session()->setActiveRole(Role::Standard);  // no plane widget in the patient's view to catch the press
+  ModelView* view = window_->view(Role::Patient);
+  view->render();
+  QWidget* w = view->renderWidget();
+  const Eigen::Vector3d before = patientLandmark("pronasale");
+  const QPoint from = view->widgetPosition(before), to = view->widgetPosition(before + Eigen::Vector3d(8, 0, 8));
+  auto send = [w](QEvent::Type type, const QPoint& at, Qt::MouseButtons buttons) {
+    QMouseEvent e(type, at, w->mapToGlobal(at), Qt::LeftButton, buttons, Qt::NoModifier);
+    QApplication::sendEvent(w, &e);
+  };
+  send(QEvent::MouseMove, from, Qt::NoButton);
+  send(QEvent::MouseButtonPress, from, Qt::LeftButton);
+  for (int i = 1; i <= 10; ++i) send(QEvent::MouseMove, from + (to - from) * i / 10, Qt::LeftButton);
+  send(QEvent::MouseButtonRelease, to, Qt::NoButton);
+  QVERIFY2(error_.isEmpty(), qPrintable(error_));
+  // It moved up and sideways along the surface, onto a skin vertex.
+  const Eigen::Vector3d after = patientLandmark("pronasale");
+  QVERIFY(after.z() - before.z() > 3.0 && after.x() - before.x() > 3.0);
+  const VolumeMesh& mesh = session()->model(Role::Patient).mesh;
+  QCOMPARE((closest_skin_point(mesh.V, side_mask_of(mesh), after) - after).norm(), 0.0);
+  QCOMPARE(session()->undoStack()->undoText(), QString("move the pronasale"));
+}
+
+void GuiTest::badLandmarkFileIsNamedAndChangesNothing() {
+  QVERIFY2(openDemo(), qPrintable(error_));
+  const std::string constraints = to_json(session()->constraints(Role::Patient).set);
+  const Eigen::Vector3d glabella = patientLandmark("glabella");
+  const int edits = session()->undoStack()->count();
+  const QString broken = dir_.filePath("broken.json"), partial = dir_.filePath("partial.json");
+  QFile f(broken);
+  QVERIFY(f.open(QIODevice::WriteOnly));
+  f.write("{\"format\": \"facehex-landmarks\", \"landmarks\": [{\"name\": \"glabella\"");
+  f.close();
+  write_landmark_file(partial.toStdString(), {{"glabella", glabella, LandmarkStatus::given}});
+  for (const QString& path : {broken, partial, dir_.filePath("missing.json")}) {
+    QVERIFY(!window_->controller()->loadLandmarks(Role::Patient, path, kFeatureBand));
+    const QString error = takeError();
+    QVERIFY2(error.startsWith(path), qPrintable(error));
+    MessageLog* log = window_->messageLog();
+    QCOMPARE(log->topLevelItem(log->topLevelItemCount() - 1)->text(1), error);
+    QCOMPARE(to_json(session()->constraints(Role::Patient).set), constraints);
+    QVERIFY((patientLandmark("glabella") - glabella).norm() == 0);
+    QCOMPARE(session()->undoStack()->count(), edits);
+  }
 }
 
 void GuiTest::computeFieldsReadsTheStandardsCache() {
