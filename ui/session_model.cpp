@@ -107,7 +107,7 @@ void SessionModel::edit(Role role, ConstraintList after, const QString& what) {
 
 void SessionModel::addPlaneConstraint(Role role, const QString& name, int field, double value) {
   ConstraintList list = constraints(role);
-  list.set.constraints.push_back({name.toStdString(), field, value, planeAsSelection()});
+  list.set.constraints.push_back({name.toStdString(), field, value, planeAsSelection(), ""});
   list.visible.push_back(true);
   edit(role, std::move(list), tr("add constraint '%1'").arg(name));
 }
