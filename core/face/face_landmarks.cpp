@@ -187,9 +187,9 @@ Eigen::Vector3d require(const std::optional<Eigen::Vector3d>& p, const std::stri
 
 // mm, the Douglas-Peucker tolerances tried for the lips, coarsest first (Profile::turns_below)
 constexpr double kTurnTolerances[] = {1.5, 1.0, 0.5};
-// mm below the nose (or a field-of-view cut's lowest point, which can be above the tip) within which the lips are
-// looked for
-constexpr double kLipsReach = 65.0;
+// mm below the nose within which the lips are looked for; the second reach only when the first does not show all four
+// (a slanted field-of-view cut's lowest point, taken for the nose, can be well above the tip).
+constexpr double kLipsReaches[] = {50.0, 65.0};
 // mm: profile points this close to the most or least anterior one are one flat stretch, whose middle is taken (a flat
 // nasion or brow, or a field-of-view cut above the nose).
 constexpr double kFlatTie = 0.5;
@@ -273,9 +273,12 @@ FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorX
   // The coarsest simplification that shows the four: the lips' own turns rather than the skin's ripples, on lips as
   // pronounced as the standard's and on a flat profile alike.
   std::vector<Profile::Turn> turns;
-  for (const double tolerance : kTurnTolerances) {
-    turns = profile.turns_below(nose.z(), kLipsReach, tolerance);
-    while (!turns.empty() && !turns.front().hollow) turns.erase(turns.begin());  // on the nose's own underside
+  for (const double reach : kLipsReaches) {
+    for (const double tolerance : kTurnTolerances) {
+      turns = profile.turns_below(nose.z(), reach, tolerance);
+      while (!turns.empty() && !turns.front().hollow) turns.erase(turns.begin());  // on the nose's own underside
+      if (turns.size() >= 4) break;
+    }
     if (turns.size() >= 4) break;
   }
   const char* lips[] = {"subnasale", "upper lip", "stomion", "lower lip"};
