@@ -308,8 +308,8 @@ void TransferController::placeFeatures(Role role, double band, const FaceLandmar
     throw Error("features", "open a standard first: the features take the values of its constraint set");
   const VolumeMesh& mesh = session_->model(role).mesh;
   FaceLandmarks landmarks;
-  const ConstraintSet features = feature_constraints_at(
-      mesh.V, side_mask_of(mesh), feature_values(session_->constraints(Role::Standard).set), band, given, landmarks);
+  const ConstraintSet features = landmark_feature_constraints(
+      mesh.V, side_mask_of(mesh), feature_values(session_->constraints(Role::Standard).set), band, &landmarks, given);
   session_->setFeatureConstraints(role, features, landmarks, what);
 }
 

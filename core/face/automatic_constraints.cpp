@@ -1,5 +1,7 @@
 #include "core/face/automatic_constraints.h"
 
+#include <utility>
+
 namespace facehex {
 
 std::map<std::string, double> feature_values(const ConstraintSet& standard) {
@@ -8,18 +10,24 @@ std::map<std::string, double> feature_values(const ConstraintSet& standard) {
   return values;
 }
 
-ConstraintSet automatic_constraints(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
-                                    const std::map<std::string, double>& values, double band,
-                                    FaceLandmarks* landmarks_out, const FaceLandmarks* given) {
+ConstraintSet landmark_feature_constraints(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
+                                           const std::map<std::string, double>& values, double band,
+                                           FaceLandmarks* landmarks_out, const FaceLandmarks* given) {
   const FaceLandmarks landmarks = given ? *given : find_face_landmarks(V, side_mask);
   const std::string remedy = given ? "correct the landmark file" : "give the landmarks with --landmarks FILE";
   check_plausible(landmarks, remedy);
-  ConstraintSet set = side_constraints();
-  for (auto& c : feature_constraints(landmarks, values, band).constraints) {
-    c.origin += "; " + remedy;
-    set.constraints.push_back(c);
-  }
+  ConstraintSet set = feature_constraints(landmarks, values, band);
+  for (Constraint& c : set.constraints) c.origin += "; " + remedy;
   if (landmarks_out) *landmarks_out = landmarks;
+  return set;
+}
+
+ConstraintSet automatic_constraints(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
+                                    const std::map<std::string, double>& values, double band,
+                                    FaceLandmarks* landmarks_out, const FaceLandmarks* given) {
+  ConstraintSet set = side_constraints();
+  for (Constraint& c : landmark_feature_constraints(V, side_mask, values, band, landmarks_out, given).constraints)
+    set.constraints.push_back(std::move(c));
   return set;
 }
 

@@ -1,6 +1,5 @@
 #include "core/workflow/patient_setup.h"
 
-#include <algorithm>
 #include <filesystem>
 #include <limits>
 #include <optional>
@@ -56,21 +55,6 @@ void choose_constraints(PatientSetup& patient, const std::string& constraints_fi
     patient.features_problem = e.what();
     patient.constraints_note += " only: no facial features (" + patient.features_problem + ")";
   }
-}
-
-ConstraintSet feature_constraints_at(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
-                                     const std::map<std::string, double>& feature_values, double band,
-                                     const FaceLandmarks* given, FaceLandmarks& landmarks) {
-  ConstraintSet set = automatic_constraints(V, side_mask, feature_values, band, &landmarks, given);
-  const ConstraintSet sides = side_constraints();
-  auto& cs = set.constraints;
-  cs.erase(std::remove_if(cs.begin(), cs.end(),
-                          [&sides](const Constraint& c) {
-                            return std::any_of(sides.constraints.begin(), sides.constraints.end(),
-                                               [&c](const Constraint& s) { return s.name == c.name; });
-                          }),
-           cs.end());
-  return set;
 }
 
 Eigen::Vector3d closest_skin_point(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,

@@ -41,13 +41,6 @@ struct PatientSetup {
 void choose_constraints(PatientSetup& patient, const std::string& constraints_file,
                         const std::map<std::string, double>* feature_values, const std::string& landmarks_file = "");
 
-// The feature constraints alone (no sides) as choose_constraints places them: at `given` landmarks (the user's)
-// when not null, else at those found on the model's skin (V #V x 3, side_mask #V), checked for plausibility and valued
-// by `feature_values`; `landmarks` receives where they were placed. Throws facehex::Error as automatic_constraints.
-ConstraintSet feature_constraints_at(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
-                                     const std::map<std::string, double>& feature_values, double band,
-                                     const FaceLandmarks* given, FaceLandmarks& landmarks);
-
 // The skin vertex (side w1 of side_mask #V, the side the landmarks lie on) closest to `point`, for a landmark the user
 // moves. Throws facehex::Error("landmarks", ...) when the model has no skin.
 Eigen::Vector3d closest_skin_point(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
