@@ -186,15 +186,14 @@ int correspondence_bench(const Args& args) {
       throw UsageError("--ct-seeds", "expects comma-separated whole numbers, got '" + args.get("ct-seeds") + "'");
     }
   }
-  const std::vector<std::string> ranges = list(args.get("ct-ranges"));
   std::vector<double> r;
-  for (const std::string& v : ranges) {
+  bool numbers = true;
+  for (const std::string& v : list(args.get("ct-ranges"))) {
     char* end = nullptr;
     r.push_back(std::strtod(v.c_str(), &end));
-    if (v.empty() || *end != '\0' || !std::isfinite(r.back()) || r.back() < 0) r.clear();
-    if (r.empty()) break;
+    numbers = numbers && !v.empty() && *end == '\0' && std::isfinite(r.back()) && r.back() >= 0;
   }
-  if (r.size() != 4 || r[0] >= 0.5 || r[1] >= 0.5 || r[2] > 20 || r[3] > 45)
+  if (!numbers || r.size() != 4 || r[0] >= 0.5 || r[1] >= 0.5 || r[2] > 20 || r[3] > 45)
     throw UsageError("--ct-ranges",
                      "expects SCALE,SHEAR,BUMP,TURN with scale and shear below 0.5, a bump of at most "
                      "20 mm and a turn of at most 45 degrees, got '" +
