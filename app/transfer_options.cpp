@@ -59,6 +59,14 @@ void add_transfer_options(Args& args) {
       .option("standard-domain",
               "tet domain of the standard: closed (openings filled) or auxiliary (paper: split hexes only)", "closed")
       .flag("allow-inverted", "continue even if the patient parameterization has inverted tets")
+      .option("skin-correspondence",
+              "features: the paper's, the fields free on the skin but for the feature lines at the landmarks; "
+              "registered: the standard's skin registered onto the patient's decides the fields there (the features "
+              "at found landmarks are left out; landmarks given with --landmarks pull the registration)",
+              "features")
+      .flag("hold-skin",
+            "with --skin-correspondence registered: the shape relaxation keeps the standard's skin vertices at their "
+            "registered correspondents instead of sliding them along the skin (correspondence before cell shape)")
       .option("shape-relaxation",
               "after the mapping, move vertices along the patient towards the standard's cell shapes; where the "
               "mapping distorted a cell, its target moves this fraction of that distortion towards an ideal cell (0: "
@@ -120,6 +128,14 @@ TransferOptions transfer_options(const Args& args) {
   TransferOptions o;
   o.fields = field_options(args);
   o.allow_inverted_parameterization = args.has("allow-inverted");
+  const std::string correspondence = args.get("skin-correspondence");
+  if (correspondence == "registered")
+    o.skin_correspondence = SkinCorrespondence::registered;
+  else if (correspondence == "features")
+    o.skin_correspondence = SkinCorrespondence::features;
+  else
+    throw UsageError("--skin-correspondence", "expects registered or features, got '" + correspondence + "'");
+  o.hold_registered_skin = args.has("hold-skin");
   const std::string relaxation = args.get("shape-relaxation");
   o.shape_relaxation = relaxation != "off";
   if (o.shape_relaxation) {

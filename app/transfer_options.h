@@ -18,7 +18,8 @@ constexpr double kLeastEdgeLength = 0.5, kMostEdgeLength = 50;
 void add_field_options(Args& args);
 // --skin, --bone, --anterior, --superior, the cut planes and their automatic distances.
 void add_segment_options(Args& args);
-// --standard, --standard-constraints, --standard-domain, --edge-length, --allow-inverted, --shape-relaxation, and
+// --standard, --standard-constraints, --standard-domain, --edge-length, --allow-inverted, --skin-correspondence,
+// --shape-relaxation, and
 // the field and segmentation options.
 void add_transfer_options(Args& args);
 

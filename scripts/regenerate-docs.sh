@@ -5,9 +5,10 @@
 # with the date, the commit, the core count and the CPU model. Everything outside the markers is left as it is.
 #
 # Usage, from anywhere in the repository, after a Release build of facehex:
-#   scripts/regenerate-docs.sh [--only benchmarks|results|correspondence] [--keep DIR] [--from DIR]
-#     --only benchmarks|results|correspondence  run and write one part only (correspondence: the correspondence
-#                                section of docs/results.md, from `facehex bench --correspondence`)
+#   scripts/regenerate-docs.sh [--only benchmarks|results|correspondence|registered] [--keep DIR] [--from DIR]
+#     --only benchmarks|results|correspondence|registered  run and write one part only (correspondence: the
+#                                correspondence section of docs/results.md, from `facehex bench --correspondence`;
+#                                registered: its tables of the registered skin, --skin-correspondence registered)
 #     --keep DIR                 keep the raw JSON, logs and plots in DIR (default: a temporary folder, removed)
 #     --from DIR                 run nothing: write the pages from the JSON a previous --keep DIR left
 #   FACEHEX=path/to/facehex overrides build/bin/facehex.
@@ -34,8 +35,8 @@ while [ $# -gt 0 ]; do
     *) echo "regenerate-docs.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
-case "$only" in ""|benchmarks|results|correspondence) ;;
-  *) echo "regenerate-docs.sh: --only benchmarks|results|correspondence" >&2; exit 2 ;;
+case "$only" in ""|benchmarks|results|correspondence|registered) ;;
+  *) echo "regenerate-docs.sh: --only benchmarks|results|correspondence|registered" >&2; exit 2 ;;
 esac
 want() { [ -z "$only" ] || [ "$only" = "$1" ]; }
 
@@ -106,6 +107,15 @@ EOF
     # the standard's landmarks moved by the warp.
     step correspondence-floor "$facehex" bench --correspondence --mapping-only --cts none --true-landmarks \
       --standard-domain auxiliary --deformation-models split,closed-3 -o "$out/correspondence-floor" "${extra[@]}"
+  fi
+  if want registered; then
+    # The same benchmark with the registered skin, the relaxation sliding the skin (as by default) and holding it.
+    cts=resources/ct/headsq/headsq.mhd
+    read -r -a extra <<<"${CORRESPONDENCE_ARGS:-}"
+    step registered "$facehex" bench --correspondence --skin-correspondence registered --cts "$cts" \
+      -o "$out/registered" "${extra[@]}"
+    step registered-held "$facehex" bench --correspondence --skin-correspondence registered --hold-skin \
+      --cts "$cts" -o "$out/registered-held" "${extra[@]}"
   fi
   if want benchmarks; then
     step bench-sizes "$facehex" bench --sizes 10000,50000,200000 --json
@@ -261,42 +271,43 @@ if only in ("", "results"):
     for plot, file in patient["plots"].items():
         shutil.copyfile(os.path.join(out, "compare-default", file), os.path.join(img, f"results_{name}_{plot}.png"))
 
-# ---- docs/results.md: correspondence ----
+# ---- docs/results.md: correspondence (the benchmark's tables) ----
+def region(c, name):
+    r = c["error_mm"]["regions"].get(name)
+    return f(r["mean"]) if r and r["count"] else "–"
+
+def worst_rim(c):
+    rims = [(v["mean"], k[5:]) for k, v in c["error_mm"]["regions"].items() if k.startswith("rim: ") and v["count"]]
+    return f"{f(max(rims)[0])} ({max(rims)[1]})" if rims else "–"
+
+def corr_table(report, mapping_only):
+    rows = []
+    for c in report["cases"]:
+        label = f"{c['kind']}: {c['name']}"
+        if "failure" in c:
+            rows.append([label, "failed: " + c["failure"].replace("|", "/")] + [""] * (10 if mapping_only else 14))
+            continue
+        e = c["error_mm"]["all"]
+        row = [label, n(c["patient_tets"]), f"{f(e['mean'])} / {f(e['p95'])} / {f(e['max'], 1)}",
+               f"{100 * e['within_1mm']:.0f} %", region(c, "landmarks"), worst_rim(c), region(c, "skin"),
+               region(c, "bone"), f(c["warp_mean_mm"]), n(c["folded_parametric_tets"]) if "folded_parametric_tets" in c else "–"]
+        if not mapping_only:
+            row += [f(c["mapping_error_mm"]["all"]["mean"]), f(c["moved_by_relaxation_mm"]["mean"], 1),
+                    c["inverted"], f(c["shape_mean"] / c["standard_shape_mean"], 3),
+                    f(c["dihedral_change_mean_deg"], 1)]
+        row.append(f(c["seconds"], 0))
+        rows.append(row)
+    header = ["case", "patient tets", "error mean / p95 / max (mm)", "within 1 mm", "landmarks", "worst opening rim",
+              "skin", "bone", "the warp moves", "folded parametric tets"]
+    if not mapping_only:
+        header += ["plain mapping mean", "moved by relaxation + repair, mean", "inverted cells",
+                   "mean shape / standard's", "dihedral change (°)"]
+    return table(header + ["time (s)"], rows)
+
+
 if only in ("", "correspondence"):
     def corr(name):
         return load(f"{name}/correspondence.json")
-
-    def region(c, name):
-        r = c["error_mm"]["regions"].get(name)
-        return f(r["mean"]) if r and r["count"] else "–"
-
-    def worst_rim(c):
-        rims = [(v["mean"], k[5:]) for k, v in c["error_mm"]["regions"].items() if k.startswith("rim: ") and v["count"]]
-        return f"{f(max(rims)[0])} ({max(rims)[1]})" if rims else "–"
-
-    def corr_table(report, mapping_only):
-        rows = []
-        for c in report["cases"]:
-            label = f"{c['kind']}: {c['name']}"
-            if "failure" in c:
-                rows.append([label, "failed: " + c["failure"].replace("|", "/")] + [""] * (10 if mapping_only else 14))
-                continue
-            e = c["error_mm"]["all"]
-            row = [label, n(c["patient_tets"]), f"{f(e['mean'])} / {f(e['p95'])} / {f(e['max'], 1)}",
-                   f"{100 * e['within_1mm']:.0f} %", region(c, "landmarks"), worst_rim(c), region(c, "skin"),
-                   region(c, "bone"), f(c["warp_mean_mm"]), n(c["folded_parametric_tets"]) if "folded_parametric_tets" in c else "–"]
-            if not mapping_only:
-                row += [f(c["mapping_error_mm"]["all"]["mean"]), f(c["moved_by_relaxation_mm"]["mean"], 1),
-                        c["inverted"], f(c["shape_mean"] / c["standard_shape_mean"], 3),
-                        f(c["dihedral_change_mean_deg"], 1)]
-            row.append(f(c["seconds"], 0))
-            rows.append(row)
-        header = ["case", "patient tets", "error mean / p95 / max (mm)", "within 1 mm", "landmarks", "worst opening rim",
-                  "skin", "bone", "the warp moves", "folded parametric tets"]
-        if not mapping_only:
-            header += ["plain mapping mean", "moved by relaxation + repair, mean", "inverted cells",
-                       "mean shape / standard's", "dihedral change (°)"]
-        return table(header + ["time (s)"], rows)
 
     def constraints_of(report):  # the standard's constraint file, or how they were placed
         c = report.get("standard_constraints")
@@ -316,6 +327,15 @@ if only in ("", "correspondence"):
     write_blocks("docs/results.md", blocks)
     shutil.copyfile(os.path.join(out, "correspondence", "correspondence_skin_error.png"),
                     os.path.join(root, "docs", "img", "results_correspondence_skin_error.png"))
+
+# ---- docs/results.md: the registered skin ----
+if only in ("", "registered"):
+    blocks = {"results-registered-machine": machine_line()}
+    for key, name in (("results-registered", "registered"), ("results-registered-held", "registered-held")):
+        blocks[key] = corr_table(load(f"{name}/correspondence.json"), False)
+    write_blocks("docs/results.md", blocks)
+    shutil.copyfile(os.path.join(out, "registered", "correspondence_skin_error.png"),
+                    os.path.join(root, "docs", "img", "results_registered_skin_error.png"))
 
 # ---- docs/benchmarks.md ----
 if only in ("", "benchmarks"):

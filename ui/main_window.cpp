@@ -240,10 +240,20 @@ void MainWindow::createActions() {
   shapeRelaxation_->setToolTip(
       tr("After the mapping, slide vertices along the patient towards the standard's cell "
          "shapes (the CLI's --shape-relaxation; off: the paper's plain mapping)"));
+  registeredSkin_ = action(tr("&Register the skins"), QKeySequence(), [this](bool on) {
+    TransferOptions o = controller_->options();
+    o.skin_correspondence = on ? SkinCorrespondence::registered : SkinCorrespondence::features;
+    controller_->setOptions(o);
+  });
+  registeredSkin_->setCheckable(true);
+  registeredSkin_->setChecked(controller_->options().skin_correspondence == SkinCorrespondence::registered);
+  registeredSkin_->setToolTip(
+      tr("Register the standard's skin onto the patient's and give the patient's skin the standard's parameters "
+         "there, in place of the feature lines found at the landmarks (the CLI's --skin-correspondence registered)"));
   about_ = action(tr("&About FaceHex"), QKeySequence(), &MainWindow::about);
   for (QAction* a :
        {openPatient_, resegment_, openDicom_, openDemo_, loadConstraints_, mergeConstraints_, saveConstraints_, export_,
-        computeFields_, transfer_, cancel_, recover_, features_, loadLandmarks_, saveLandmarks_})
+        computeFields_, transfer_, cancel_, recover_, features_, loadLandmarks_, saveLandmarks_, registeredSkin_})
     a->setObjectName(a->text().remove('&').remove("...").replace(' ', '_'));
 }
 
@@ -278,6 +288,7 @@ void MainWindow::createMenusAndToolbar() {
   run->addSeparator();
   run->addAction(allowInverted_);
   run->addAction(shapeRelaxation_);
+  run->addAction(registeredSkin_);
   menuBar()->addMenu(tr("&Help"))->addAction(about_);
   rebuildRecentMenu();
 

@@ -227,12 +227,14 @@ int correspondence_bench(const Args& args) {
   const std::string setting =
       (args.has("mapping-only") ? std::string("`--mapping-only`")
                                 : "`--shape-relaxation " + args.get("shape-relaxation") + "`") +
+      ", `--skin-correspondence " + args.get("skin-correspondence") + "`" +
       (options.true_landmarks ? ", `--true-landmarks`" : "") + ", `--standard-domain " + args.get("standard-domain") +
       "`, standard " + standard.name + " with " +
       (args.has("standard-constraints") ? "`--standard-constraints " + args.get("standard-constraints") + "`"
                                         : std::string("its bundled constraints"));
   json report = {{"standard", standard.name},
                  {"shape_relaxation", args.get("shape-relaxation")},
+                 {"skin_correspondence", args.get("skin-correspondence")},
                  {"standard_domain", args.get("standard-domain")},
                  {"standard_constraints", standard.constraints_path},
                  {"mapping_only", args.has("mapping-only")},

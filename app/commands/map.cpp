@@ -62,9 +62,11 @@ int cmd_map(const Argv& argv) {
   const CliTransfer t =
       cli_transfer(args, args.get("patient"), args.get("patient-constraints"), "--patient-constraints");
   const TransferResult& r = t.result;
-  write_with_report(args, r.patient_hex,
-                    run_report(r.run, r.standard_quality, r.plain_mapping_quality, r.patient_quality, r.distance));
-  std::cout << run_summary_text(r.run, r.standard_quality, r.plain_mapping_quality, r.patient_quality, r.distance)
+  nlohmann::json report = run_report(r.run, r.standard_quality, r.plain_mapping_quality, r.patient_quality, r.distance);
+  report["skin_correspondence"] = skin_correspondence_json(r);
+  write_with_report(args, r.patient_hex, report);
+  std::cout << skin_correspondence_text(r)
+            << run_summary_text(r.run, r.standard_quality, r.plain_mapping_quality, r.patient_quality, r.distance)
             << "wrote " << args.get("output") << "\n";
   return exit_code(r.patient_quality.summary);
 }

@@ -207,8 +207,10 @@ class Matcher {
     patient_samples_ = grid_subsample(patient.V, patient_surface.labelled, options.pairs_per_direction);
   }
 
-  // sources: #Vs x 3 positions the map is fitted from; current: #Vs x 3 their current images.
-  Pairs pairs(const Eigen::MatrixXd& sources, const Eigen::MatrixXd& current) const {
+  // sources: #Vs x 3 positions the map is fitted from; current: #Vs x 3 their current images; landmark_sources: the
+  // standard's landmarks in the frame of `sources` (#L x 3, or empty), paired with landmarks.patient.
+  Pairs pairs(const Eigen::MatrixXd& sources, const Eigen::MatrixXd& current, const PointPairs& landmarks = {},
+              const Eigen::MatrixXd& landmark_sources = Eigen::MatrixXd()) const {
     Pairs pairs;
     pairs.source.resize(0, 3);
     pairs.target.resize(0, 3);
@@ -239,6 +241,16 @@ class Matcher {
     }
     append_inliers(pairs, source, target, backward, options_.outlier_factor);
     pairs.patient_to_standard = finite_mean(backward.hits.distance);
+    if (landmark_sources.rows() > 0) {
+      const Eigen::Index old = pairs.source.rows(), add = landmark_sources.rows();
+      pairs.weight *= 1 - landmarks.weight;
+      pairs.source.conservativeResize(old + add, 3);
+      pairs.target.conservativeResize(old + add, 3);
+      pairs.weight.conservativeResize(old + add);
+      pairs.source.bottomRows(add) = landmark_sources;
+      pairs.target.bottomRows(add) = landmarks.patient;
+      pairs.weight.tail(add).setConstant(landmarks.weight / static_cast<double>(add));
+    }
     if (pairs.source.rows() < 8)
       throw Error("mesh matching", "the two models share no side to pair (check their \"side_mask\" labels)");
     return pairs;
@@ -291,8 +303,13 @@ Similarity fit_similarity(const Pairs& p) {
 
 MeshMatchingResult mesh_matching(const VolumeMesh& standard, const std::string& standard_source,
                                  const VolumeMesh& patient, const std::string& patient_source,
-                                 const MeshMatchingOptions& options, const ProgressCallback& progress) {
+                                 const MeshMatchingOptions& options, const ProgressCallback& progress,
+                                 const PointPairs* landmarks) {
   MeshMatchingResult result;
+  const PointPairs known = landmarks ? *landmarks : PointPairs{};
+  if (known.standard.rows() != known.patient.rows() || (known.standard.rows() > 0 && known.standard.cols() != 3) ||
+      (known.patient.rows() > 0 && known.patient.cols() != 3))
+    throw Error("mesh matching", "the landmark pairs are not two lists of the same number of 3D points");
   Stopwatch clock;
   const LabelledSurface standard_surface = labelled_surface(standard, standard_source);
   const LabelledSurface patient_surface = labelled_surface(patient, patient_source);
@@ -322,13 +339,14 @@ MeshMatchingResult mesh_matching(const VolumeMesh& standard, const std::string& 
   };
   for (int it = 0; it < options.similarity_iterations; ++it, ++step) {
     report_progress(progress, "mesh matching: similarity", step / budget);
-    const Pairs pairs = matcher.pairs(standard.V, sim(standard.V));
+    const Pairs pairs = matcher.pairs(standard.V, sim(standard.V), known, known.standard);
     result.iterations.push_back({"similarity", 0, pairs.standard_to_patient, pairs.patient_to_standard});
     if (converged(it)) break;
     sim = fit_similarity(pairs);
   }
   result.scale = sim.s;
   const Eigen::MatrixXd aligned = sim(standard.V);
+  const Eigen::MatrixXd aligned_landmarks = known.standard.rows() > 0 ? sim(known.standard) : Eigen::MatrixXd();
   result.seconds["similarity"] = clock.lap();
 
   // 2. Thin-plate spline from the aligned standard, stiff to soft.
@@ -340,7 +358,7 @@ MeshMatchingResult mesh_matching(const VolumeMesh& standard, const std::string& 
   for (const double stiffness : options.stiffness)
     for (int it = 0; it < options.iterations_per_stiffness; ++it, ++step) {
       report_progress(progress, "mesh matching: thin-plate spline", std::min(1.0, step / budget));
-      const Pairs pairs = matcher.pairs(aligned, spline(aligned));
+      const Pairs pairs = matcher.pairs(aligned, spline(aligned), known, aligned_landmarks);
       result.iterations.push_back({"spline", stiffness, pairs.standard_to_patient, pairs.patient_to_standard});
       if (converged(it)) break;
       spline.fit(pairs.source, pairs.target, pairs.weight, stiffness);

@@ -24,6 +24,7 @@
 //
 // Inputs: standard hex-dominant mesh and patient tet model (both with point data "side_mask", sides.h). The result
 // has the standard's connectivity and point/cell data; nothing is repaired (inverted cells are reported, not fixed).
+#include <Eigen/Core>
 #include <map>
 #include <string>
 #include <vector>
@@ -41,6 +42,13 @@ struct MeshMatchingOptions {
   int control_points = 600;        // about this many spline control points
   int pairs_per_direction = 3000;  // about this many vertices sampled on each surface
   double outlier_factor = 3;       // pairs farther than this times their direction's median are left out
+};
+
+// Points known to correspond on the two models (e.g. facial landmarks), standard -> patient, #L x 3 each: each
+// iteration pulls them together with `weight`, a share of the total weight of all pairs.
+struct PointPairs {
+  Eigen::MatrixXd standard, patient;
+  double weight = 0.25;
 };
 
 struct MeshMatchingIteration {
@@ -61,6 +69,7 @@ struct MeshMatchingResult {
 // fails, or no pair can be formed.
 MeshMatchingResult mesh_matching(const VolumeMesh& standard, const std::string& standard_source,
                                  const VolumeMesh& patient, const std::string& patient_source,
-                                 const MeshMatchingOptions& options = {}, const ProgressCallback& progress = {});
+                                 const MeshMatchingOptions& options = {}, const ProgressCallback& progress = {},
+                                 const PointPairs* landmarks = nullptr);
 
 }  // namespace facehex

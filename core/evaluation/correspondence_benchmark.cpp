@@ -55,7 +55,7 @@ CorrespondenceCaseResult measure(const StandardSetup& standard, const PatientSet
                                  const CorrespondenceBenchmarkOptions& options, const ProgressCallback& progress,
                                  TransferResult* kept = nullptr) {
   CorrespondenceCaseResult r;
-  if (!patient.features_problem.empty())
+  if (options.transfer.skin_correspondence == SkinCorrespondence::features && !patient.features_problem.empty())
     throw Error(patient.path, "the facial feature constraints cannot be placed (" + patient.features_problem + ")");
   Stopwatch clock;
   TransferOptions measuring = options.transfer;
@@ -189,6 +189,8 @@ std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const Standar
           for (const Constraint& c : feature_constraints(moved, values, kFeatureBand).constraints)
             patient.constraints.constraints.push_back(c);
           patient.features_problem.clear();
+          moved.given = true;  // in the registered transfer: landmark pairs
+          patient.landmarks = moved;
         }
         r = measure(standard, patient, truth, regions, options, progress);
         r.warp_mean = (truth - standard.mesh.V).rowwise().norm().mean();

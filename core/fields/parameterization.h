@@ -2,6 +2,7 @@
 // A model's parameterization: its three harmonic fields under its resolved constraints (paper 3.2-3.3), the fixed
 // flags and the parameterization's health. Made for the standard (on its tet domain) and for the patient alike.
 #include <Eigen/Core>
+#include <array>
 #include <string>
 
 #include "core/fields/constraint_set.h"
@@ -22,10 +23,13 @@ struct ModelParameterization {
   Eigen::MatrixXi fixed;  // #V x 3, nonzero where a field is fixed by a constraint
 };
 
+// added: further Dirichlet conditions per field (e.g. a dense correspondence on the skin), taken at the vertices the
+// constraint set leaves free in that field.
+using FieldConditions = std::array<DirichletConditions, 3>;
 ModelParameterization parameterize_model(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T,
                                          const Eigen::VectorXi& side_mask, const ConstraintSet& constraints,
                                          const std::string& source, const HarmonicFieldsOptions& options,
-                                         const ProgressCallback& progress = {});
+                                         const ProgressCallback& progress = {}, const FieldConditions* added = nullptr);
 
 // The record of fields computed (or read back from a cache) for a model with its resolved constraints: the fixed
 // flags, the fields clamped to the unit cube, the health. parameterize_model is this after HarmonicFields.

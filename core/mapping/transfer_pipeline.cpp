@@ -3,9 +3,12 @@
 #include <Eigen/LU>
 #include <Eigen/QR>
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <memory>
 
 #include "core/mesh/corner_jacobian.h"
+#include "core/mesh/sides.h"
 #include "core/util/error.h"
 #include "core/util/stopwatch.h"
 
@@ -97,7 +100,8 @@ TransferRun run_transfer(const VolumeMesh& standard, const TetDomain& domain, co
                          const std::string& standard_source, const VolumeMesh& patient,
                          const ConstraintSet& patient_constraints, const std::string& patient_source,
                          const TransferOptions& options, const ProgressCallback& progress,
-                         const ModelParameterization* standard_parameterization) {
+                         const ModelParameterization* standard_parameterization,
+                         const SideConditions* side_conditions) {
   TransferRun run;
   Stopwatch clock;
   if (domain.hex_vertices != standard.num_vertices() ||
@@ -116,9 +120,13 @@ TransferRun run_transfer(const VolumeMesh& standard, const TetDomain& domain, co
     run.standard = parameterize_model(domain.V, domain.T, domain.side_mask, standard_constraints, standard_source,
                                       options.fields, sub_progress(progress, 0.0, 0.2));
   }
+  if (side_conditions)  // the relaxation and the repair hold what the standard's fixed flags pin
+    for (Eigen::Index v = 0; v < static_cast<Eigen::Index>(side_conditions->held.size()); ++v)
+      if (side_conditions->held[static_cast<size_t>(v)]) run.standard.fixed(v, 0) = run.standard.fixed(v, 1) = 1;
   run.seconds["standard_parameterization"] = clock.lap();
   run.patient = parameterize_model(patient.V, patient.tets(), side_mask_of(patient), patient_constraints,
-                                   patient_source, options.fields, sub_progress(progress, 0.2, 0.6));
+                                   patient_source, options.fields, sub_progress(progress, 0.2, 0.6),
+                                   side_conditions ? &side_conditions->fields : nullptr);
   run.seconds["patient_parameterization"] = clock.lap();
   map_parameterized(run, standard, patient_source, options, sub_progress(progress, 0.6, 1.0));
   return run;
@@ -137,6 +145,31 @@ void check_patient_parameterization(const TransferRun& run, const std::string& p
     throw Error(patient_source,
                 "the model frame has the opposite handedness to the standard's (mirrored scan?): swap the u0 and u1 "
                 "sides of its constraint set");
+}
+
+// Every vertex of the result lies in the patient's bounding box, up to a twentieth of its diagonal: the mapping
+// places vertices in the patient's tets, and the relaxation and the repair move them by cell sizes; a vertex far
+// outside means a step diverged, and such a mesh must not be written as if it were usable.
+void check_inside_patient(const TransferRun& run, const std::string& patient_source) {
+  const Eigen::RowVector3d lo = run.patient.V.colwise().minCoeff(), hi = run.patient.V.colwise().maxCoeff();
+  const double margin = 0.05 * (hi - lo).norm();
+  int outside = 0;
+  double farthest = 0;
+  for (Eigen::Index v = 0; v < run.patient_hex.V.rows(); ++v) {
+    const Eigen::RowVector3d x = run.patient_hex.V.row(v);
+    const double d = std::max((lo - x).maxCoeff(), (x - hi).maxCoeff());
+    if (!(d <= margin)) {
+      ++outside;
+      farthest = std::max(farthest, std::isfinite(d) ? d : std::numeric_limits<double>::infinity());
+    }
+  }
+  if (outside > 0)
+    throw Error(patient_source, "the relaxation and repair of folded cells moved " + std::to_string(outside) +
+                                    " vertices out of the patient model (up to " +
+                                    std::to_string(static_cast<long long>(std::min(farthest, 1e15))) +
+                                    " mm beyond its bounding box): they diverged where the parameterization folds (" +
+                                    health_problem(run.patient.health) +
+                                    "); try --skin-correspondence features or --shape-relaxation off");
 }
 
 int unusable_after(const UntangleReport& r) { return r.inverted_after + r.degenerate_after; }
@@ -326,6 +359,7 @@ void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::
         .run(placement);
     run.seconds["untangle"] = clock.lap();
   }
+  check_inside_patient(run, patient_source);
 }
 
 Eigen::VectorXd moved_from_mapping(const TransferRun& run) {

@@ -15,8 +15,19 @@
 
 namespace facehex {
 
+// How the standard's skin finds its place on the patient's (core/workflow/transfer.h):
+//  - features: the paper's: the fields are free on the skin but for the feature constraints at the landmarks;
+//  - registered: the two models' sides are registered (core/correspondence/registered_sides.h) and the patient's
+//    skin gets the standard's (u, v) at its correspondents; automatically placed feature constraints are left out
+//    (the registration places the whole skin). docs/results.md compares the two.
+enum class SkinCorrespondence { registered, features };
+
 struct TransferOptions {
   HarmonicFieldsOptions fields;
+  SkinCorrespondence skin_correspondence = SkinCorrespondence::features;
+  // With the registered skin: the shape relaxation holds the standard's skin vertices at their registered
+  // correspondents (correspondence before cell shape) instead of sliding them along the skin with the rest.
+  bool hold_registered_skin = false;
   // A parameterization with inverted tets is not a bijection. Local folds (at most max_inverted_fraction of the
   // patient's tets) are reported and their effect on the hex mesh repaired by the untangler; more stop the run with
   // an error, unless allow_inverted_parameterization.
@@ -45,6 +56,15 @@ struct TransferOptions {
   bool polish_moves_sides = false;
 };
 
+// Dirichlet conditions on whole sides of the patient (the dense correspondence of core/correspondence/
+// registered_sides.h): added to the patient's constraints at the vertices they leave free in each field. The
+// standard's vertices flagged in `held` (#V of its domain, or empty) then keep their (u, v) through the shape
+// relaxation, as feature vertices do, so that the relaxation does not slide them away from their correspondents.
+struct SideConditions {
+  FieldConditions fields;
+  std::vector<char> held;
+};
+
 struct TransferRun {
   ModelParameterization standard, patient;   // standard: on its domain; its first #Vs rows are the hex vertices
   std::string standard_domain;               // how the standard's tet domain was built
@@ -62,12 +82,13 @@ struct TransferRun {
 // standard: hex-dominant mesh with its constraint set, parameterized on `domain` (see standard_domain.h); patient:
 // checked tet model (see mesh_check.h) with its set. Sources name the files in error messages.
 // standard_parameterization: the standard's parameterization on `domain` made beforehand (a cache,
-// core/io/parameterization_cache.h), or null to compute it here.
+// core/io/parameterization_cache.h), or null to compute it here. side_conditions: see SideConditions, or null.
 TransferRun run_transfer(const VolumeMesh& standard, const TetDomain& domain, const ConstraintSet& standard_constraints,
                          const std::string& standard_source, const VolumeMesh& patient,
                          const ConstraintSet& patient_constraints, const std::string& patient_source,
                          const TransferOptions& options, const ProgressCallback& progress = {},
-                         const ModelParameterization* standard_parameterization = nullptr);
+                         const ModelParameterization* standard_parameterization = nullptr,
+                         const SideConditions* side_conditions = nullptr);
 
 // The mapping and the repair alone, on parameterizations made beforehand (run.standard on the standard's domain,
 // whose first rows are the hex vertices; run.patient on the patient's tets): checks the patient's health and

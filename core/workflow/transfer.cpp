@@ -1,9 +1,11 @@
 #include "core/workflow/transfer.h"
 
+#include "core/face/automatic_constraints.h"
 #include "core/io/fe_sets.h"
 #include "core/io/mesh_io.h"
 #include "core/quality/hex_quality.h"
 #include "core/standard/parameterization_cache.h"
+#include "core/util/stopwatch.h"
 
 namespace facehex {
 namespace {
@@ -20,17 +22,79 @@ void attach_fields(VolumeMesh& mesh, const ModelParameterization& p) {
   mesh.point_data["fixed_uvw"] = p.fixed.topRows(n).cast<double>();
 }
 
+// The patient's set without the feature constraints the constraint policy placed (by their names), which are listed in
+// `left_out`; a set from a file is the user's and is kept whole.
+ConstraintSet without_automatic_features(const PatientSetup& patient, std::vector<std::string>& left_out) {
+  if (!patient.constraints_path.empty()) return patient.constraints;
+  ConstraintSet kept;
+  for (const Constraint& c : patient.constraints.constraints) {
+    bool feature = false;
+    for (const FeatureSpec& spec : feature_specs()) feature = feature || c.name == spec.name;
+    if (feature)
+      left_out.push_back(c.name);
+    else
+      kept.constraints.push_back(c);
+  }
+  return kept;
+}
+
+// The user's landmarks paired with the standard's of the same names (found on its skin), or none.
+PointPairs given_landmark_pairs(const StandardSetup& standard, const PatientSetup& patient) {
+  PointPairs pairs;
+  if (!patient.landmarks || !patient.landmarks->given) return pairs;
+  const FaceLandmarks own = find_face_landmarks(standard.mesh.V, side_mask_of(standard.mesh));
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> matched;
+  for (const auto& [name, point] : patient.landmarks->points) {
+    const auto it = own.points.find(name);
+    if (it != own.points.end()) matched.emplace_back(it->second, point);
+  }
+  pairs.standard.resize(static_cast<Eigen::Index>(matched.size()), 3);
+  pairs.patient.resize(static_cast<Eigen::Index>(matched.size()), 3);
+  for (size_t i = 0; i < matched.size(); ++i) {
+    pairs.standard.row(static_cast<Eigen::Index>(i)) = matched[i].first.transpose();
+    pairs.patient.row(static_cast<Eigen::Index>(i)) = matched[i].second.transpose();
+  }
+  return pairs;
+}
+
 }  // namespace
 
 TransferResult transfer(const StandardSetup& standard, const PatientSetup& patient, const TransferOptions& options,
                         const ProgressCallback& progress) {
   TransferResult r;
-  const std::optional<ModelParameterization> cached =
+  std::optional<ModelParameterization> standard_p =
       cached_parameterization(standard.path, standard.domain, standard.constraints, options.fields, &r.cache_note);
+  const bool cached = standard_p.has_value();
+  ConstraintSet patient_constraints = patient.constraints;
+  std::optional<SideConditions> sides;
+  double start = 0;
+  double standard_seconds = 0;
+  if (options.skin_correspondence == SkinCorrespondence::registered) {
+    if (!standard_p) {
+      Stopwatch clock;
+      standard_p =
+          parameterize_model(standard.domain.V, standard.domain.T, standard.domain.side_mask, standard.constraints,
+                             standard.source(), options.fields, sub_progress(progress, 0.0, 0.1));
+      standard_seconds = clock.lap();
+    }
+    const PointPairs landmarks = given_landmark_pairs(standard, patient);
+    const RegisteredSidesOptions registration_options;
+    r.registration = register_sides(standard.domain, standard_p->fields.uvw, patient.mesh, patient.source(),
+                                    registration_options, &landmarks, sub_progress(progress, 0.1, 0.2));
+    sides = SideConditions{r.registration->conditions,
+                           options.hold_registered_skin ? r.registration->standard_matched : std::vector<char>()};
+    patient_constraints = without_automatic_features(patient, r.left_out_constraints);
+    start = 0.2;
+  }
   r.run = run_transfer(standard.mesh, standard.domain, standard.constraints, standard.source(), patient.mesh,
-                       patient.constraints, patient.source(), options, sub_progress(progress, 0.0, 0.97),
-                       cached ? &*cached : nullptr);
+                       patient_constraints, patient.source(), options, sub_progress(progress, start, 0.97),
+                       standard_p ? &*standard_p : nullptr, sides ? &*sides : nullptr);
   if (cached) r.run.standard_parameterization_source = parameterization_cache_path(standard.path);
+  if (!cached && standard_p) {  // computed above for the registration
+    r.run.standard_parameterization_source = "computed";
+    r.run.seconds["standard_parameterization"] = standard_seconds;
+  }
+  if (r.registration) r.run.seconds["registration"] = r.registration->seconds;
   report_progress(progress, "quality", 0.97);
   r.patient_hex = decorate_patient_hex(r.run, standard.mesh);
   r.standard_quality = quality_report(standard.mesh, nullptr);
@@ -39,6 +103,28 @@ TransferResult transfer(const StandardSetup& standard, const PatientSetup& patie
   r.distance = side_vertex_distances(r.run, standard.mesh);
   report_progress(progress, "quality", 1.0);
   return r;
+}
+
+nlohmann::json skin_correspondence_json(const TransferResult& result) {
+  if (!result.registration) return {{"mode", "features"}};
+  const RegisteredSides& g = *result.registration;
+  const DistanceSummary& d = g.distance;
+  return {{"mode", "registered"},
+          {"vertices", g.conditions[0].vertices.size()},
+          {"too_far", g.vertices_too_far},
+          {"distance_mm", {{"mean", d.mean}, {"p95", d.p95}, {"max", d.max}}},
+          {"left_out_constraints", result.left_out_constraints},
+          {"seconds", g.seconds}};
+}
+
+std::string skin_correspondence_text(const TransferResult& result) {
+  if (!result.registration) return "skin correspondence: the feature constraints (the paper's)\n";
+  const RegisteredSides& g = *result.registration;
+  return "skin correspondence: registered; " + std::to_string(g.conditions[0].vertices.size()) +
+         " skin vertices take the standard's (u, v), " + std::to_string(g.vertices_too_far) +
+         " left free (farther from the registered standard than the bound); skin from the registered standard: mean " +
+         fmt("%.2f", g.distance.mean) + " mm, p95 " + fmt("%.2f", g.distance.p95) + " mm, max " +
+         fmt("%.1f", g.distance.max) + " mm\n";
 }
 
 VolumeMesh with_quality(VolumeMesh mesh) {

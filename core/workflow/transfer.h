@@ -2,8 +2,10 @@
 // One transfer as both front ends run it: the standard's parameterization (from its cache when it fits), the
 // patient's, the mapping, relaxation and repair (core/mapping/transfer_pipeline.h), then the result decorated with
 // every array the outputs carry and its quality against the standard.
+#include <optional>
 #include <string>
 
+#include "core/correspondence/registered_sides.h"
 #include "core/io/mesh_io.h"
 #include "core/mapping/transfer_pipeline.h"
 #include "core/mesh/mesh.h"
@@ -21,9 +23,15 @@ struct TransferResult {
   MeshQualityReport standard_quality, plain_mapping_quality, patient_quality;  // plain: before relaxation and repair
   DistanceSummary distance;  // the standard's side vertices from the patient's surface
   std::string cache_note;    // why the standard's cache was not used, when it exists but does not fit
+  // SkinCorrespondence::registered: the registration's conditions and figures, and the feature constraints it left out.
+  std::optional<RegisteredSides> registration;
+  std::vector<std::string> left_out_constraints;
 };
 
-// Throws facehex::Error naming the file or stage; facehex::Cancelled when `progress` asks to stop.
+// With options.skin_correspondence registered, the sides are registered first (core/correspondence/
+// registered_sides.h): the patient's constraints from a file are kept whole; of those placed by the constraint
+// policy, the feature constraints are left out (the registration places the skin; user-given landmarks pull it as
+// landmark pairs). Throws facehex::Error naming the file or stage; facehex::Cancelled when `progress` asks to stop.
 TransferResult transfer(const StandardSetup& standard, const PatientSetup& patient, const TransferOptions& options,
                         const ProgressCallback& progress = {});
 
@@ -32,6 +40,13 @@ TransferResult transfer(const StandardSetup& standard, const PatientSetup& patie
 // relaxation and repair moved each vertex), "uvw" (the standard's parameters), "side_mask" (the standard's), and the
 // FE sets and material frames (core/io/fe_sets.h attach_fe_arrays).
 VolumeMesh decorate_patient_hex(const TransferRun& run, const VolumeMesh& standard);
+
+// report.json's "skin_correspondence": {"mode": "features" or "registered"}, and for a registered skin "vertices"
+// (patient skin vertices given the standard's (u, v)), "too_far" (left free: farther than the bound from the
+// registered standard), "distance_mm" {mean, p95, max} (every skin vertex from the registered standard),
+// "left_out_constraints" and "seconds". skin_correspondence_text: the same in one line for people.
+nlohmann::json skin_correspondence_json(const TransferResult& result);
+std::string skin_correspondence_text(const TransferResult& result);
 
 // `mesh` with its element quality: cell data "shape" and "scaled_jacobian".
 VolumeMesh with_quality(VolumeMesh mesh);

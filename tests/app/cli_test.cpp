@@ -59,6 +59,23 @@ class Cli : public ::testing::Test {
   fs::path dir_;
 };
 
+// The bundled demo with the registered skin: the report says how the skins met, the features at the found landmarks
+// are left out, and the mesh is usable.
+TEST_F(Cli, DemoWithTheRegisteredSkin) {
+  const Result r = run("run -o " + path("demo") + " --skin-correspondence registered --hold-skin");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("skin correspondence: registered; "), std::string::npos) << r.output;
+  nlohmann::json report;
+  std::ifstream(path("demo/report.json")) >> report;
+  const auto& skin = report["skin_correspondence"];
+  EXPECT_EQ(skin["mode"], "registered");
+  EXPECT_GT(skin["vertices"].get<int>(), 5 * skin["too_far"].get<int>());  // most of the skin is matched
+  EXPECT_LT(skin["distance_mm"]["mean"].get<double>(), 2.0);
+  EXPECT_EQ(skin["left_out_constraints"].size(), 4u);
+  EXPECT_EQ(report["seconds"].count("registration"), 1u);
+  EXPECT_EQ(report["patient_hex"]["quality"]["inverted"], 0);
+}
+
 // The bundled demo: CT -> patient model -> automatic constraints -> fields -> transfer -> repair -> report.
 TEST_F(Cli, DemoRunsTheWholeChainFromTheBundledCt) {
   const Result r = run("run -o " + path("demo") + " --threads 2");
@@ -74,6 +91,7 @@ TEST_F(Cli, DemoRunsTheWholeChainFromTheBundledCt) {
   EXPECT_EQ(report["landmarks"]["source"], "found");
   EXPECT_GT(report["landmarks"]["found"].get<int>(), 0);
   EXPECT_EQ(report["landmarks"]["estimated"].get<int>(), report["landmarks"]["estimated_names"].size());
+  EXPECT_EQ(report["skin_correspondence"]["mode"], "features");  // the default, the paper's
   const auto& q = report["patient_hex"]["quality"];
   EXPECT_EQ(q["cells"], 6342);
   EXPECT_EQ(q["hexes"], 6024);
@@ -595,6 +613,11 @@ TEST_F(Cli, CompareAndMapRejectBadInputsWithOneLineErrors) {
   r = run("run " + path("box.vtu") + " --shape-relaxation 2 -o " + path("run_out"));
   EXPECT_NE(r.status, 0);
   EXPECT_FALSE(fs::exists(path("run_out")));  // not even an empty folder
+  r = run("run " + path("box.vtu") + " --skin-correspondence dense -o " + path("run_out"));
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("--skin-correspondence: expects registered or features, got 'dense'"), std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(path("run_out")));
 }
 
 TEST_F(Cli, BenchTimesTheStagesOfAGivenPatient) {

@@ -77,6 +77,7 @@ class GuiTest : public QObject {
   void cancelStopsTheWorker();
   void computeFieldsReadsTheStandardsCache();
   void transfersTheBundledModelsAndShowsThem();
+  void registeredSkinIsAnOptionOfTheTransfer();
   void cancelStopsTheSegmentation();
   void opensAndSegmentsTheBundledCt();
   void segmentationDialogRoundTripsItsOptions();
@@ -489,6 +490,24 @@ void GuiTest::transfersTheBundledModelsAndShowsThem() {
   for (Role role : kRoles) QVERIFY(session()->parameterization(role));
   QCOMPARE(session()->parameterization(Role::Patient)->V.rows(), session()->model(Role::Patient).mesh.V.rows());
   checkStates({"transfer", "quality", "messages"});
+}
+
+void GuiTest::registeredSkinIsAnOptionOfTheTransfer() {
+  // Off by default (the paper's feature lines); checked, the transfer registers the skins as the CLI's
+  // --skin-correspondence registered does.
+  QVERIFY2(openDemo(), qPrintable(error_));
+  auto* registered = window_->findChild<QAction*>("Register_the_skins");
+  QVERIFY(registered && registered->isCheckable() && !registered->isChecked());
+  QVERIFY(window_->controller()->options().skin_correspondence == SkinCorrespondence::features);
+  registered->trigger();
+  QVERIFY(window_->controller()->options().skin_correspondence == SkinCorrespondence::registered);
+  QVERIFY2(runTransferAndWait(), qPrintable(error_));
+  const TransferResult* r = session()->transfer();
+  QVERIFY(r && r->registration);
+  QVERIFY(!r->registration->conditions[0].vertices.empty());
+  QCOMPARE(r->patient_quality.summary.inverted, 0);
+  registered->trigger();
+  QVERIFY(window_->controller()->options().skin_correspondence == SkinCorrespondence::features);
 }
 
 void GuiTest::cancelStopsTheSegmentation() {

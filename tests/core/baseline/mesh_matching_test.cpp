@@ -110,6 +110,37 @@ TEST(ThinPlateSpline, SingularFitIsAnError) {
   EXPECT_THROW(spline.fit(P, P, w, 0.0), Error);
 }
 
+// Landmark pairs that agree with the surfaces change nothing; pairs that disagree pull the map towards them; pairs of
+// unequal lengths are refused.
+TEST(MeshMatching, LandmarkPairsPullTheRegistration) {
+  const BoxCase b = box_case();
+  PointPairs pairs;
+  pairs.standard.resize(2, 3);
+  pairs.standard << 30, 15, 40,  //
+      30, 15, 70;
+  pairs.patient = affine(pairs.standard);
+  const MeshMatchingResult agreeing =
+      mesh_matching(b.standard, "standard box", b.patient, "patient box", {}, {}, &pairs);
+  EXPECT_LT((agreeing.hex.V - affine(b.standard.V)).rowwise().norm().maxCoeff(), 0.2) << "mm";
+  // The patient's landmarks 6 mm (before the 2.5x frame scale) to the side: the standard's skin point near them
+  // follows part of the way, where without the pairs it stays.
+  PointPairs sideways = pairs;
+  sideways.patient = affine(pairs.standard.rowwise() + Eigen::RowVector3d(6, 0, 0));
+  sideways.weight = 0.5;
+  const MeshMatchingResult pulled =
+      mesh_matching(b.standard, "standard box", b.patient, "patient box", {}, {}, &sideways);
+  int near = -1;
+  for (int v = 0; v < b.standard.num_vertices(); ++v)
+    if ((b.standard.V.row(v) - Eigen::RowVector3d(30, 15, 40)).norm() < 1e-9) near = v;
+  ASSERT_GE(near, 0);
+  const Eigen::RowVector3d plain = affine(b.standard.V.row(near)), wanted = affine(Eigen::RowVector3d(36, 15, 40));
+  const double moved = (pulled.hex.V.row(near) - plain).dot((wanted - plain).normalized());
+  EXPECT_GT(moved, 0.3 * (wanted - plain).norm()) << "mm towards the landmark";
+  PointPairs unequal = pairs;
+  unequal.patient.conservativeResize(1, 3);
+  EXPECT_THROW(mesh_matching(b.standard, "standard box", b.patient, "patient box", {}, {}, &unequal), Error);
+}
+
 TEST(MeshMatching, RejectsModelsWithoutSidesOrFacingAway) {
   BoxCase b = box_case();
   VolumeMesh unlabelled = b.patient;

@@ -1,0 +1,49 @@
+#include "core/correspondence/side_correspondence.h"
+
+#include <Eigen/Dense>
+
+#include "core/mesh/tet_topology.h"
+#include "core/quality/surface_distance.h"
+
+namespace facehex {
+
+Eigen::MatrixXi side_triangles(const Eigen::MatrixXi& T, const Eigen::VectorXi& side_mask, Side side) {
+  const Eigen::MatrixXi F = boundary_faces(T).F;
+  std::vector<int> rows;
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    bool on = true;
+    for (int k = 0; k < 3; ++k) on = on && (side_mask(F(f, k)) & side_bit(side));
+    if (on) rows.push_back(static_cast<int>(f));
+  }
+  Eigen::MatrixXi out(static_cast<Eigen::Index>(rows.size()), 3);
+  for (size_t i = 0; i < rows.size(); ++i) out.row(static_cast<Eigen::Index>(i)) = F.row(rows[i]);
+  return out;
+}
+
+SideCorrespondence side_correspondence(const Eigen::MatrixXd& standard_X, const Eigen::MatrixXi& standard_F,
+                                       const Eigen::MatrixXd& standard_uvw, const Eigen::MatrixXd& patient_V,
+                                       const Eigen::VectorXi& patient_mask, Side side) {
+  SideCorrespondence c;
+  for (int v = 0; v < patient_mask.size(); ++v)
+    if (patient_mask(v) == side_bit(side)) c.vertices.push_back(v);
+  Eigen::MatrixXd P(static_cast<Eigen::Index>(c.vertices.size()), 3);
+  for (size_t i = 0; i < c.vertices.size(); ++i) P.row(static_cast<Eigen::Index>(i)) = patient_V.row(c.vertices[i]);
+  const SurfaceLocator locator(standard_X, standard_F);
+  const SurfaceLocator::Hits hits = locator.closest(P);
+  c.uvw.resize(P.rows(), 3);
+  c.distance = hits.distance;
+  for (Eigen::Index i = 0; i < P.rows(); ++i) {
+    const Eigen::Vector3i f = standard_F.row(hits.face(i)).transpose();
+    // Barycentric coordinates of the closest point in its triangle (it lies in the triangle, up to round-off).
+    const Eigen::Vector3d a = standard_X.row(f(0)).transpose(), b = standard_X.row(f(1)).transpose(),
+                          d = standard_X.row(f(2)).transpose(), q = hits.point.row(i).transpose();
+    Eigen::Matrix<double, 3, 2> E;
+    E << b - a, d - a;
+    const Eigen::Vector2d st = (E.transpose() * E).ldlt().solve(E.transpose() * (q - a));
+    const Eigen::Vector3d w(1 - st.sum(), st(0), st(1));
+    c.uvw.row(i) = w(0) * standard_uvw.row(f(0)) + w(1) * standard_uvw.row(f(1)) + w(2) * standard_uvw.row(f(2));
+  }
+  return c;
+}
+
+}  // namespace facehex
