@@ -60,10 +60,11 @@ void add_transfer_options(Args& args) {
               "tet domain of the standard: closed (openings filled) or auxiliary (paper: split hexes only)", "closed")
       .flag("allow-inverted", "continue even if the patient parameterization has inverted tets")
       .option("skin-correspondence",
-              "features: the paper's, the fields free on the skin but for the feature lines at the landmarks; "
               "registered: the standard's skin registered onto the patient's decides the fields there (the features "
-              "at found landmarks are left out; landmarks given with --landmarks pull the registration)",
-              "features")
+              "at found landmarks are left out; landmarks given with --landmarks pull the registration; where it "
+              "gives no usable map, the features are used and the report says why); features: the paper's, the "
+              "fields free on the skin but for the feature lines at the landmarks",
+              "registered")
       .flag("hold-skin",
             "with --skin-correspondence registered: the shape relaxation keeps the standard's skin vertices at their "
             "registered correspondents instead of sliding them along the skin (correspondence before cell shape)")

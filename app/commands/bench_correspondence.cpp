@@ -57,6 +57,8 @@ json to_json(const CorrespondenceCaseResult& r) {
             {"shape_mean", r.shape_mean},
             {"standard_shape_mean", r.standard_shape_mean},
             {"dihedral_change_mean_deg", r.dihedral_change_mean},
+            {"skin_correspondence_used", r.registered_skin ? "registered" : "features"},
+            {"registered_failure", r.registered_failure},
             {"seconds", r.seconds}});
   return j;
 }
@@ -98,7 +100,8 @@ std::string markdown(const std::vector<CorrespondenceCaseResult>& results, const
         "time (s) |\n"
      << "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
   for (const CorrespondenceCaseResult& r : results) {
-    md << "| " << r.kind << ": " << r.name << " | ";
+    md << "| " << r.kind << ": " << r.name
+       << (r.registered_failure.empty() ? "" : " (feature lines: the registered skin failed)") << " | ";
     if (!r.failure.empty()) {
       md << "failed" << (r.warp.empty() ? "" : " (" + r.warp + ")") << ": " << r.failure << " ||||||||||||||\n";
       continue;

@@ -43,7 +43,8 @@ RegisteredSides register_sides(const TetDomain& standard, const Eigen::MatrixXd&
       if (landed(static_cast<Eigen::Index>(i)) <= options.max_distance) r.standard_matched[rows[i]] = 1;
     for (size_t i = 0; i < c.vertices.size(); ++i) {
       distances.push_back(c.distance(static_cast<Eigen::Index>(i)));
-      if (!(c.distance(static_cast<Eigen::Index>(i)) <= options.max_distance)) {
+      const double d = c.distance(static_cast<Eigen::Index>(i));
+      if (!(d <= options.max_distance) || (c.on_rim[i] && d > options.rim_tolerance)) {
         ++r.vertices_too_far;
         continue;
       }

@@ -26,6 +26,10 @@ struct RegisteredSidesOptions {
   // model has and the other not: an orbit or a nasal aperture open on one bone side, a nose one scan clipped), their
   // fields there follow harmonically from around.
   double max_distance = 3.0;
+  // mm: a patient side vertex whose correspondent lies on the rim of the standard's side (where the standard's side
+  // ends and the patient's goes on) farther than this gets no condition either: a strip of vertices beyond the rim
+  // would all take the rim's values and fold the fields there.
+  double rim_tolerance = 0.5;
 };
 
 struct RegisteredSides {

@@ -1,6 +1,9 @@
 #include "core/correspondence/side_correspondence.h"
 
 #include <Eigen/Dense>
+#include <algorithm>
+#include <map>
+#include <utility>
 
 #include "core/mesh/tet_topology.h"
 #include "core/quality/surface_distance.h"
@@ -32,6 +35,13 @@ SideCorrespondence side_correspondence(const Eigen::MatrixXd& standard_X, const 
   const SurfaceLocator::Hits hits = locator.closest(P);
   c.uvw.resize(P.rows(), 3);
   c.distance = hits.distance;
+  c.on_rim.assign(c.vertices.size(), 0);
+  std::map<std::pair<int, int>, int> edge_uses;
+  for (Eigen::Index f = 0; f < standard_F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = standard_F(f, k), b = standard_F(f, (k + 1) % 3);
+      ++edge_uses[{std::min(a, b), std::max(a, b)}];
+    }
   for (Eigen::Index i = 0; i < P.rows(); ++i) {
     const Eigen::Vector3i f = standard_F.row(hits.face(i)).transpose();
     // Barycentric coordinates of the closest point in its triangle (it lies in the triangle, up to round-off).
@@ -42,6 +52,10 @@ SideCorrespondence side_correspondence(const Eigen::MatrixXd& standard_X, const 
     const Eigen::Vector2d st = (E.transpose() * E).ldlt().solve(E.transpose() * (q - a));
     const Eigen::Vector3d w(1 - st.sum(), st(0), st(1));
     c.uvw.row(i) = w(0) * standard_uvw.row(f(0)) + w(1) * standard_uvw.row(f(1)) + w(2) * standard_uvw.row(f(2));
+    for (int k = 0; k < 3; ++k) {
+      const int a = f((k + 1) % 3), b = f((k + 2) % 3);
+      if (w(k) < 1e-9 && edge_uses[{std::min(a, b), std::max(a, b)}] == 1) c.on_rim[static_cast<size_t>(i)] = 1;
+    }
   }
   return c;
 }

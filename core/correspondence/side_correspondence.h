@@ -20,6 +20,9 @@ struct SideCorrespondence {
   std::vector<int> vertices;  // patient vertices on the side and on no other side
   Eigen::MatrixXd uvw;        // #vertices x 3: the standard's parameters at their correspondents
   Eigen::VectorXd distance;   // #vertices: mm from each vertex to the registered standard surface
+  // #vertices: 1 where the correspondent lies on the rim of the standard's side (its edges of one triangle): the
+  // vertex lies beyond where the standard's side ends, and many such vertices share the rim's values.
+  std::vector<char> on_rim;
 };
 
 // standard_X: #Vs x 3 positions of the standard's domain vertices after registration onto the patient (only those on

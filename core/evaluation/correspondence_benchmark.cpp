@@ -74,6 +74,8 @@ CorrespondenceCaseResult measure(const StandardSetup& standard, const PatientSet
   r.shape_mean = t.patient_quality.summary.shape_mean;
   r.standard_shape_mean = t.standard_quality.summary.shape_mean;
   r.dihedral_change_mean = t.patient_quality.distortion.mean_deg;
+  r.registered_skin = t.registration.has_value();
+  r.registered_failure = t.registered_failure;
   if (kept) *kept = std::move(t);
   return r;
 }

@@ -63,7 +63,9 @@ struct CorrespondenceCaseResult {
   int inverted = 0;                                                  // inverted or degenerate cells of the result
   int folded_parametric_tets = 0;  // the patient's parametric tets inverted or degenerate (param_health.h)
   double shape_mean = 0, standard_shape_mean = 0, dihedral_change_mean = 0;
-  double seconds = 0;  // the transfer (and the CT's segmentation)
+  double seconds = 0;              // the transfer (and the CT's segmentation)
+  bool registered_skin = false;    // the transfer used the registered skin
+  std::string registered_failure;  // why it used the feature lines though the registered skin was asked for
 };
 
 // Which case is next (index of count) and its name, before it runs; `progress` hears of its stages; `on_result`

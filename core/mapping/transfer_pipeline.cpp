@@ -147,12 +147,13 @@ void check_patient_parameterization(const TransferRun& run, const std::string& p
                 "sides of its constraint set");
 }
 
-// Every vertex of the result lies in the patient's bounding box, up to a twentieth of its diagonal: the mapping
-// places vertices in the patient's tets, and the relaxation and the repair move them by cell sizes; a vertex far
-// outside means a step diverged, and such a mesh must not be written as if it were usable.
-void check_inside_patient(const TransferRun& run, const std::string& patient_source) {
+// Every vertex of the result lies in the patient's bounding box, up to a twentieth of its diagonal (half of it when
+// the polish may move side vertices off the patient in space, as a template's does): the mapping places vertices in
+// the patient's tets, and the relaxation and the repair move them by cell sizes; a vertex far outside means a step
+// diverged, and such a mesh must not be written as if it were usable.
+void check_inside_patient(const TransferRun& run, const std::string& patient_source, const TransferOptions& options) {
   const Eigen::RowVector3d lo = run.patient.V.colwise().minCoeff(), hi = run.patient.V.colwise().maxCoeff();
-  const double margin = 0.05 * (hi - lo).norm();
+  const double margin = (options.polish_moves_sides ? 0.5 : 0.05) * (hi - lo).norm();
   int outside = 0;
   double farthest = 0;
   for (Eigen::Index v = 0; v < run.patient_hex.V.rows(); ++v) {
@@ -359,7 +360,7 @@ void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::
         .run(placement);
     run.seconds["untangle"] = clock.lap();
   }
-  check_inside_patient(run, patient_source);
+  check_inside_patient(run, patient_source, options);
 }
 
 Eigen::VectorXd moved_from_mapping(const TransferRun& run) {

@@ -16,15 +16,16 @@
 namespace facehex {
 
 // How the standard's skin finds its place on the patient's (core/workflow/transfer.h):
-//  - features: the paper's: the fields are free on the skin but for the feature constraints at the landmarks;
 //  - registered: the two models' sides are registered (core/correspondence/registered_sides.h) and the patient's
 //    skin gets the standard's (u, v) at its correspondents; automatically placed feature constraints are left out
-//    (the registration places the whole skin). docs/results.md compares the two.
+//    (the registration places the whole skin); where that gives no usable map, the feature constraints are used;
+//  - features: the paper's: the fields are free on the skin but for the feature constraints at the landmarks.
+// docs/results.md compares the two.
 enum class SkinCorrespondence { registered, features };
 
 struct TransferOptions {
   HarmonicFieldsOptions fields;
-  SkinCorrespondence skin_correspondence = SkinCorrespondence::features;
+  SkinCorrespondence skin_correspondence = SkinCorrespondence::registered;
   // With the registered skin: the shape relaxation holds the standard's skin vertices at their registered
   // correspondents (correspondence before cell shape) instead of sliding them along the skin with the rest.
   bool hold_registered_skin = false;

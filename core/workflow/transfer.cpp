@@ -65,10 +65,8 @@ TransferResult transfer(const StandardSetup& standard, const PatientSetup& patie
   std::optional<ModelParameterization> standard_p =
       cached_parameterization(standard.path, standard.domain, standard.constraints, options.fields, &r.cache_note);
   const bool cached = standard_p.has_value();
-  ConstraintSet patient_constraints = patient.constraints;
-  std::optional<SideConditions> sides;
-  double start = 0;
   double standard_seconds = 0;
+  bool done = false;
   if (options.skin_correspondence == SkinCorrespondence::registered) {
     if (!standard_p) {
       Stopwatch clock;
@@ -77,18 +75,29 @@ TransferResult transfer(const StandardSetup& standard, const PatientSetup& patie
                              standard.source(), options.fields, sub_progress(progress, 0.0, 0.1));
       standard_seconds = clock.lap();
     }
-    const PointPairs landmarks = given_landmark_pairs(standard, patient);
-    const RegisteredSidesOptions registration_options;
-    r.registration = register_sides(standard.domain, standard_p->fields.uvw, patient.mesh, patient.source(),
-                                    registration_options, &landmarks, sub_progress(progress, 0.1, 0.2));
-    sides = SideConditions{r.registration->conditions,
-                           options.hold_registered_skin ? r.registration->standard_matched : std::vector<char>()};
-    patient_constraints = without_automatic_features(patient, r.left_out_constraints);
-    start = 0.2;
+    try {
+      const PointPairs landmarks = given_landmark_pairs(standard, patient);
+      const RegisteredSidesOptions registration_options;
+      r.registration = register_sides(standard.domain, standard_p->fields.uvw, patient.mesh, patient.source(),
+                                      registration_options, &landmarks, sub_progress(progress, 0.1, 0.2));
+      const SideConditions sides{r.registration->conditions,
+                                 options.hold_registered_skin ? r.registration->standard_matched : std::vector<char>()};
+      r.run = run_transfer(standard.mesh, standard.domain, standard.constraints, standard.source(), patient.mesh,
+                           without_automatic_features(patient, r.left_out_constraints), patient.source(), options,
+                           sub_progress(progress, 0.2, 0.97), &*standard_p, &sides);
+      done = true;
+    } catch (const Error& e) {
+      // Where the registered skin cannot give a usable map (the registration left the skins apart and the fields
+      // fold), the feature lines still may: the run goes on with them and says why.
+      r.registration.reset();
+      r.left_out_constraints.clear();
+      r.registered_failure = e.what();
+    }
   }
-  r.run = run_transfer(standard.mesh, standard.domain, standard.constraints, standard.source(), patient.mesh,
-                       patient_constraints, patient.source(), options, sub_progress(progress, start, 0.97),
-                       standard_p ? &*standard_p : nullptr, sides ? &*sides : nullptr);
+  if (!done)
+    r.run = run_transfer(standard.mesh, standard.domain, standard.constraints, standard.source(), patient.mesh,
+                         patient.constraints, patient.source(), options, sub_progress(progress, 0.2, 0.97),
+                         standard_p ? &*standard_p : nullptr);
   if (cached) r.run.standard_parameterization_source = parameterization_cache_path(standard.path);
   if (!cached && standard_p) {  // computed above for the registration
     r.run.standard_parameterization_source = "computed";
@@ -106,7 +115,7 @@ TransferResult transfer(const StandardSetup& standard, const PatientSetup& patie
 }
 
 nlohmann::json skin_correspondence_json(const TransferResult& result) {
-  if (!result.registration) return {{"mode", "features"}};
+  if (!result.registration) return {{"mode", "features"}, {"registered_failure", result.registered_failure}};
   const RegisteredSides& g = *result.registration;
   const DistanceSummary& d = g.distance;
   return {{"mode", "registered"},
@@ -118,7 +127,12 @@ nlohmann::json skin_correspondence_json(const TransferResult& result) {
 }
 
 std::string skin_correspondence_text(const TransferResult& result) {
-  if (!result.registration) return "skin correspondence: the feature constraints (the paper's)\n";
+  if (!result.registration)
+    return result.registered_failure.empty()
+               ? "skin correspondence: the feature constraints (the paper's)\n"
+               : "skin correspondence: the feature constraints (the paper's), since the registered skin gave no usable "
+                 "map (" +
+                     result.registered_failure + ")\n";
   const RegisteredSides& g = *result.registration;
   return "skin correspondence: registered; " + std::to_string(g.conditions[0].vertices.size()) +
          " skin vertices take the standard's (u, v), " + std::to_string(g.vertices_too_far) +

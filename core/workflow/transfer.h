@@ -26,12 +26,16 @@ struct TransferResult {
   // SkinCorrespondence::registered: the registration's conditions and figures, and the feature constraints it left out.
   std::optional<RegisteredSides> registration;
   std::vector<std::string> left_out_constraints;
+  // Why the registered skin was asked for but the feature constraints were used (its error), or empty.
+  std::string registered_failure;
 };
 
 // With options.skin_correspondence registered, the sides are registered first (core/correspondence/
 // registered_sides.h): the patient's constraints from a file are kept whole; of those placed by the constraint
 // policy, the feature constraints are left out (the registration places the skin; user-given landmarks pull it as
-// landmark pairs). Throws facehex::Error naming the file or stage; facehex::Cancelled when `progress` asks to stop.
+// landmark pairs). When that transfer fails (the registration left the skins apart and the fields fold beyond the
+// bound, or the repair diverged), it runs again with the feature constraints, and registered_failure says why.
+// Throws facehex::Error naming the file or stage; facehex::Cancelled when `progress` asks to stop.
 TransferResult transfer(const StandardSetup& standard, const PatientSetup& patient, const TransferOptions& options,
                         const ProgressCallback& progress = {});
 
@@ -41,7 +45,8 @@ TransferResult transfer(const StandardSetup& standard, const PatientSetup& patie
 // FE sets and material frames (core/io/fe_sets.h attach_fe_arrays).
 VolumeMesh decorate_patient_hex(const TransferRun& run, const VolumeMesh& standard);
 
-// report.json's "skin_correspondence": {"mode": "features" or "registered"}, and for a registered skin "vertices"
+// report.json's "skin_correspondence": {"mode": "features" or "registered"}, with "registered_failure" (empty, or why
+// the registered skin asked for was not used) for the features, and for a registered skin "vertices"
 // (patient skin vertices given the standard's (u, v)), "too_far" (left free: farther than the bound from the
 // registered standard), "distance_mm" {mean, p95, max} (every skin vertex from the registered standard),
 // "left_out_constraints" and "seconds". skin_correspondence_text: the same in one line for people.

@@ -59,20 +59,24 @@ class Cli : public ::testing::Test {
   fs::path dir_;
 };
 
-// The bundled demo with the registered skin: the report says how the skins met, the features at the found landmarks
-// are left out, and the mesh is usable.
-TEST_F(Cli, DemoWithTheRegisteredSkin) {
-  const Result r = run("run -o " + path("demo") + " --skin-correspondence registered --hold-skin");
+// The bundled demo with the paper's feature lines and with the registered skin held through the relaxation: the
+// report says which correspondence was used, and both meshes are usable.
+TEST_F(Cli, DemoWithTheFeatureLinesOrTheSkinHeld) {
+  Result r = run("run -o " + path("features") + " --skin-correspondence features");
   ASSERT_EQ(r.status, 0) << r.output;
-  EXPECT_NE(r.output.find("skin correspondence: registered; "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("skin correspondence: the feature constraints (the paper's)\n"), std::string::npos)
+      << r.output;
   nlohmann::json report;
-  std::ifstream(path("demo/report.json")) >> report;
-  const auto& skin = report["skin_correspondence"];
-  EXPECT_EQ(skin["mode"], "registered");
-  EXPECT_GT(skin["vertices"].get<int>(), 5 * skin["too_far"].get<int>());  // most of the skin is matched
-  EXPECT_LT(skin["distance_mm"]["mean"].get<double>(), 2.0);
-  EXPECT_EQ(skin["left_out_constraints"].size(), 4u);
-  EXPECT_EQ(report["seconds"].count("registration"), 1u);
+  std::ifstream(path("features/report.json")) >> report;
+  EXPECT_EQ(report["skin_correspondence"]["mode"], "features");
+  EXPECT_EQ(report["skin_correspondence"]["registered_failure"], "");
+  EXPECT_EQ(report["seconds"].count("registration"), 0u);
+  EXPECT_EQ(report["patient_hex"]["quality"]["inverted"], 0);
+
+  r = run("run -o " + path("held") + " --hold-skin");
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::ifstream(path("held/report.json")) >> report;
+  EXPECT_EQ(report["skin_correspondence"]["mode"], "registered");
   EXPECT_EQ(report["patient_hex"]["quality"]["inverted"], 0);
 }
 
@@ -91,7 +95,14 @@ TEST_F(Cli, DemoRunsTheWholeChainFromTheBundledCt) {
   EXPECT_EQ(report["landmarks"]["source"], "found");
   EXPECT_GT(report["landmarks"]["found"].get<int>(), 0);
   EXPECT_EQ(report["landmarks"]["estimated"].get<int>(), report["landmarks"]["estimated_names"].size());
-  EXPECT_EQ(report["skin_correspondence"]["mode"], "features");  // the default, the paper's
+  // The registered skin, by default: most of the skin matched, the features at the found landmarks left out.
+  const auto& skin = report["skin_correspondence"];
+  EXPECT_EQ(skin["mode"], "registered");
+  EXPECT_NE(r.output.find("skin correspondence: registered; "), std::string::npos) << r.output;
+  EXPECT_GT(skin["vertices"].get<int>(), 5 * skin["too_far"].get<int>());
+  EXPECT_LT(skin["distance_mm"]["mean"].get<double>(), 2.0);
+  EXPECT_EQ(skin["left_out_constraints"].size(), 4u);
+  EXPECT_EQ(report["seconds"].count("registration"), 1u);
   const auto& q = report["patient_hex"]["quality"];
   EXPECT_EQ(q["cells"], 6342);
   EXPECT_EQ(q["hexes"], 6024);
@@ -450,6 +461,35 @@ TEST_F(Cli, StaleParameterizationCacheIsReportedAndRecomputed) {
   EXPECT_NE(r.output.find("made from another standard mesh, constraint set or field options"), std::string::npos)
       << r.output;
   EXPECT_EQ(source("stale"), "computed");
+}
+
+// The registered skin on tiny meshes; and on a patient whose skin faces -y, which the registration cannot take (its
+// frame check): the run goes on with the feature lines (here the constraint file's sides) and says why.
+TEST_F(Cli, ARegistrationThatCannotRunFallsBackToTheFeatureLines) {
+  write_tiny_models(dir_);
+  const std::string standard = " --standard " + path("std.vtu");
+  Result r = run("run " + path("box.vtu") + standard + " -o " + path("box"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("skin correspondence: registered; "), std::string::npos) << r.output;
+  nlohmann::json report;
+  std::ifstream(path("box/report.json")) >> report;
+  EXPECT_EQ(report["skin_correspondence"]["left_out_constraints"].size(), 0u);  // a constraint file is kept whole
+
+  facehex::VolumeMesh turned = facehex::read_volume_mesh(path("box.vtu"));
+  turned.V.col(0) *= -1;  // a half turn about z: the skin now behind the bone, the tets still positive
+  turned.V.col(1) *= -1;
+  facehex::write_volume_mesh(path("turned.vtu"), turned);
+  fs::copy_file(path("box.json"), path("turned.json"));
+  r = run("run " + path("turned.vtu") + standard + " -o " + path("turned"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("skin correspondence: the feature constraints (the paper's), since the registered skin gave "
+                          "no usable map ("),
+            std::string::npos)
+      << r.output;
+  std::ifstream(path("turned/report.json")) >> report;
+  EXPECT_EQ(report["skin_correspondence"]["mode"], "features");
+  EXPECT_NE(report["skin_correspondence"]["registered_failure"].get<std::string>().find("+y"), std::string::npos);
+  EXPECT_EQ(report["patient_hex"]["quality"]["inverted"], 0);
 }
 
 TEST_F(Cli, CompareOnTinyMeshesWritesTheReportAndMapRunsTheBaseline) {

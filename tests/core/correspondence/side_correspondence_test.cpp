@@ -56,7 +56,10 @@ TEST(SideCorrespondence, PullsALinearFieldBackExactly) {
   const SideCorrespondence moved = side_correspondence(shifted, F, uvw, patient.V, patient.side_mask, W1);
   for (size_t i = 0; i < moved.vertices.size(); ++i) {
     const Eigen::RowVector3d x = patient.V.row(moved.vertices[i]);
-    if (x(0) < 2.0) continue;  // in front of the shifted surface's edge: its closest point is on that edge
+    // Vertices in front of the shifted surface's edge x = 2 correspond to a point of its rim; no other does.
+    EXPECT_EQ(moved.on_rim[i] != 0, x(0) < 2.0) << "x = " << x(0);
+    EXPECT_EQ(same.on_rim[i], 0);
+    if (x(0) < 2.0) continue;
     EXPECT_NEAR(moved.uvw(static_cast<Eigen::Index>(i), 0), (x(0) - 2.0) / 30, 1e-12);
   }
 }
