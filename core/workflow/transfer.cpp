@@ -82,8 +82,12 @@ TransferResult transfer(const StandardSetup& standard, const PatientSetup& patie
                                       registration_options, &landmarks, sub_progress(progress, 0.1, 0.2));
       const SideConditions sides{r.registration->conditions,
                                  options.hold_registered_skin ? r.registration->standard_matched : std::vector<char>()};
+      // Only a healthy registered parameterization is taken, whatever allow_inverted_parameterization says: that
+      // option is for the map the user cannot do without, and the feature lines remain.
+      TransferOptions healthy = options;
+      healthy.allow_inverted_parameterization = false;
       r.run = run_transfer(standard.mesh, standard.domain, standard.constraints, standard.source(), patient.mesh,
-                           without_automatic_features(patient, r.left_out_constraints), patient.source(), options,
+                           without_automatic_features(patient, r.left_out_constraints), patient.source(), healthy,
                            sub_progress(progress, 0.2, 0.97), &*standard_p, &sides);
       done = true;
     } catch (const Error& e) {

@@ -33,8 +33,9 @@ struct TransferResult {
 // With options.skin_correspondence registered, the sides are registered first (core/correspondence/
 // registered_sides.h): the patient's constraints from a file are kept whole; of those placed by the constraint
 // policy, the feature constraints are left out (the registration places the skin; user-given landmarks pull it as
-// landmark pairs). When that transfer fails (the registration left the skins apart and the fields fold beyond the
-// bound, or the repair diverged), it runs again with the feature constraints, and registered_failure says why.
+// landmark pairs). When that transfer fails (the registration left the skins apart and the fields fold beyond
+// options.max_inverted_fraction, even with allow_inverted_parameterization, or the repair diverged), it runs again
+// with the feature constraints, and registered_failure says why.
 // Throws facehex::Error naming the file or stage; facehex::Cancelled when `progress` asks to stop.
 TransferResult transfer(const StandardSetup& standard, const PatientSetup& patient, const TransferOptions& options,
                         const ProgressCallback& progress = {});
