@@ -73,7 +73,10 @@ TEST(CorrespondenceBenchmark, TheRegisteredSkinFollowsSelfMapsAndLocalWarps) {
   options.warps = {"chin", "nose"};
   const auto results = run_correspondence_benchmark(standard, options);
   ASSERT_EQ(results.size(), 3u);
-  for (const auto& r : results) ASSERT_EQ(r.failure, "") << r.name;
+  for (const auto& r : results) {
+    ASSERT_EQ(r.failure, "") << r.name;
+    EXPECT_TRUE(r.registered_skin) << r.name << ": " << r.registered_failure;
+  }
   const auto& self = find_case(results, "split");
   EXPECT_LT(self.error.all.mean, 0.2);
   EXPECT_LT(self.error.all.p95, 0.6);
