@@ -171,15 +171,19 @@ PatientTetModel read_patient_model(const std::string& path, const SegmentOptions
 
 PatientSetup cli_patient(const std::string& path, const SegmentOptions& segment, const std::string& constraints_file,
                          const ConstraintSet& standard_constraints, const std::string& constraints_hint,
-                         const std::string& landmarks_file) {
+                         const std::string& landmarks_file, bool features_required) {
   const std::map<std::string, double> values = feature_values(standard_constraints);
   PatientSetup p = setup_patient(read_patient_model(path, segment), path, constraints_file, &values, landmarks_file);
-  if (!p.features_problem.empty())
+  const bool has_sides = p.domain.side_mask.size() > 0;
+  if (!p.features_problem.empty() && (features_required || !has_sides || !landmarks_file.empty()))
     throw Error(landmarks_file.empty() ? path : landmarks_file,
                 "the facial feature constraints cannot be placed (" + p.features_problem +
                     "); give the patient's landmarks with --landmarks FILE or its constraint set with " +
                     constraints_hint);
   std::cerr << p.constraints_note << "\n";
+  if (!p.features_problem.empty())
+    std::cerr << "note: the registered skin places the face without them; should it fail, give the landmarks with "
+                 "--landmarks FILE\n";
   if (p.landmarks) std::cerr << landmarks_text(*p.landmarks, "  ");
   return p;
 }
@@ -191,7 +195,7 @@ CliTransfer cli_transfer(const Args& args, const std::string& patient, const std
   t.standard = standard_setup(args);
   std::cerr << "reading the patient " << patient << "\n";
   t.patient = cli_patient(patient, segment_options(args), patient_constraints, t.standard.constraints, constraints_hint,
-                          landmarks_file);
+                          landmarks_file, options.skin_correspondence == SkinCorrespondence::features);
   TerminalProgress progress;
   t.result = transfer(t.standard, t.patient, options, progress.callback());
   progress.finish();

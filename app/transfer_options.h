@@ -37,12 +37,14 @@ PatientTetModel read_patient_model(const std::string& path, const SegmentOptions
 
 // The patient of `path` (a CT segmented with its steps on the terminal) with its constraints (core/workflow/
 // patient_setup.h: `constraints_file`, else a file beside a mesh, else automatic), the choice and the landmarks
-// printed on stderr. Without a constraint file the facial features are required: a transfer without them lands the
-// standard's eyes, nose and mouth anywhere, so a model where they cannot be found is an error naming the option that
-// helps, `constraints_hint` (e.g. "--constraints FILE").
+// printed on stderr. Without a constraint file the facial features are required when `features_required` (the
+// feature lines place the face: without them the standard's eyes, nose and mouth land anywhere), for a model without
+// side labels and when the user's landmark file is wrong: then a model where they cannot be found is an error naming
+// the option that helps, `constraints_hint` (e.g. "--constraints FILE"). Otherwise (the registered skin places the
+// face) it is a note, and the transfer says so if the registered skin fails too.
 PatientSetup cli_patient(const std::string& path, const SegmentOptions& segment, const std::string& constraints_file,
                          const ConstraintSet& standard_constraints, const std::string& constraints_hint,
-                         const std::string& landmarks_file = "");
+                         const std::string& landmarks_file = "", bool features_required = true);
 
 struct CliTransfer {
   StandardSetup standard;

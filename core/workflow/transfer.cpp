@@ -93,6 +93,10 @@ TransferResult transfer(const StandardSetup& standard, const PatientSetup& patie
     } catch (const Error& e) {
       // Where the registered skin cannot give a usable map (the registration left the skins apart and the fields
       // fold), the feature lines still may: the run goes on with them and says why.
+      if (!patient.features_problem.empty() && patient.constraints_path.empty())
+        throw Error(patient.source(), std::string("the registered skin gave no usable map (") + e.what() +
+                                          ") and the facial feature lines cannot be placed (" +
+                                          patient.features_problem + "): give the landmarks with --landmarks FILE");
       r.registration.reset();
       r.left_out_constraints.clear();
       r.registered_failure = e.what();

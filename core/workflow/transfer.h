@@ -35,7 +35,8 @@ struct TransferResult {
 // policy, the feature constraints are left out (the registration places the skin; user-given landmarks pull it as
 // landmark pairs). When that transfer fails (the registration left the skins apart and the fields fold beyond
 // options.max_inverted_fraction, even with allow_inverted_parameterization, or the repair diverged), it runs again
-// with the feature constraints, and registered_failure says why.
+// with the feature constraints, and registered_failure says why; when the policy could not place them either
+// (patient.features_problem), that is an error naming both.
 // Throws facehex::Error naming the file or stage; facehex::Cancelled when `progress` asks to stop.
 TransferResult transfer(const StandardSetup& standard, const PatientSetup& patient, const TransferOptions& options,
                         const ProgressCallback& progress = {});

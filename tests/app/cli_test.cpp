@@ -490,6 +490,32 @@ TEST_F(Cli, ARegistrationThatCannotRunFallsBackToTheFeatureLines) {
   EXPECT_EQ(report["skin_correspondence"]["mode"], "features");
   EXPECT_NE(report["skin_correspondence"]["registered_failure"].get<std::string>().find("+y"), std::string::npos);
   EXPECT_EQ(report["patient_hex"]["quality"]["inverted"], 0);
+
+  // Without its constraint file no feature lines can be placed on a box either: one error naming both reasons.
+  fs::copy_file(path("turned.vtu"), path("bare.vtu"));
+  r = run("run " + path("bare.vtu") + standard + " -o " + path("bare"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("note: the registered skin places the face without them"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("the registered skin gave no usable map ("), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("and the facial feature lines cannot be placed ("), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--landmarks FILE"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(path("bare")));
+}
+
+// The bundled CT meshed at 4.2 mm, where the landmark finder's set is implausible (its nose too short): the
+// registered skin places the face without the feature lines and says so; with the feature lines the run stops naming
+// --landmarks.
+TEST_F(Cli, TheRegisteredSkinNeedsNoLandmarks) {
+  const std::string ct = facehex::default_ct();
+  Result r = run("run " + ct + " --edge-length 4.2 -o " + path("coarse"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("only: no facial features (landmarks: implausible"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("note: the registered skin places the face without them"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("skin correspondence: registered; "), std::string::npos) << r.output;
+  r = run("run " + ct + " --edge-length 4.2 --skin-correspondence features -o " + path("features"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("--landmarks FILE"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(path("features")));
 }
 
 TEST_F(Cli, CompareOnTinyMeshesWritesTheReportAndMapRunsTheBaseline) {
