@@ -154,19 +154,6 @@ SideHits closest_on_sides(const Eigen::MatrixXd& X, const std::vector<int>& quer
   return best;
 }
 
-// Barycentric coordinates of p in triangle (a, b, c), clamped to the triangle.
-Eigen::Vector3d barycentric(const Eigen::RowVector3d& p, const Eigen::RowVector3d& a, const Eigen::RowVector3d& b,
-                            const Eigen::RowVector3d& c) {
-  const Eigen::RowVector3d e0 = b - a, e1 = c - a, d = p - a;
-  const double d00 = e0.dot(e0), d01 = e0.dot(e1), d11 = e1.dot(e1), d20 = d.dot(e0), d21 = d.dot(e1);
-  const double den = d00 * d11 - d01 * d01;
-  if (!(den > 0)) return Eigen::Vector3d(1, 0, 0);
-  Eigen::Vector3d l(0, (d11 * d20 - d01 * d21) / den, (d00 * d21 - d01 * d20) / den);
-  l = l.cwiseMax(0.0);
-  l(0) = std::max(0.0, 1 - l(1) - l(2));
-  return l / l.sum();
-}
-
 // Keeps a direction's pairs up to `outlier` times the median distance of the pairs on the same side (sides differ in
 // size, and a small side, such as a cut, must not be dropped as a whole), each with weight 0.5 / kept.
 void append_inliers(Pairs& pairs, const Eigen::MatrixXd& source, const Eigen::MatrixXd& target, const SideHits& hits,
@@ -236,7 +223,7 @@ class Matcher {
       if (backward.hits.face(i) < 0) continue;
       const Eigen::RowVector3i t = standard_.F.row(backward.hits.face(i));
       const Eigen::Vector3d l =
-          barycentric(backward.hits.point.row(i), current.row(t(0)), current.row(t(1)), current.row(t(2)));
+          triangle_barycentric(backward.hits.point.row(i), current.row(t(0)), current.row(t(1)), current.row(t(2)));
       for (int k = 0; k < 3; ++k) source.row(i) += l(k) * sources.row(t(k));
     }
     append_inliers(pairs, source, target, backward, options_.outlier_factor);

@@ -35,15 +35,13 @@ RegisteredSides register_sides(const TetDomain& standard, const Eigen::MatrixXd&
     std::vector<int> rows;
     for (int v = 0; v < standard.side_mask.size(); ++v)
       if (standard.side_mask(v) & side_bit(side)) rows.push_back(v);
-    Eigen::MatrixXd X(static_cast<Eigen::Index>(rows.size()), 3);
-    for (size_t i = 0; i < rows.size(); ++i) X.row(static_cast<Eigen::Index>(i)) = registered.row(rows[i]);
-    const Eigen::VectorXd landed = patient_side.closest(X).distance;
+    const Eigen::VectorXd landed = patient_side.closest(registered(rows, Eigen::all)).distance;
     r.standard_matched.resize(static_cast<size_t>(standard.V.rows()), 0);
     for (size_t i = 0; i < rows.size(); ++i)
       if (landed(static_cast<Eigen::Index>(i)) <= options.max_distance) r.standard_matched[rows[i]] = 1;
     for (size_t i = 0; i < c.vertices.size(); ++i) {
-      distances.push_back(c.distance(static_cast<Eigen::Index>(i)));
       const double d = c.distance(static_cast<Eigen::Index>(i));
+      distances.push_back(d);
       if (!(d <= options.max_distance) || (c.on_rim[i] && d > options.rim_tolerance)) {
         ++r.vertices_too_far;
         continue;

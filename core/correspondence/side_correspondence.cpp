@@ -1,6 +1,5 @@
 #include "core/correspondence/side_correspondence.h"
 
-#include <Eigen/Dense>
 #include <algorithm>
 #include <map>
 #include <utility>
@@ -29,8 +28,7 @@ SideCorrespondence side_correspondence(const Eigen::MatrixXd& standard_X, const 
   SideCorrespondence c;
   for (int v = 0; v < patient_mask.size(); ++v)
     if (patient_mask(v) == side_bit(side)) c.vertices.push_back(v);
-  Eigen::MatrixXd P(static_cast<Eigen::Index>(c.vertices.size()), 3);
-  for (size_t i = 0; i < c.vertices.size(); ++i) P.row(static_cast<Eigen::Index>(i)) = patient_V.row(c.vertices[i]);
+  const Eigen::MatrixXd P = patient_V(c.vertices, Eigen::all);
   const SurfaceLocator locator(standard_X, standard_F);
   const SurfaceLocator::Hits hits = locator.closest(P);
   c.uvw.resize(P.rows(), 3);
@@ -44,13 +42,8 @@ SideCorrespondence side_correspondence(const Eigen::MatrixXd& standard_X, const 
     }
   for (Eigen::Index i = 0; i < P.rows(); ++i) {
     const Eigen::Vector3i f = standard_F.row(hits.face(i)).transpose();
-    // Barycentric coordinates of the closest point in its triangle (it lies in the triangle, up to round-off).
-    const Eigen::Vector3d a = standard_X.row(f(0)).transpose(), b = standard_X.row(f(1)).transpose(),
-                          d = standard_X.row(f(2)).transpose(), q = hits.point.row(i).transpose();
-    Eigen::Matrix<double, 3, 2> E;
-    E << b - a, d - a;
-    const Eigen::Vector2d st = (E.transpose() * E).ldlt().solve(E.transpose() * (q - a));
-    const Eigen::Vector3d w(1 - st.sum(), st(0), st(1));
+    const Eigen::Vector3d w =
+        triangle_barycentric(hits.point.row(i), standard_X.row(f(0)), standard_X.row(f(1)), standard_X.row(f(2)));
     c.uvw.row(i) = w(0) * standard_uvw.row(f(0)) + w(1) * standard_uvw.row(f(1)) + w(2) * standard_uvw.row(f(2));
     for (int k = 0; k < 3; ++k) {
       const int a = f((k + 1) % 3), b = f((k + 2) % 3);

@@ -59,7 +59,20 @@ SurfaceLocator::Hits SurfaceLocator::closest(const Eigen::MatrixXd& points) cons
   return hits;
 }
 
-Eigen::VectorXd distances_to_surface(const Eigen::MatrixXd& points, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+Eigen::Vector3d triangle_barycentric(const Eigen::RowVector3d& p, const Eigen::RowVector3d& a,
+                                     const Eigen::RowVector3d& b, const Eigen::RowVector3d& c) {
+  const Eigen::RowVector3d e0 = b - a, e1 = c - a, d = p - a;
+  const double d00 = e0.dot(e0), d01 = e0.dot(e1), d11 = e1.dot(e1), d20 = d.dot(e0), d21 = d.dot(e1);
+  const double den = d00 * d11 - d01 * d01;
+  if (!(den > 0)) return Eigen::Vector3d(1, 0, 0);
+  Eigen::Vector3d l(0, (d11 * d20 - d01 * d21) / den, (d00 * d21 - d01 * d20) / den);
+  l = l.cwiseMax(0.0);
+  l(0) = std::max(0.0, 1 - l(1) - l(2));
+  return l / l.sum();
+}
+
+Eigen::VectorXd distances_to_surface(const Eigen::MatrixXd& points, const Eigen::MatrixXd& V,
+                                     const Eigen::MatrixXi& F) {
   return SurfaceLocator(V, F).closest(points).distance;
 }
 

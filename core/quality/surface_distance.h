@@ -32,6 +32,11 @@ class SurfaceLocator {
   std::unique_ptr<Impl> impl_;
 };
 
+// Barycentric coordinates of p in triangle (a, b, c), clamped to the triangle (a closest point lies in its triangle
+// up to round-off); (1, 0, 0) for a degenerate triangle.
+Eigen::Vector3d triangle_barycentric(const Eigen::RowVector3d& p, const Eigen::RowVector3d& a,
+                                     const Eigen::RowVector3d& b, const Eigen::RowVector3d& c);
+
 // points: #P x 3; surface: V #V x 3 and F #F x 3 triangles.
 Eigen::VectorXd distances_to_surface(const Eigen::MatrixXd& points, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
 DistanceSummary summarize_distances(const Eigen::VectorXd& d);
