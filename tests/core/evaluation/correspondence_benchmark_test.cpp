@@ -17,6 +17,18 @@ const CorrespondenceCaseResult& find_case(const std::vector<CorrespondenceCaseRe
   throw std::runtime_error("no case " + name);
 }
 
+// The plain mapping alone (the relaxation and the repair are measured by the full benchmark) of the standard onto its
+// own split cells and onto them under `warps`.
+CorrespondenceBenchmarkOptions plain_mapping_on_split(SkinCorrespondence skin, std::vector<std::string> warps) {
+  CorrespondenceBenchmarkOptions options;
+  options.transfer.skin_correspondence = skin;
+  options.transfer.shape_relaxation = options.transfer.repair_folds = false;
+  options.models = {"split"};
+  options.deformation_models = {"split"};
+  options.warps = std::move(warps);
+  return options;
+}
+
 TEST(CorrespondenceBenchmark, UnknownModelsAndWarpsAreNamed) {
   const StandardSetup standard = load_standard("artisynth-refface");
   EXPECT_THROW(standard_model("closed-x", standard.mesh), Error);
@@ -33,12 +45,7 @@ TEST(CorrespondenceBenchmark, UnknownModelsAndWarpsAreNamed) {
 // relaxation and the repair are measured by the full benchmark): a few seconds.
 TEST(CorrespondenceBenchmark, FastSubsetOfThePlainMapping) {
   const StandardSetup standard = load_standard("artisynth-refface");
-  CorrespondenceBenchmarkOptions options;
-  options.transfer.skin_correspondence = SkinCorrespondence::features;
-  options.transfer.shape_relaxation = options.transfer.repair_folds = false;
-  options.models = {"split"};
-  options.deformation_models = {"split"};
-  options.warps = {"nose"};
+  CorrespondenceBenchmarkOptions options = plain_mapping_on_split(SkinCorrespondence::features, {"nose"});
   std::vector<std::string> names;
   const auto results =
       run_correspondence_benchmark(standard, options, [&](int, int, const std::string& n) { names.push_back(n); });
@@ -65,12 +72,7 @@ TEST(CorrespondenceBenchmark, FastSubsetOfThePlainMapping) {
 // exact, the warps followed to within a millimetre on average, where the paper's feature lines leave several.
 TEST(CorrespondenceBenchmark, TheRegisteredSkinFollowsSelfMapsAndLocalWarps) {
   const StandardSetup standard = load_standard("artisynth-refface");
-  CorrespondenceBenchmarkOptions options;
-  options.transfer.skin_correspondence = SkinCorrespondence::registered;
-  options.transfer.shape_relaxation = options.transfer.repair_folds = false;
-  options.models = {"split"};
-  options.deformation_models = {"split"};
-  options.warps = {"chin", "nose"};
+  CorrespondenceBenchmarkOptions options = plain_mapping_on_split(SkinCorrespondence::registered, {"chin", "nose"});
   const auto results = run_correspondence_benchmark(standard, options);
   ASSERT_EQ(results.size(), 3u);
   for (const auto& r : results) {
@@ -110,12 +112,7 @@ TEST(CorrespondenceBenchmark, TheRegisteredSkinFollowsSelfMapsAndLocalWarps) {
 // landmark finder and the closed domain add to (docs/results.md).
 TEST(CorrespondenceBenchmark, SameDomainAndTrueLandmarksNearlyFollowLocalWarps) {
   const StandardSetup standard = load_standard("artisynth-refface", "", "auxiliary");
-  CorrespondenceBenchmarkOptions options;
-  options.transfer.skin_correspondence = SkinCorrespondence::features;
-  options.transfer.shape_relaxation = options.transfer.repair_folds = false;
-  options.models = {"split"};
-  options.deformation_models = {"split"};
-  options.warps = {"chin", "nose"};
+  CorrespondenceBenchmarkOptions options = plain_mapping_on_split(SkinCorrespondence::features, {"chin", "nose"});
   options.true_landmarks = true;
   const auto results = run_correspondence_benchmark(standard, options);
   ASSERT_EQ(results.size(), 3u);
