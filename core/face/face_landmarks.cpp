@@ -105,22 +105,23 @@ struct Profile {
     simplify(points, farthest, last, tolerance, kept);
   }
 
-  // The longest run of bins at most `depth` mm behind `front` (one bin behind it allowed; empty bins, between the
-  // mesh's vertices, unless three in a row), as (lowest z, highest z), if it is at least `min_length` mm long: a flat
-  // plateau where the scan's field of view cut the face.
+  // The longest run of bins at most `depth` mm behind `front` (one bin behind it allowed), as (lowest z, highest z),
+  // if it is at least `min_length` mm long: a flat plateau where the scan's field of view cut the face. Empty bins
+  // neither end nor extend a run: they lie between the mesh's vertices, several in a row where its edges are long.
   std::optional<std::pair<double, double>> clipped_run(double front, double depth, double min_length) const {
     std::optional<std::pair<double, double>> best;
     bool in_run = false;
     std::pair<double, double> run{0.0, 0.0};
     int gap = 0;
     for (size_t b = 0; b < bins.size(); ++b) {
+      if (!bins[b]) continue;
       const double z = z0 + static_cast<double>(b) + 0.5;
-      if (bins[b] && bins[b]->y() >= front - depth) {
+      if (bins[b]->y() >= front - depth) {
         run = in_run ? std::pair{run.first, z} : std::pair{z, z};
         in_run = true;
         gap = 0;
-      } else if (in_run && (bins[b] ? ++gap > 1 : b + 1 < bins.size() && !bins[b + 1] && !bins[b - 1])) {
-        in_run = false;  // a second bin behind the plateau, or three empty bins in a row
+      } else if (in_run && ++gap > 1) {
+        in_run = false;  // a second bin behind the plateau
       }
       if (in_run && (!best || run.second - run.first > best->second - best->first)) best = run;
     }

@@ -10,20 +10,21 @@
 //    (a band wider than the philtrum's groove would catch its ridges);
 //  - pronasale (nose tip): the most anterior profile point in the middle 80 % of the z range;
 //    the lips below it, from the profile's turns within 50 mm below the nose: the points its Douglas-Peucker
-//    simplification keeps (at 1.5 mm, else at 1 or 0.5 mm if that shows fewer than the four), each a hollow if it lies behind the chord of its kept neighbours, else a
-//    prominence (runs of one kind reduced to the deepest or most anterior). After any prominence on the nose's own
-//    underside: the first hollow (the subnasale's), then labrale superius (the next prominence), stomion (the next
-//    hollow, lip contact or the middle of an open mouth) and labrale inferius (the next prominence). Turns measured
-//    against chords, not windows of fixed height, keep their order on a longer nose or lip and on a pitched head.
-//    subnasale, the point between the upper lip and the nose deepest behind the chord joining them, moved up to the
-//    top of the lip's part as deep within 0.5 mm (where the columella meets the lip);
-//    nasion: the least anterior point 10-45 mm above the nose tip; glabella (brow ridge): the middle of the points
-//    within 0.5 mm of the most anterior one 3-30 mm above the nasion (a flat brow's centre);
-//    pogonion (soft-tissue chin): the most anterior point up to 30 mm below the labiomental fold (the first local
-//    minimum below the labrale inferius); menton (soft tissue): the lowest skin point within 3 mm of the
-//    plane and 20 mm behind the pogonion (the underside of the chin), unless it lies on the model's bottom edge.
-// A field-of-view cut: when the front of the profile is a plateau (within clipped_depth of its most anterior point)
-// at least clipped_length long, the scan cut the face flat there (a nose drops more than that within 25 mm of its
+//    simplification keeps (at 1.5 mm, else at 1 or 0.5 mm if that shows fewer than the four), each a hollow if it lies
+//    behind the chord of its kept neighbours, else a prominence (runs of one kind reduced to the deepest or most
+//    anterior). After any prominence on the nose's own underside: the first hollow (the subnasale's), then labrale
+//    superius (the next prominence), stomion (the next hollow, lip contact or the middle of an open mouth) and labrale
+//    inferius (the next prominence). Turns measured against chords, not windows of fixed height, keep their order on a
+//    longer nose or lip and on a pitched head. subnasale, the point between the upper lip and the nose deepest behind
+//    the chord joining them, moved up to the top of the lip's part as deep within 0.5 mm (where the columella meets the
+//    lip); nasion: the least anterior point 10-45 mm above the nose tip; glabella (brow ridge): the middle of the
+//    points within 0.5 mm of the most anterior one 3-30 mm above the nasion (a flat brow's centre); pogonion
+//    (soft-tissue chin): the most anterior point up to 30 mm below the labiomental fold (the first local minimum below
+//    the labrale inferius); menton (soft tissue): the lowest skin point within 3 mm of the plane and 20 mm behind the
+//    pogonion (the underside of the chin), unless it lies on the model's bottom edge.
+// A field-of-view cut: when the front of the profile is a plateau (within clipped_depth of its most anterior point;
+// bins without a vertex, between the vertices of a coarse model, neither end nor extend it) at least clipped_length
+// long, the scan cut the face flat there (a nose drops more than that within 25 mm of its
 // tip). The lips and subnasale are found below it as above (the cut's lowest point standing for the nose). When the
 // cut ends well below the top of the skin (the nose alone was cut), the pronasale is estimated at the cut's middle and
 // the nasion and glabella are found above the cut; otherwise the pronasale, nasion and glabella are placed by typical

@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "core/fields/constraint_set.h"
 #include "core/mesh/sides.h"
@@ -26,17 +28,21 @@ struct PhantomFace {
   Eigen::MatrixXd V;
   Eigen::VectorXi side_mask;
 
-  // lips: the relief of the dip and the lips, 1 as described; a flat profile's lips stand out by less.
-  explicit PhantomFace(double lips = 1.0) {
-    const int nx = 261, nz = 261;  // x0 - 60 .. x0 + 70, z -70 .. 60
+  // lips: the relief of the dip and the lips, 1 as described; a flat profile's lips stand out by less. dz: the
+  // sampling in z (mm; x is sampled every 0.5 mm). clip: where given, the face above the nose tip stands as far
+  // forward as the tip (a forehead beyond the scan's field of view, like the nose) and the scan cuts the front flat
+  // at y = clip.
+  explicit PhantomFace(double lips = 1.0, double dz = 0.5, std::optional<double> clip = std::nullopt) {
+    const int nx = 261, nz = static_cast<int>(130 / dz) + 1;  // x0 - 60 .. x0 + 70, z -70 .. 60
     V.resize(nx * nz, 3);
     for (int i = 0; i < nx; ++i)
       for (int k = 0; k < nz; ++k) {
-        const double x = x0 - 60 + 0.5 * i, z = -70 + 0.5 * k, dx = x - x0;
+        const double x = x0 - 60 + 0.5 * i, z = -70 + dz * k, dx = x - x0;
         const double wide =
             lips * (-3 * bump(z, -14, 3) + 6 * bump(z, -24, 4) - 4 * bump(z, -31, 2) + 6 * bump(z, -38, 4)) -
             4 * bump(z, 26, 4) + 6 * bump(z, 40, 5);
-        const double y = 80 - 0.01 * dx * dx + 20 * bump(z, 0, 6) * bump(dx, 0, 8) + wide * bump(dx, 0, 25);
+        double y = 80 - 0.01 * dx * dx + 20 * bump(z, 0, 6) * bump(dx, 0, 8) + wide * bump(dx, 0, 25);
+        if (clip) y = std::min(*clip, y + (z > 0 ? 20 * (1 - bump(z, 0, 6)) * bump(dx, 0, 25) : 0.0));
         V.row(i * nz + k) << x, y, z;
       }
     side_mask = Eigen::VectorXi::Constant(V.rows(), side_bit(W1));
@@ -69,6 +75,25 @@ TEST(FaceLandmarks, FlatLipsAreFoundInOrder) {
   for (const auto& [name, z] : expected_z) EXPECT_NEAR(l.points.at(name).z(), z, 2.0) << name;
   EXPECT_GT(l.points.at("subnasale").z(), -20.0);
   EXPECT_LT(l.points.at("subnasale").z(), -10.0);
+}
+
+TEST(FaceLandmarks, AFieldOfViewCutIsFoundBetweenSparseVertices) {
+  // Rows of vertices every 4 mm in z, as on a model of 4 mm edges: three empty 1 mm profile bins between
+  // neighbours. The cut at y = 96 flattens the profile from the nose's lower slope (y within the 3.5 mm plateau depth
+  // of the front from z = -5.8) to the top (z = 58, the last row), found at the bins of the rows inside it (within a
+  // row and half a bin); the lips below are found as on a fine sampling, within half a row more.
+  constexpr double dz = 4.0;
+  const PhantomFace face(1.0, dz, 96.0);
+  const FaceLandmarks l = find_face_landmarks(face.V, face.side_mask);
+  ASSERT_FALSE(std::isnan(l.clipped_from));
+  EXPECT_NEAR(l.clipped_from, -5.8, dz + 0.5);
+  EXPECT_NEAR(l.clipped_to, 58, dz + 0.5);
+  for (const char* name : {"pronasale", "nasion", "glabella"})
+    EXPECT_NE(std::find(l.estimated.begin(), l.estimated.end(), name), l.estimated.end()) << name;
+  const std::map<std::string, double> expected_z = {
+      {"subnasale", -14.6}, {"labrale superius", -24}, {"stomion", -31}, {"labrale inferius", -38}};
+  for (const auto& [name, z] : expected_z) EXPECT_NEAR(l.points.at(name).z(), z, 1.5 + dz / 2) << name;
+  EXPECT_NO_THROW(check_plausible(l, "test"));
 }
 
 TEST(FaceLandmarks, FeatureConstraintsSitOnTheLandmarks) {
