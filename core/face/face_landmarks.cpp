@@ -6,6 +6,7 @@
 #include <optional>
 #include <sstream>
 
+#include "core/face/mouth_corners.h"
 #include "core/mesh/sides.h"
 #include "core/util/error.h"
 #include "core/util/mirror_symmetry.h"
@@ -314,6 +315,10 @@ FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorX
   l.points = {{"pronasale", prn},       {"subnasale", sn},        {"nasion", n},  {"glabella", g},
               {"labrale superius", ls}, {"labrale inferius", li}, {"stomion", st}};
   add_chin(profile, skin, V, l);
+  if (const auto corners = mouth_corners(V, skin, l.x_mid, st, ls)) {
+    l.points["cheilion right"] = corners->first;
+    l.points["cheilion left"] = corners->second;
+  }
   return l;
 }
 

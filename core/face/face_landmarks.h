@@ -29,6 +29,8 @@
 // cut ends well below the top of the skin (the nose alone was cut), the pronasale is estimated at the cut's middle and
 // the nasion and glabella are found above the cut; otherwise the pronasale, nasion and glabella are placed by typical
 // adult proportions above the subnasale (15, 55 and 67 mm) on the cut. Placed landmarks are listed in `estimated`.
+// The mouth corners (cheilion right, left): the ends of the mouth line traced out from the plane under the upper lip
+// (core/face/mouth_corners.h); absent where the lips show no such line.
 // Then the plausibility check (check_plausible). Every landmark is listed with its status: found, or estimated.
 // Each feature constraint pins the chosen field on the skin (and on walls of openings, e.g. the standard's mouth
 // slit) near the landmark: v on the horizontal plane through it, u = 0.5 on the mid-sagittal plane (whole volume).

@@ -21,7 +21,8 @@ double bump(double t, double centre, double sigma) {
 // mid-sagittal profile has a nose (20 mm, at z = 0), a dip below it (z = -14), upper and lower lips (z = -24, -38)
 // with the lip contact between (z = -31), the nose root (z = 26) and the brow ridge (z = 40); the extremes of the
 // summed profile lie within 0.6 mm of these centres (computed once, numerically). The nose is narrow (8 mm), the
-// rest wide (25 mm), and the face is curved sideways. The x range is not symmetric about the midline x0, so the
+// rest wide (25 mm), and the face is curved sideways. The lips end at the mouth corners: their relief tapers off
+// (a cosine) from 20 to 26 mm either side of the midline. The x range is not symmetric about the midline x0, so the
 // midline must be found from the nose, not the middle of the range.
 struct PhantomFace {
   static constexpr double x0 = 7.0;
@@ -38,10 +39,12 @@ struct PhantomFace {
     for (int i = 0; i < nx; ++i)
       for (int k = 0; k < nz; ++k) {
         const double x = x0 - 60 + 0.5 * i, z = -70 + dz * k, dx = x - x0;
-        const double wide =
-            lips * (-3 * bump(z, -14, 3) + 6 * bump(z, -24, 4) - 4 * bump(z, -31, 2) + 6 * bump(z, -38, 4)) -
-            4 * bump(z, 26, 4) + 6 * bump(z, 40, 5);
-        double y = 80 - 0.01 * dx * dx + 20 * bump(z, 0, 6) * bump(dx, 0, 8) + wide * bump(dx, 0, 25);
+        const double wide = -3 * lips * bump(z, -14, 3) - 4 * bump(z, 26, 4) + 6 * bump(z, 40, 5);
+        const double mouth = lips * (6 * bump(z, -24, 4) - 4 * bump(z, -31, 2) + 6 * bump(z, -38, 4));
+        const double taper = std::abs(dx) <= 20   ? 1.0
+                             : std::abs(dx) >= 26 ? 0.0
+                                                  : 0.5 * (1 + std::cos(M_PI * (std::abs(dx) - 20) / 6));
+        double y = 80 - 0.01 * dx * dx + 20 * bump(z, 0, 6) * bump(dx, 0, 8) + (wide + mouth * taper) * bump(dx, 0, 25);
         if (clip) y = std::min(*clip, y + (z > 0 ? 20 * (1 - bump(z, 0, 6)) * bump(dx, 0, 25) : 0.0));
         V.row(i * nz + k) << x, y, z;
       }
@@ -94,6 +97,30 @@ TEST(FaceLandmarks, AFieldOfViewCutIsFoundBetweenSparseVertices) {
       {"subnasale", -14.6}, {"labrale superius", -24}, {"stomion", -31}, {"labrale inferius", -38}};
   for (const auto& [name, z] : expected_z) EXPECT_NEAR(l.points.at(name).z(), z, 1.5 + dz / 2) << name;
   EXPECT_NO_THROW(check_plausible(l, "test"));
+}
+
+TEST(FaceLandmarks, MouthCornersAreWhereTheLipsEnd) {
+  // On the fine sampling and on rows 4 mm apart: the corners inside the lips' taper (20-26 mm from the midline), mirror
+  // images of each other, on the mouth line under the upper lip (between the stomion and the labrale superius).
+  for (const double dz : {0.5, 4.0}) {
+    const PhantomFace face(1.0, dz);
+    const FaceLandmarks l = find_face_landmarks(face.V, face.side_mask);
+    ASSERT_TRUE(l.points.count("cheilion right") && l.points.count("cheilion left")) << dz;
+    const Eigen::Vector3d right = l.points.at("cheilion right"), left = l.points.at("cheilion left");
+    for (const double half_width : {PhantomFace::x0 - right.x(), left.x() - PhantomFace::x0}) {
+      EXPECT_GE(half_width, 20.0) << dz;
+      EXPECT_LE(half_width, 26.0) << dz;
+    }
+    EXPECT_NEAR(PhantomFace::x0 - right.x(), left.x() - PhantomFace::x0, 1.0) << dz;
+    for (const Eigen::Vector3d& corner : {right, left}) {
+      EXPECT_GT(corner.z(), l.points.at("stomion").z()) << dz;
+      EXPECT_LT(corner.z(), l.points.at("labrale superius").z()) << dz;
+    }
+    EXPECT_NO_THROW(check_plausible(l, "test"));
+  }
+  // Lips too flat to show a mouth line: no corners rather than guessed ones.
+  const PhantomFace flat(0.2);
+  EXPECT_FALSE(find_face_landmarks(flat.V, flat.side_mask).points.count("cheilion left"));
 }
 
 TEST(FaceLandmarks, FeatureConstraintsSitOnTheLandmarks) {
