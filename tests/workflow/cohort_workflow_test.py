@@ -36,7 +36,7 @@ class CohortWorkflow(unittest.TestCase):
                 shutil.copy(os.path.join(CT, f), os.path.join(self.dir, pid, f))
         with open(os.path.join(self.dir, "broken.vtu"), "w") as f:
             f.write("not a mesh\n")
-        # At this edge length the automatic landmarks of the bundled CT are implausible: they are given.
+        # At this edge length the profile's vertices are 5 mm apart, too few for the automatic landmarks: they are given.
         with open(os.path.join(self.dir, "manifest.csv"), "w") as f:
             f.write("id,input,landmarks,options\n"
                     f"a,a/headsq.mhd,{LANDMARKS},\n"
