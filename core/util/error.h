@@ -10,11 +10,12 @@ namespace facehex {
 class Error : public std::runtime_error {
  public:
   Error(const std::string& subject, const std::string& problem)
-      : std::runtime_error(subject.empty() ? problem : subject + ": " + problem), subject_(subject) {}
+      : std::runtime_error(subject.empty() ? problem : subject + ": " + problem), subject_(subject), problem_(problem) {}
   const std::string& subject() const { return subject_; }
+  const std::string& problem() const { return problem_; }
 
  private:
-  std::string subject_;
+  std::string subject_, problem_;
 };
 
 }  // namespace facehex

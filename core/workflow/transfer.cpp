@@ -102,10 +102,18 @@ TransferResult transfer(const StandardSetup& standard, const PatientSetup& patie
       r.registered_failure = e.what();
     }
   }
-  if (!done)
-    r.run = run_transfer(standard.mesh, standard.domain, standard.constraints, standard.source(), patient.mesh,
-                         patient.constraints, patient.source(), options, sub_progress(progress, 0.2, 0.97),
-                         standard_p ? &*standard_p : nullptr);
+  if (!done) {
+    try {
+      r.run = run_transfer(standard.mesh, standard.domain, standard.constraints, standard.source(), patient.mesh,
+                           patient.constraints, patient.source(), options, sub_progress(progress, 0.2, 0.97),
+                           standard_p ? &*standard_p : nullptr);
+    } catch (const Error& e) {
+      if (r.registered_failure.empty()) throw;
+      // Both ways failed: the user needs both reasons, the registered skin's first (it is the default).
+      throw Error(e.subject(), "the registered skin gave no usable map (" + r.registered_failure +
+                                   "), nor did the feature lines: " + e.problem());
+    }
+  }
   if (cached) r.run.standard_parameterization_source = parameterization_cache_path(standard.path);
   if (!cached && standard_p) {  // computed above for the registration
     r.run.standard_parameterization_source = "computed";

@@ -491,6 +491,25 @@ TEST_F(Cli, ARegistrationThatCannotRunFallsBackToTheFeatureLines) {
   EXPECT_NE(report["skin_correspondence"]["registered_failure"].get<std::string>().find("+y"), std::string::npos);
   EXPECT_EQ(report["patient_hex"]["quality"]["inverted"], 0);
 
+  // With the lateral ends swapped in its constraint file the feature lines fail too (the opposite handedness): one
+  // error giving both reasons, the registered skin's first.
+  nlohmann::json swapped;
+  std::ifstream(path("box.json")) >> swapped;
+  for (auto& c : swapped["constraints"])
+    if (c["field"] == "u" && c["select"].contains("side")) c["value"] = 1.0 - c["value"].get<double>();
+  fs::copy_file(path("turned.vtu"), path("swapped.vtu"));
+  std::ofstream(path("swapped.json")) << swapped;
+  r = run("run " + path("swapped.vtu") + standard + " -o " + path("swapped"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  const size_t registered = r.output.find("the registered skin gave no usable map ("),
+               features = r.output.find("), nor did the feature lines: "), handedness = r.output.find("handedness");
+  EXPECT_NE(registered, std::string::npos) << r.output;
+  EXPECT_NE(features, std::string::npos) << r.output;
+  EXPECT_NE(handedness, std::string::npos) << r.output;
+  EXPECT_LT(registered, features);
+  EXPECT_LT(features, handedness);
+  EXPECT_FALSE(fs::exists(path("swapped")));
+
   // Without its constraint file no feature lines can be placed on a box either: one error naming both reasons.
   fs::copy_file(path("turned.vtu"), path("bare.vtu"));
   r = run("run " + path("bare.vtu") + standard + " -o " + path("bare"));
