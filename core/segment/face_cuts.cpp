@@ -18,6 +18,14 @@ std::string mm(double v) {
   return s.str();
 }
 
+// The level of the lowest slice with any body voxel: below it a scan holds air only (a field of view that starts
+// above its lowest slices, or a volume resampled into a larger box).
+double lowest_body_z(const Mask& head) {
+  const GridGeometry& g = head.geometry;
+  const auto first = std::find(head.data.begin(), head.data.end(), 1);
+  return g.point(0, 0, g.ijk(static_cast<size_t>(first - head.data.begin()))[2]).z();
+}
+
 }  // namespace
 
 std::vector<CutPlane> FaceCuts::planes() const {
@@ -36,7 +44,8 @@ FaceCuts find_face_cuts(const Mask& head, const Mask& bone, const FaceCutOptions
   FaceCuts cuts;
   if (!options.top_z || !options.bottom_z || !options.posterior_y || !options.centre_x)
     cuts.anatomy = find_face_anatomy(head, bone);
-  const double z_min = g.lower(2) + options.border_margin, z_max = g.upper(2) - options.border_margin;
+  const double z_min = std::max(g.lower(2), lowest_body_z(head)) + options.border_margin;
+  const double z_max = g.upper(2) - options.border_margin;
   cuts.centre_x = options.centre_x ? *options.centre_x : cuts.anatomy->centre_x;
   cuts.bottom_z =
       options.bottom_z ? *options.bottom_z : std::max(z_min, cuts.anatomy->menton.z() - options.chin_clearance);

@@ -14,7 +14,8 @@
 // given instead:
 //   centre_x    = the mid-sagittal plane at the pronasale's level, from the face's mirror symmetry;
 //   bottom_z    = the menton (lowest point of the bony chin) minus chin_clearance, but at least border_margin above
-//                 the CT's bottom;
+//                 the CT's bottom and above its lowest slice with any body in it (a scan that starts within the
+//                 chin: a cut below the body would leave the model no bottom side);
 //   top_z       = the glabella plus brow_clearance (above the eyebrows), but at least border_margin below the CT's top
 //                 and below the head's highest level (a scan that ends within the forehead); the head's highest
 //                 level less border_margin when the profile shows no brow (FaceAnatomy::brow_unseen);
@@ -36,7 +37,7 @@ struct FaceCutOptions {
   double brow_clearance = 15.0;                                  // mm above the glabella (the eyebrows lie within it)
   double chin_clearance = 15.0;  // mm below the menton (the chin's soft tissue is about 10 mm thick there)
   double ear_clearance = 10.0;   // mm in front of the front of the ears
-  double border_margin = 3.0;    // mm: top and bottom cuts stay this far inside the CT (and the top inside the head)
+  double border_margin = 3.0;    // mm: top and bottom cuts stay this far inside the CT and inside the body
 };
 
 // A cut half-space boundary: points p with normal . p > offset are cut away (normal points out of the model).

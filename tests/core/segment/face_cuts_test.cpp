@@ -247,6 +247,25 @@ TEST(FaceCuts, AScanEndingInTheForeheadKeepsTheTopCutInsideTheHead) {
   EXPECT_FALSE(whole_cuts.anatomy->brow_unseen);
 }
 
+TEST(FaceCuts, AScanStartingWithinTheChinKeepsTheBottomCutInsideTheBody) {
+  // Air below z = 30 (a field of view that starts within the chin, or a volume resampled into a larger box): the
+  // menton's rule would cut at 25, below the body, leaving the model no bottom side.
+  Head h;
+  const GridGeometry& g = h.head.geometry;
+  for (int k = 0; k < g.dims[2]; ++k)
+    for (int j = 0; j < g.dims[1]; ++j)
+      for (int i = 0; i < g.dims[0]; ++i)
+        if (g.point(i, j, k).z() < 30) h.head(i, j, k) = h.bone(i, j, k) = 0;
+  const FaceCuts cuts = find_face_cuts(h.head, h.bone, FaceCutOptions());
+  ASSERT_TRUE(cuts.anatomy);
+  EXPECT_NEAR(cuts.anatomy->menton.z(), 40, 1e-9);
+  EXPECT_NEAR(cuts.bottom_z, 33, 1e-9);  // the body's lowest slice plus border_margin
+  // Given, the cut is taken as it is.
+  FaceCutOptions given;
+  given.bottom_z = 20;
+  EXPECT_NEAR(find_face_cuts(h.head, h.bone, given).bottom_z, 20, 1e-9);
+}
+
 TEST(FaceCuts, TheEarsFrontIsTheMostAnteriorRowNearlyAsWideAsTheWidest) {
   Head h;
   // A lobe in front of the ears 96 mm wide (within 5 mm of the ears' 100) and, further forward, one 92 mm wide.
