@@ -9,6 +9,8 @@ Field warp_volume(const Field& field, const SmoothWarp& warp) {
   const GridGeometry& g = field.geometry;
   // The image of the original box's boundary bounds the image of the box (W is a homeomorphism).
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  // The lowest level of the image of the top slice and the highest of the bottom slice's.
+  double top_lowest = std::numeric_limits<double>::infinity(), bottom_highest = -top_lowest;
   for (int a = 0; a < 3; ++a)
     for (const int side : {0, g.dims[a] - 1}) {
       const int b = (a + 1) % 3, c = (a + 2) % 3;
@@ -21,10 +23,16 @@ Field warp_volume(const Field& field, const SmoothWarp& warp) {
           const Eigen::Vector3d y = warp.apply(g.point(ijk(0), ijk(1), ijk(2)));
           lo = lo.cwiseMin(y);
           hi = hi.cwiseMax(y);
+          if (a == 2 && side == 0) bottom_highest = std::max(bottom_highest, y.z());
+          if (a == 2 && side != 0) top_lowest = std::min(top_lowest, y.z());
         }
     }
   lo -= 2 * g.spacing;  // the faces were sampled every 4 voxels
   hi += 2 * g.spacing;
+  // A scanner's volume ends in slice planes; W bends the original's: the slices are cropped to those the original
+  // covers across their whole area.
+  lo.z() = bottom_highest + 2 * g.spacing.z();
+  hi.z() = top_lowest - 2 * g.spacing.z();
   GridGeometry target;
   target.spacing = g.spacing;
   target.origin = lo;
