@@ -14,8 +14,8 @@
 namespace facehex {
 namespace {
 
-// Seeds 6 and 7 of these warps (moderate: scale within 8 %, shear 0.04, bumps up to 4 mm, about the bundled model's
-// skin) thin the tissue somewhere until its first surface has a tunnel; the segmentation repairs it (seed 7 needs
+// Seeds 7 and 13 of these warps (moderate: scale within 8 %, shear 0.04, bumps up to 4 mm, about the bundled model's
+// skin) thin the tissue somewhere until its first surface has a tunnel; the segmentation repairs it (seed 13 needs
 // the second attempt) and says so. Coarse tets: the surface, not TetGen, is under test.
 TEST(WarpedCtSegmentation, ThinTissueThatPiercesTheSurfaceIsRepairedAndSaidSo) {
   const CtVolume ct = read_ct_volume(default_ct());
@@ -30,7 +30,7 @@ TEST(WarpedCtSegmentation, ThinTissueThatPiercesTheSurfaceIsRepairedAndSaidSo) {
   SegmentOptions options;
   options.tets.target_edge_length = 6;
   options.coarsen_above_tets = 0;
-  for (const auto& [seed, thickness] : {std::pair{6, 4.0}, std::pair{7, 5.0}}) {
+  for (const auto& [seed, thickness] : {std::pair{7, 4.0}, std::pair{13, 5.0}}) {
     const SmoothWarp warp = random_warp(seed, centre, anchors, RandomWarpRanges{0.08, 0.04, 4, 4.0, 25.0, 40.0});
     PatientModel m;
     ASSERT_NO_THROW(m = build_patient_model(CtVolume{warp_volume(ct.intensity, warp), "warped"}, options))
