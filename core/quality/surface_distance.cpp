@@ -5,6 +5,7 @@
 #include <vtkNew.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkSMPTools.h>
 #include <vtkStaticCellLocator.h>
 
 #include <algorithm>
@@ -35,7 +36,9 @@ SurfaceLocator::SurfaceLocator(const Eigen::MatrixXd& V, const Eigen::MatrixXi& 
   impl_->empty = F.rows() == 0;
   if (impl_->empty) return;
   impl_->locator->SetDataSet(impl_->surface);
-  impl_->locator->BuildLocator();
+  // Built serially: a parallel build orders the cells of a bin by thread timing, and where two triangles are equally
+  // close (a point over their common edge) the first one found would then depend on the thread count.
+  vtkSMPTools::LocalScope(vtkSMPTools::Config{std::string("Sequential")}, [this] { impl_->locator->BuildLocator(); });
 }
 
 SurfaceLocator::~SurfaceLocator() = default;

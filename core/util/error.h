@@ -10,7 +10,9 @@ namespace facehex {
 class Error : public std::runtime_error {
  public:
   Error(const std::string& subject, const std::string& problem)
-      : std::runtime_error(subject.empty() ? problem : subject + ": " + problem), subject_(subject), problem_(problem) {}
+      : std::runtime_error(subject.empty() ? problem : subject + ": " + problem),
+        subject_(subject),
+        problem_(problem) {}
   const std::string& subject() const { return subject_; }
   const std::string& problem() const { return problem_; }
 
