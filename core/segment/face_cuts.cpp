@@ -18,14 +18,6 @@ std::string mm(double v) {
   return s.str();
 }
 
-// The level of the lowest slice with any body voxel: below it a scan holds air only (a field of view that starts
-// above its lowest slices, or a volume resampled into a larger box).
-double lowest_body_z(const Mask& head) {
-  const GridGeometry& g = head.geometry;
-  const auto first = std::find(head.data.begin(), head.data.end(), 1);
-  return g.point(0, 0, g.ijk(static_cast<size_t>(first - head.data.begin()))[2]).z();
-}
-
 }  // namespace
 
 std::vector<CutPlane> FaceCuts::planes() const {
@@ -39,12 +31,15 @@ std::vector<CutPlane> FaceCuts::planes() const {
 
 FaceCuts find_face_cuts(const Mask& head, const Mask& bone, const FaceCutOptions& options) {
   const GridGeometry& g = head.geometry;
-  if (std::find(head.data.begin(), head.data.end(), 1) == head.data.end())
-    throw Error("segment", "the head mask is empty");
+  // The first body voxel in slice order lies in the lowest slice with any body: below it a scan holds air only (a
+  // field of view that starts above its lowest slices, or a volume resampled into a larger box).
+  const auto first_body = std::find(head.data.begin(), head.data.end(), 1);
+  if (first_body == head.data.end()) throw Error("segment", "the head mask is empty");
+  const double lowest_body_z = g.point(0, 0, g.ijk(static_cast<size_t>(first_body - head.data.begin()))[2]).z();
   FaceCuts cuts;
   if (!options.top_z || !options.bottom_z || !options.posterior_y || !options.centre_x)
     cuts.anatomy = find_face_anatomy(head, bone);
-  const double z_min = std::max(g.lower(2), lowest_body_z(head)) + options.border_margin;
+  const double z_min = std::max(g.lower(2), lowest_body_z) + options.border_margin;
   const double z_max = g.upper(2) - options.border_margin;
   cuts.centre_x = options.centre_x ? *options.centre_x : cuts.anatomy->centre_x;
   cuts.bottom_z =
