@@ -9,7 +9,7 @@
 #include "core/fields/parameterization.h"
 #include "core/fields/tet_domain.h"
 #include "core/mapping/hex_transfer.h"
-#include "core/mapping/untangle.h"
+#include "core/shape/untangle.h"
 #include "core/mesh/mesh.h"
 #include "core/util/progress.h"
 

@@ -1,4 +1,4 @@
-#include "core/mapping/untangle.h"
+#include "core/shape/untangle.h"
 
 #include <omp.h>
 
@@ -8,7 +8,8 @@
 #include <cmath>
 
 #include "core/mesh/corner_jacobian.h"
-#include "core/util/error.h"
+#include "core/shape/cell_bounds.h"
+#include "core/shape/corner_energy.h"
 #include "core/util/idle_cores.h"
 
 namespace facehex {
@@ -17,76 +18,8 @@ namespace {
 struct Corner {
   int cell, k;  // k: corner index, or kSample + s for the cell's interior sample s (corner_jacobian.h)
 };
-constexpr int kSample = 8;
-constexpr double kReferenceShare = 0.5;  // see UntangleOptions::reference_scaled_jacobian
+constexpr int kSample = kSampleSlot;
 constexpr double kNearlyInverted = 0.1;  // normalized corner determinant below which a vertex is always revisited
-
-// Inverse ideal corner matrices W_k^-1 per cell type and corner.
-const Eigen::Matrix3d& ideal_inverse(CellType type, int k) {
-  static const auto table = [] {
-    std::array<std::array<Eigen::Matrix3d, 8>, 3> t;
-    const CellType types[3] = {CellType::Tet, CellType::Wedge, CellType::Hex};
-    for (int i = 0; i < 3; ++i) {
-      const CellNodes X = ideal_cell(types[i]);
-      for (int c = 0; c < node_count(types[i]); ++c) t[i][c] = corner_jacobian(types[i], X, c).inverse();
-    }
-    return t;
-  }();
-  return table[type == CellType::Tet ? 0 : type == CellType::Wedge ? 1 : 2][k];
-}
-
-// The corner's normalized determinant: sigma / s^3 with s^2 = |S|_F^2 / 3, in [-1, 1], 1 only for the ideal corner.
-// Regularizing it (rather than det S, which scales with the cell's volume) treats small and large cells alike.
-double normalized_determinant(const Eigen::Matrix3d& S) {
-  const double s2 = S.squaredNorm() / 3;
-  return S.determinant() / (s2 * std::sqrt(s2));
-}
-
-// W^-1 for a target corner W whose ideal counterpart has inverse ideal_inv. With M = W ideal_inv (the target relative
-// to the ideal corner) and its polar decomposition M = R U, the stretch U is scaled to unit determinant and moved
-// `towards_ideal` of the way to the identity; R is dropped, since the energy does not change when S is rotated from
-// the right. A nearly flat or inverted target corner gives the ideal one.
-Eigen::Matrix3d target_corner_inverse(const Eigen::Matrix3d& W, const Eigen::Matrix3d& ideal_inv,
-                                      double towards_ideal) {
-  const Eigen::Matrix3d M = W * ideal_inv;
-  if (!(normalized_determinant(M) > kNearlyInverted)) return ideal_inv;
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(M.transpose() * M);
-  Eigen::Vector3d stretch = eigen.eigenvalues().cwiseMax(0).cwiseSqrt();
-  stretch /= std::cbrt(stretch.prod());
-  const Eigen::Vector3d blended = (1 - towards_ideal) * stretch.array() + towards_ideal;
-  return ideal_inv * eigen.eigenvectors() * blended.cwiseInverse().asDiagonal() * eigen.eigenvectors().transpose();
-}
-
-struct Energy {
-  double delta2 = 0;  // delta^2, dimensionless
-  double power = 1;   // UntangleOptions::corner_power
-
-  // eta = h(sigma^)^(-2/3) of one corner (the inverse mean ratio |S|^2 / (3 det(S)^(2/3)) when delta = 0) and,
-  // optionally, its gradient with respect to the corner matrix A.
-  double corner(const Eigen::Matrix3d& A, const Eigen::Matrix3d& Winv, Eigen::Matrix3d* dA) const {
-    const Eigen::Matrix3d S = A * Winv;
-    const double s2 = S.squaredNorm() / 3;
-    if (!(s2 > 0)) return std::numeric_limits<double>::infinity();
-    const double s3 = s2 * std::sqrt(s2);
-    const double sigma = S.determinant() / s3;
-    const double root = std::sqrt(sigma * sigma + 4 * delta2);
-    const double h = 0.5 * (sigma + root);
-    if (!(h > 0)) return std::numeric_limits<double>::infinity();
-    const double eta = 1.0 / std::cbrt(h * h);
-    if (dA) {
-      const double dh = 0.5 * (1 + sigma / root);
-      Eigen::Matrix3d cof;  // d det(S) / d S
-      cof.col(0) = S.col(1).cross(S.col(2));
-      cof.col(1) = S.col(2).cross(S.col(0));
-      cof.col(2) = S.col(0).cross(S.col(1));
-      const Eigen::Matrix3d dsigma = cof / s3 - sigma * S / s2;
-      const Eigen::Matrix3d dS = -(2.0 / 3.0) * eta / h * dh * dsigma;
-      *dA = dS * Winv.transpose();
-      if (power != 1) *dA *= power * std::pow(eta, power - 1);
-    }
-    return power == 1 ? eta : std::pow(eta, power);
-  }
-};
 
 // Vertices that share no cell can step at the same time: a step reads and writes only the cells around its vertex.
 // The free vertices are cut, by their rank along the region's longest extent, into slabs whose cells reach at most
@@ -135,63 +68,19 @@ std::vector<std::vector<int>> cut_into_slabs(const VolumeMesh& mesh, const std::
 
 }  // namespace
 
-std::vector<char> within_cell_rings(const VolumeMesh& mesh, std::vector<char> marked, int rings) {
-  for (int ring = 0; ring < rings; ++ring) {
-    std::vector<char> grown = marked;
-    for (int c = 0; c < mesh.num_cells(); ++c) {
-      bool touches = false;
-      for (int i = 0; i < node_count(mesh.types[c]); ++i) touches |= marked[mesh.C(c, i)] != 0;
-      if (touches)
-        for (int i = 0; i < node_count(mesh.types[c]); ++i) grown[mesh.C(c, i)] = 1;
-    }
-    marked.swap(grown);
-  }
-  return marked;
-}
-
-VertexPlacement spatial_placement(const Eigen::MatrixXd& V, const std::vector<char>& fixed) {
-  VertexPlacement placement;
-  placement.p = V;
-  placement.movable.resize(fixed.size());
-  for (size_t v = 0; v < fixed.size(); ++v)
-    placement.movable[v] = fixed[v] ? Eigen::Matrix3d::Zero().eval() : Eigen::Matrix3d::Identity().eval();
-  placement.place = [](int, const Eigen::Vector3d& q, Eigen::Vector3d& x, Eigen::Matrix3d& dxdq) {
-    x = q;
-    dxdq.setIdentity();
-    return true;
-  };
-  return placement;
-}
-
 UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const UntangleOptions& options) {
   const std::vector<Eigen::Matrix3d>& movable = placement.movable;
   UntangleReport report;
   const int nc = mesh.num_cells(), nv = mesh.num_vertices();
-  auto scaled = [&](int c) { return scaled_jacobian(mesh.types[c], cell_nodes(mesh, c)); };
-  if (options.reference_scaled_jacobian.size() != 0 && options.reference_scaled_jacobian.size() != nc)
-    throw Error("untangle", "the reference scaled Jacobians do not match the mesh's cells");
-  if (options.target && (options.target->num_cells() != nc || options.target->types != mesh.types ||
-                         options.target->C.cols() != mesh.C.cols() || options.target->C != mesh.C))
-    throw Error("untangle", "the target mesh does not have the mesh's cells");
-  auto bound = [&](int c) {
-    return options.reference_scaled_jacobian.size() == 0
-               ? options.min_scaled_jacobian
-               : std::min(options.min_scaled_jacobian, kReferenceShare * options.reference_scaled_jacobian(c));
-  };
-  auto is_bad = [&](int c) {
-    return min_corner_determinant(mesh.types[c], cell_nodes(mesh, c)) <= 0 || scaled(c) < bound(c);
-  };
+  const CellBounds bounds(mesh, options);
+  auto is_bad = [&](int c) { return bounds.is_bad(mesh, c); };
   auto unusable = [&](int c) { return is_unusable(mesh.types[c], cell_nodes(mesh, c)); };
   auto tally = [&](int& inverted, int& degenerate, int& bad, double& min_sj) {
-    inverted = degenerate = bad = 0;
-    min_sj = 1;
-    for (int c = 0; c < nc; ++c) {
-      const bool is_inverted = min_corner_determinant(mesh.types[c], cell_nodes(mesh, c)) <= 0;
-      inverted += is_inverted;
-      degenerate += !is_inverted && unusable(c);
-      bad += is_bad(c);
-      min_sj = std::min(min_sj, scaled(c));
-    }
+    const CellBounds::Counts counts = bounds.count(mesh);
+    inverted = counts.inverted;
+    degenerate = counts.degenerate;
+    bad = counts.bad;
+    min_sj = counts.min_scaled_jacobian;
   };
   tally(report.inverted_before, report.degenerate_before, report.bad_before, report.min_scaled_jacobian_before);
   if (report.bad_before == 0 && !options.whole_mesh) {
@@ -239,47 +128,26 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
       }
     }
 
-  // W^-1 of each corner and interior sample of the cells around free vertices: the ideal cell's, or the target's
-  // moved towards the ideal by target_towards_ideal times the corner's distortion in the mesh as given.
-  const int slots = kSample + 9;
-  std::vector<Eigen::Matrix3d> target_inverse;
-  if (options.target) {
-    target_inverse.resize(static_cast<size_t>(nc) * slots);
-    std::vector<char> needed(nc, 0);
-    for (int v : free_vertices)
-      for (int c : cells_of[v]) needed[c] = 1;
-    auto target = [&](const Eigen::Matrix3d& W, const Eigen::Matrix3d& A, const Eigen::Matrix3d& ideal_inv) {
-      const double eta = Energy{}.corner(A, W.inverse(), nullptr);  // 1 where A has W's shape
-      const double distortion = std::isfinite(eta) && eta > 0 ? std::clamp(1 - 1 / eta, 0.0, 1.0) : 1.0;
-      return target_corner_inverse(W, ideal_inv, options.target_towards_ideal * distortion);
-    };
-    for (int c = 0; c < nc; ++c) {
-      if (!needed[c]) continue;
-      const CellType type = mesh.types[c];
-      const CellNodes Xt = cell_nodes(*options.target, c), X = cell_nodes(mesh, c);
-      for (int k = 0; k < node_count(type); ++k)
-        target_inverse[c * slots + k] =
-            target(corner_jacobian(type, Xt, k), corner_jacobian(type, X, k), ideal_inverse(type, k));
-      const auto& samples = interior_sample_weights(type);
-      for (size_t s = 0; s < samples.size(); ++s)
-        target_inverse[c * slots + kSample + s] =
-            target(Xt.transpose() * samples[s], X.transpose() * samples[s], Eigen::Matrix3d::Identity());
-    }
-  }
+  // W^-1 of each corner and interior sample of the cells around free vertices (cell_bounds.h).
+  std::vector<char> around(nc, 0);
+  for (int v : free_vertices)
+    for (int c : cells_of[v]) around[c] = 1;
+  const CornerTargets targets(mesh, options, around);
   // The corner (or sample) matrix A of a cell with nodes X, and its W^-1.
   auto corner_matrix = [&](const Corner& corner, const CellNodes& X, Eigen::Matrix3d& A) -> Eigen::Matrix3d {
-    const CellType type = mesh.types[corner.cell];
-    A = corner.k >= kSample ? (X.transpose() * interior_sample_weights(type)[corner.k - kSample]).eval()
-                            : corner_jacobian(type, X, corner.k);
-    if (options.target) return target_inverse[corner.cell * slots + corner.k];
-    return corner.k >= kSample ? Eigen::Matrix3d::Identity() : ideal_inverse(type, corner.k);
+    A = slot_matrix(mesh.types[corner.cell], X, corner.k);
+    return targets.inverse(mesh, corner.cell, corner.k);
   };
 
-  Energy energy;
+  CornerEnergy energy;
   energy.power = options.corner_power;
-  auto vertex_energy = [&](int v, Eigen::Vector3d* gradient) {
+  // The energy of the corners around v and, optionally, its gradient and Hessian by x_v (corner_energy.h).
+  auto vertex_energy = [&](int v, Eigen::Vector3d* gradient, Eigen::Matrix3d* hessian) {
     double e = 0;
-    if (gradient) gradient->setZero();
+    if (gradient) {
+      gradient->setZero();
+      hessian->setZero();
+    }
     int gathered = -1;  // corners_of[v] lists each cell's corners together: gather its nodes once
     CellNodes X;
     for (const Corner& corner : corners_of[v]) {
@@ -288,22 +156,31 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
         X = cell_nodes(mesh, corner.cell);
         gathered = corner.cell;
       }
-      Eigen::Matrix3d A, dA;
+      Eigen::Matrix3d A;
       const Eigen::Matrix3d Winv = corner_matrix(corner, X, A);
-      e += energy.corner(A, Winv, gradient ? &dA : nullptr);
-      if (!gradient) continue;
-      if (corner.k >= kSample) {  // A = X^T W: node i contributes dA * W.row(i)^T
-        const SampleWeights& W = interior_sample_weights(type)[corner.k - kSample];
-        for (int i = 0; i < node_count(type); ++i)
-          if (mesh.C(corner.cell, i) == v) *gradient += dA * W.row(i).transpose();
+      if (!gradient) {
+        e += energy(A, Winv);
         continue;
       }
-      const auto& n = corner_nodes(type, corner.k);
-      // A = [x_a - x_k, x_b - x_k, x_c - x_k]: column j is +x_(n[j+1]) and -x_(n[0]).
-      for (int j = 0; j < 3; ++j) {
-        if (mesh.C(corner.cell, n[j + 1]) == v) *gradient += dA.col(j);
-        if (mesh.C(corner.cell, n[0]) == v) *gradient -= dA.col(j);
+      // A = sum over the cell's nodes i of x_i c_i^T: v's coefficient c (summed over the nodes that are v).
+      Eigen::Vector3d coefficient = Eigen::Vector3d::Zero();
+      if (corner.k >= kSample) {
+        const SampleWeights& W = interior_sample_weights(type)[corner.k - kSample];
+        for (int i = 0; i < node_count(type); ++i)
+          if (mesh.C(corner.cell, i) == v) coefficient += W.row(i).transpose();
+      } else {  // A = [x_a - x_k, x_b - x_k, x_c - x_k]: column j is +x_(n[j+1]) and -x_(n[0])
+        const auto& n = corner_nodes(type, corner.k);
+        for (int j = 0; j < 3; ++j) {
+          if (mesh.C(corner.cell, n[j + 1]) == v) coefficient(j) += 1;
+          if (mesh.C(corner.cell, n[0]) == v) coefficient(j) -= 1;
+        }
       }
+      Eigen::Vector3d g;
+      Eigen::Matrix3d H;
+      e += energy.node(A, Winv, coefficient, g, H);
+      if (!std::isfinite(e)) break;
+      *gradient += g;
+      *hessian += H;
     }
     return e;
   };
@@ -317,10 +194,10 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
   std::vector<Corner> touched_corners;
   std::vector<int> touched_cells;
   {
-    std::vector<char> corner_seen(static_cast<size_t>(nc) * slots, 0), cell_seen(nc, 0);
+    std::vector<char> corner_seen(static_cast<size_t>(nc) * kCellSlots, 0), cell_seen(nc, 0);
     for (int v : free_vertices)
       for (const Corner& corner : corners_of[v]) {
-        char& seen = corner_seen[static_cast<size_t>(corner.cell) * slots + corner.k];
+        char& seen = corner_seen[static_cast<size_t>(corner.cell) * kCellSlots + corner.k];
         if (!seen) touched_corners.push_back(corner);
         seen = 1;
         if (!cell_seen[corner.cell]) touched_cells.push_back(corner.cell);
@@ -368,11 +245,10 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
   struct Step {
     double moved = 0, edge = 0;
   };
-  std::vector<Eigen::Matrix3d> hessian(nv);  // each vertex's last finite-difference Hessian in space
-  std::vector<char> has_hessian(nv, 0);
   auto step_vertex = [&](int v) -> Step {
     Eigen::Vector3d gx;
-    const double e0 = vertex_energy(v, &gx);
+    Eigen::Matrix3d Hx;
+    const double e0 = vertex_energy(v, &gx, &Hx);
     const Eigen::Vector3d p0 = placement.p.row(v).transpose();
     const Eigen::RowVector3d x0 = mesh.V.row(v);
     Eigen::Vector3d x_at_p0;
@@ -392,22 +268,8 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
             ++edges;
           }
     edge /= std::max(1, edges);
-    // Newton direction: Hessian in space by finite differences of the analytic gradient, pulled back to the
+    // Newton direction: the exact Hessian in space, pulled back to the
     // parameters (J^T H J) and restricted to the movable directions; steepest descent if not positive definite.
-    // The finite differences are refreshed every options.hessian_every_sweeps sweeps and reused in between.
-    Eigen::Matrix3d& Hx = hessian[v];
-    if (!has_hessian[v] || report.sweeps % std::max(1, options.hessian_every_sweeps) == 0) {
-      const double h = 1e-5 * edge;
-      for (int d = 0; d < 3; ++d) {
-        Eigen::Vector3d gd;
-        mesh.V(v, d) += h;
-        vertex_energy(v, &gd);
-        mesh.V(v, d) = x0(d);
-        Hx.col(d) = (gd - gx) / h;
-      }
-      Hx = 0.5 * (Hx + Hx.transpose()).eval();
-      has_hessian[v] = 1;
-    }
     const Eigen::Matrix3d Hp =
         M * J.transpose() * Hx * J * M + (Eigen::Matrix3d::Identity() - M) * (J.transpose() * Hx * J).norm();
     const Eigen::LLT<Eigen::Matrix3d> llt(Hp);
@@ -441,7 +303,7 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
       const Eigen::Vector3d p = p0 + t * step;
       if (!placement.place(v, p, x, unused)) continue;
       mesh.V.row(v) = x.transpose();
-      improved = vertex_energy(v, nullptr) < e0 + 1e-4 * t * g.dot(step) && still_valid();
+      improved = vertex_energy(v, nullptr, nullptr) < e0 + 1e-4 * t * g.dot(step) && still_valid();
       if (!improved) continue;
       placement.p.row(v) = p.transpose();
       for (size_t i = 0; i < cells_of[v].size(); ++i) cell_state[cells_of[v][i]] = trial[i];

@@ -1,0 +1,105 @@
+#include "core/shape/corner_energy.h"
+
+#include <Eigen/Eigenvalues>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "core/mesh/corner_jacobian.h"
+
+namespace facehex {
+namespace {
+
+constexpr double kNearlyFlatTarget = 0.1;  // target corners below this normalized determinant use the ideal corner
+
+// d det(S) / d S
+Eigen::Matrix3d cofactor(const Eigen::Matrix3d& S) {
+  Eigen::Matrix3d cof;
+  cof.col(0) = S.col(1).cross(S.col(2));
+  cof.col(1) = S.col(2).cross(S.col(0));
+  cof.col(2) = S.col(0).cross(S.col(1));
+  return cof;
+}
+
+}  // namespace
+
+double normalized_determinant(const Eigen::Matrix3d& S) {
+  const double s2 = S.squaredNorm() / 3;
+  return S.determinant() / (s2 * std::sqrt(s2));
+}
+
+double CornerEnergy::operator()(const Eigen::Matrix3d& A, const Eigen::Matrix3d& Winv,
+                                Eigen::Matrix3d* gradient) const {
+  const Eigen::Matrix3d S = A * Winv;
+  const double f = S.squaredNorm() / 3;  // s^2
+  if (!(f > 0)) return std::numeric_limits<double>::infinity();
+  const double f32 = f * std::sqrt(f);
+  const double sigma = S.determinant() / f32;
+  const double root = std::sqrt(sigma * sigma + 4 * delta2);
+  const double h = 0.5 * (sigma + root);
+  if (!(h > 0)) return std::numeric_limits<double>::infinity();
+  const double energy = std::pow(h, -2.0 * power / 3.0);  // h^-q, q = 2 power / 3
+  if (gradient) {
+    const double dphi = -(2.0 * power / 3.0) * energy / h * 0.5 * (1 + sigma / root);
+    const Eigen::Matrix3d dsigma = cofactor(S) / f32 - sigma * S / f;
+    *gradient = dphi * dsigma * Winv.transpose();
+  }
+  return energy;
+}
+
+double CornerEnergy::node(const Eigen::Matrix3d& A, const Eigen::Matrix3d& Winv, const Eigen::Vector3d& coefficient,
+                          Eigen::Vector3d& gradient, Eigen::Matrix3d& hessian) const {
+  const Eigen::Matrix3d S = A * Winv;
+  const double f = S.squaredNorm() / 3;
+  if (!(f > 0)) return std::numeric_limits<double>::infinity();
+  const double f32 = f * std::sqrt(f), f52 = f32 * f, f72 = f52 * f;
+  const double d = S.determinant();
+  const double sigma = d / f32;
+  const double root = std::sqrt(sigma * sigma + 4 * delta2);
+  const double h = 0.5 * (sigma + root);
+  if (!(h > 0)) return std::numeric_limits<double>::infinity();
+  const double q = 2.0 * power / 3.0;
+  const double energy = std::pow(h, -q);
+  const double dh = 0.5 * (1 + sigma / root), d2h = 2 * delta2 / (root * root * root);
+  const double dphi = -q * energy / h * dh;
+  const double d2phi = q * (q + 1) * energy / (h * h) * dh * dh - q * energy / h * d2h;
+  // S moves with the node as S + x w^T, w = Winv^T c: |S|^2 is quadratic in x and det S linear (a rank-one update).
+  const Eigen::Vector3d w = Winv.transpose() * coefficient;
+  const Eigen::Vector3d df = (2.0 / 3.0) * S * w;
+  const Eigen::Vector3d dd = cofactor(S) * w;
+  const Eigen::Vector3d dsigma = dd / f32 - 1.5 * d / f52 * df;
+  Eigen::Matrix3d d2sigma =
+      -1.5 / f52 * (dd * df.transpose() + df * dd.transpose()) + 3.75 * d / f72 * df * df.transpose();
+  d2sigma.diagonal().array() -= d / f52 * w.squaredNorm();
+  gradient = dphi * dsigma;
+  hessian = d2phi * dsigma * dsigma.transpose() + dphi * d2sigma;
+  return energy;
+}
+
+const Eigen::Matrix3d& ideal_corner_inverse(CellType type, int k) {
+  static const auto table = [] {
+    std::array<std::array<Eigen::Matrix3d, 8>, 3> t;
+    const CellType types[3] = {CellType::Tet, CellType::Wedge, CellType::Hex};
+    for (int i = 0; i < 3; ++i) {
+      const CellNodes X = ideal_cell(types[i]);
+      for (int c = 0; c < node_count(types[i]); ++c) t[i][c] = corner_jacobian(types[i], X, c).inverse();
+    }
+    return t;
+  }();
+  return table[type == CellType::Tet ? 0 : type == CellType::Wedge ? 1 : 2][k];
+}
+
+// With M = W ideal_inv (the target relative to the ideal corner) and its polar decomposition M = R U, the stretch U
+// is scaled to unit determinant and moved towards the identity; R is dropped.
+Eigen::Matrix3d target_corner_inverse(const Eigen::Matrix3d& W, const Eigen::Matrix3d& ideal_inv,
+                                      double towards_ideal) {
+  const Eigen::Matrix3d M = W * ideal_inv;
+  if (!(normalized_determinant(M) > kNearlyFlatTarget)) return ideal_inv;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(M.transpose() * M);
+  Eigen::Vector3d stretch = eigen.eigenvalues().cwiseMax(0).cwiseSqrt();
+  stretch /= std::cbrt(stretch.prod());
+  const Eigen::Vector3d blended = (1 - towards_ideal) * stretch.array() + towards_ideal;
+  return ideal_inv * eigen.eigenvectors() * blended.cwiseInverse().asDiagonal() * eigen.eigenvectors().transpose();
+}
+
+}  // namespace facehex
