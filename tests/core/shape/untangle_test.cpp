@@ -258,5 +258,93 @@ TEST(ShapeRelaxation, RejectsATargetWithOtherCells) {
   EXPECT_THROW(untangle(m, placement, relax), Error);
 }
 
+// Vertices on a curved surface move through surface parameters (a placement, vertex_placement.h): however far the
+// relaxation slides them, they stay exactly on it.
+TEST(ShapeRelaxation, SlidesBoundaryVerticesAlongAnAnalyticSurface) {
+  const int n = 4;
+  VolumeMesh target = test::hex_box(n, n, n, n, n, n);
+  auto height = [n](double x, double y) { return n + 0.15 * (x - 2) * (x - 2) - 0.1 * (y - 1) * (y - 2); };
+  auto on_top = [n](const Eigen::RowVector3d& x) { return x.z() > n - 0.5; };
+  for (int v = 0; v < target.num_vertices(); ++v)
+    if (on_top(target.V.row(v))) target.V(v, 2) = height(target.V(v, 0), target.V(v, 1));
+  VolumeMesh m = target;
+  std::vector<char> fixed = boundary_fixed(m), top(m.num_vertices(), 0);
+  // The top's vertices, but for its rim, are shifted along the surface; the interior is jittered.
+  test::jitter_interior(m, 0.2, 3);
+  for (int v = 0; v < m.num_vertices(); ++v) {
+    const Eigen::RowVector3d x = m.V.row(v);
+    if (!on_top(x) || x.x() < 0.5 || x.x() > n - 0.5 || x.y() < 0.5 || x.y() > n - 0.5) continue;
+    top[v] = 1;
+    fixed[v] = 0;
+    m.V(v, 0) += 0.3 * std::sin(3.0 * v);
+    m.V(v, 1) += 0.3 * std::cos(5.0 * v);
+    m.V(v, 2) = height(m.V(v, 0), m.V(v, 1));
+  }
+  VertexPlacement placement = spatial_placement(m.V, fixed);
+  for (int v = 0; v < m.num_vertices(); ++v)
+    if (top[v]) placement.movable[v] = Eigen::Vector3d(1, 1, 0).asDiagonal();  // (x, y) move, z follows
+  placement.place = [&](int v, const Eigen::Vector3d& q, Eigen::Vector3d& x, Eigen::Matrix3d& dxdq) {
+    x = q;
+    dxdq.setIdentity();
+    if (top[v]) {
+      x.z() = height(q.x(), q.y());
+      dxdq.row(2) << 0.3 * (q.x() - 2), -0.1 * (2 * q.y() - 3), 0;
+    }
+    return true;
+  };
+  const Eigen::MatrixXd start = m.V;
+  UntangleOptions relax;
+  relax.target = &target;
+  relax.whole_mesh = true;
+  relax.max_sweeps = 100;
+  untangle(m, placement, relax);
+  double slid = 0;
+  for (int v = 0; v < m.num_vertices(); ++v) {
+    if (!top[v]) continue;
+    EXPECT_NEAR(m.V(v, 2), height(m.V(v, 0), m.V(v, 1)), 1e-9) << v;
+    slid = std::max(slid, (m.V.row(v) - start.row(v)).norm());
+  }
+  EXPECT_GT(slid, 0.1);  // they did move: back towards the target's places along the surface
+  EXPECT_LT((m.V - target.V).cwiseAbs().maxCoeff(), 0.05);
+  for (int v = 0; v < m.num_vertices(); ++v)
+    if (fixed[v]) {
+      EXPECT_EQ(m.V.row(v), start.row(v)) << "held vertex " << v << " moved";
+    }
+}
+
+// The steps' guard against poorer cells, tempted: cubes relaxed towards a strongly sheared target (its cells' scaled
+// Jacobian about 0.37) with only the bottom face held would shear all the way; with keep_above no cell at or above
+// it ends below it, and no cell becomes unusable.
+TEST(Untangle, NoStepDropsAGoodCellBelowItsFloorHoweverTheEnergyPulls) {
+  const VolumeMesh cubes = test::hex_box(3, 3, 3, 3, 3, 3);
+  VolumeMesh target = cubes;
+  target.V.col(0) += 2.5 * target.V.col(2);
+  std::vector<char> bottom(cubes.num_vertices());
+  for (int v = 0; v < cubes.num_vertices(); ++v) bottom[v] = cubes.V(v, 2) < 0.5;
+  auto lowest_scaled_jacobian = [](const VolumeMesh& m) {
+    double lowest = 1;
+    for (int c = 0; c < m.num_cells(); ++c) lowest = std::min(lowest, scaled_jacobian(m.types[c], cell_nodes(m, c)));
+    return lowest;
+  };
+  ASSERT_LT(lowest_scaled_jacobian(target), 0.4);
+  for (const double floor : {0.0, 0.6}) {
+    VolumeMesh m = cubes;
+    UntangleOptions relax;
+    relax.target = &target;
+    relax.whole_mesh = true;
+    relax.keep_above = floor;
+    relax.max_sweeps = 100;
+    VertexPlacement placement = spatial_placement(m.V, bottom);
+    untangle(m, placement, relax);
+    EXPECT_TRUE(check_corner_jacobians(m).unusable().empty());
+    if (floor == 0) {
+      EXPECT_LT(lowest_scaled_jacobian(m), 0.45);  // unguarded, the energy takes the cells to the target's shear
+    } else {
+      EXPECT_GE(lowest_scaled_jacobian(m), floor);
+      EXPECT_GT((m.V - cubes.V).cwiseAbs().maxCoeff(), 0.1);  // sheared as far as the floor allows
+    }
+  }
+}
+
 }  // namespace
 }  // namespace facehex
