@@ -73,6 +73,32 @@ VertexPlacement sliding_placement(const TransferRun& run, const PatientMap& pati
   return placement;
 }
 
+// Bounds a spatial placement's moves: each vertex stays within twice the mean length of its edges in `sizes` (the
+// standard: its cells have the sizes the mapped mesh should have, which a fold's stretched cells do not) of where it
+// is in `mesh` now. A side vertex steps along its side's tangent plane and leaves the curved side by about the square
+// of the distance over the side's radius: over a pass's many sweeps, an unbounded drift would carry it out of the
+// patient.
+void bound_reach(VertexPlacement& placement, const VolumeMesh& mesh, const VolumeMesh& sizes) {
+  constexpr double kEdges = 2;
+  const int nv = mesh.num_vertices();
+  Eigen::VectorXd length = Eigen::VectorXd::Zero(nv), edges = Eigen::VectorXd::Zero(nv);
+  for (int c = 0; c < mesh.num_cells(); ++c)
+    for (int k = 0; k < node_count(mesh.types[c]); ++k) {
+      const auto& n = corner_nodes(mesh.types[c], k);
+      const int v = mesh.C(c, n[0]);
+      for (int j = 1; j < 4; ++j) {
+        length(v) += (sizes.V.row(mesh.C(c, n[j])) - sizes.V.row(v)).norm();
+        edges(v) += 1;
+      }
+    }
+  const Eigen::VectorXd reach = kEdges * length.cwiseQuotient(edges.cwiseMax(1));
+  auto start = std::make_shared<const Eigen::MatrixXd>(mesh.V);
+  placement.place = [inner = placement.place, start, reach](int v, const Eigen::Vector3d& q, Eigen::Vector3d& x,
+                                                            Eigen::Matrix3d& dxdq) {
+    return (q - start->row(v).transpose()).norm() <= reach(v) && inner(v, q, x, dxdq);
+  };
+}
+
 // Moves each free vertex to the mean of the other nodes of its cells, ten times: a collapsed cluster of vertices
 // (a fold the local untangling steps cannot open one vertex at a time) is spread out before the last passes.
 void spread_free_vertices(VolumeMesh& mesh, const std::vector<char>& fixed) {
@@ -254,7 +280,8 @@ class Repair {
 
   // Last resort, in up to eight passes: the vertices of the cells still unusable, and of the cells within 1 to 8
   // rings around them, move in space; side vertices only if they belong to an unusable cell, and along their side
-  // (to first order: they may leave it by a little, reported as side_vertex_distance). From the third pass on, the
+  // (to first order: they may leave it by a little, reported as side_vertex_distance); no vertex further in one pass
+  // than twice its edges in the standard (bound_reach). From the third pass on, the
   // free vertices off the sides are first spread out (a collapsed cluster, which one-vertex-at-a-time steps cannot
   // open). From the fifth, all vertices within the rings, side vertices too, move freely (where the standard's side
   // meets a patient side far away, as the inner wall of the standard's nostrils the patient's bone), since a valid
@@ -287,6 +314,7 @@ class Repair {
       }
       VertexPlacement last =
           free_pass ? spatial_placement(run_.patient_hex.V, fixed) : sliding_placement(run_, patient_map_, uvw_, fixed);
+      bound_reach(last, run_.patient_hex, standard_);
       pass_.max_sweeps = 2 * options_.untangle_options.max_sweeps;  // few vertices: cheap, and a long way may remain
       take(pass(last, pass_));
       if (remaining() < unusable_after(best)) {
