@@ -373,11 +373,7 @@ void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::
   if (options.shape_relaxation) {
     shape.target = options.ideal_cell_targets ? nullptr : &standard;
     shape.target_towards_ideal = options.relaxation_towards_ideal;
-    UntangleOptions relax = shape;
-    relax.whole_mesh = true;
-    relax.over_relaxation = 1.5;
-    relax.keep_above = 0.05;
-    relax.corner_power = 1;  // the relaxation evens out all cells; a higher power is for a repair's worst cells
+    UntangleOptions relax = relaxation_options(shape);
     relax.progress = sub_progress(progress, 0.05, 0.8, "shape relaxation");
     run.relaxation = untangle(run.patient_hex, placement, relax);
     run.seconds["shape_relaxation"] = clock.lap();

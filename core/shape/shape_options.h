@@ -34,13 +34,10 @@ struct UntangleOptions {
   int rings = 2;
   int max_sweeps = 60;
   // The line search starts from this multiple of the Newton step, then halves (successive over-relaxation): long,
-  // smooth moves, which Gauss-Seidel sweeps propagate slowly, need fewer sweeps. The transfer's shape relaxation uses
-  // 1.5 (a lower energy within its sweep budget); the repair keeps 1, since longer steps can leave a fold inverted
-  // that plain steps untangle.
+  // smooth moves, which Gauss-Seidel sweeps propagate slowly, need fewer sweeps. A repair keeps 1, since longer steps
+  // can leave a fold inverted that plain steps untangle (relaxation_options sets the relaxation's).
   double over_relaxation = 1;
-  // If > 0, a step never brings a cell whose scaled Jacobian is at or above this below it. The transfer's shape
-  // relaxation uses 0.05: while folds remain, the energy's regularization weakens its barrier against flat corners,
-  // so without this bound a cell far from any fold could come out nearly flat.
+  // If > 0, a step never brings a cell whose scaled Jacobian is at or above this below it (relaxation_options).
   double keep_above = 0;
   // The energy sums eta^corner_power over the corners: above 1 the worst corners weigh more (towards maximizing the
   // minimum quality, which the sum of eta only does loosely). The template's repair uses 8 (template_mesh.h); the
@@ -54,6 +51,13 @@ struct UntangleOptions {
   // (Cancelled is thrown between sweeps).
   ProgressCallback progress;
 };
+
+// The shape relaxation's settings, from a repair's (`repair`: its bounds, targets, threads): every movable vertex
+// moves; steps start at 1.5 times the Newton step (a lower energy within the sweep budget); no good cell drops below
+// a scaled Jacobian of 0.05 (while folds remain, the energy's regularization weakens its barrier against flat corners,
+// so a cell far from any fold could otherwise come out nearly flat); the plain sum of the corners' energies (the
+// relaxation evens out all cells; a higher power is for a repair's worst ones).
+UntangleOptions relaxation_options(UntangleOptions repair);
 
 struct UntangleReport {
   int inverted_before = 0, inverted_after = 0;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <utility>
 
 #include "core/mesh/corner_jacobian.h"
 #include "core/shape/cell_bounds.h"
@@ -331,6 +332,15 @@ class LocalShapeSolver {
 };
 
 }  // namespace
+
+UntangleOptions relaxation_options(UntangleOptions repair) {
+  UntangleOptions relax = std::move(repair);
+  relax.whole_mesh = true;
+  relax.over_relaxation = 1.5;
+  relax.keep_above = 0.05;
+  relax.corner_power = 1;
+  return relax;
+}
 
 UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const UntangleOptions& options) {
   UntangleReport report;
