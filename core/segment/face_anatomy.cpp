@@ -224,12 +224,30 @@ void find_chin(const Mask& bone, const Profile& profile, int lowest, FaceAnatomy
   const double start_z = anatomy.pronasale.z() - 30;
   int k = static_cast<int>(std::floor((start_z - g.origin.z()) / g.spacing.z()));
   k = std::min(k, g.dims[2] - 1);
-  while (k >= lowest && !near_skin(k)) --k;
-  if (k < lowest) not_found("the chin's bone below the nose", "--bottom-cut");
-  std::array<int, 3> last = *near_skin(k);
+  // Runs of levels with bone near the skin, joined over gaps of at most kChinGap; the chin's is the tallest (the
+  // upper teeth and the maxilla's alveolar bone, near the lips, make a shorter run above it when the lips are apart
+  // further than the gap).
   const int gap = static_cast<int>(std::ceil(kChinGap / g.spacing.z()));
-  for (int kk = k - 1; kk >= lowest && last[2] - kk <= gap; --kk)
-    if (const auto b = near_skin(kk)) last = *b;
+  std::optional<std::array<int, 3>> chin;  // the bone at the tallest run's lowest level
+  int chin_height = -1, run_top = -1;
+  std::array<int, 3> run_last{};
+  auto close_run = [&] {
+    if (run_top >= 0 && run_top - run_last[2] >= chin_height) {
+      chin_height = run_top - run_last[2];
+      chin = run_last;
+    }
+    run_top = -1;
+  };
+  for (; k >= lowest; --k) {
+    const auto b = near_skin(k);
+    if (!b) continue;
+    if (run_top >= 0 && run_last[2] - k > gap) close_run();
+    if (run_top < 0) run_top = k;
+    run_last = *b;
+  }
+  close_run();
+  if (!chin) not_found("the chin's bone below the nose", "--bottom-cut");
+  const std::array<int, 3> last = *chin;
   // Flood down and back from the run's lowest bone within the mid-plane band.
   const double y_min = g.point(0, last[1], 0).y() - kChinDepth;
   std::vector<std::uint8_t> seen(g.size(), 0);

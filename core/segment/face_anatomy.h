@@ -25,11 +25,11 @@
 //     brow_unseen: the glabella is the most anterior point from the pronasale up and the top cut is the head's top
 //     (face_cuts.h);
 //  4. the bony chin: going down from 30 mm below the pronasale (below the head levels too), the levels where bone near
-//  the mid-plane (within
-//     kChinHalfWidth) lies at most kChinSoftTissue behind the skin profile; the first such level starts a run that
-//     continues down over gaps of at most kChinGap; menton = the lowest bone voxel connected, within the mid-plane
-//     band and going down and at most kChinDepth backwards, to the bone at the run's lowest level (the lower border of
-//     the mandible curves back, under the skin's horizontal reach);
+//     the mid-plane (within kChinHalfWidth) lies at most kChinSoftTissue behind the skin profile, joined into runs
+//     over gaps of at most kChinGap; the chin's run is the tallest (the upper teeth and alveolar bone make a shorter
+//     one above it when the lips are further apart); menton = the lowest bone voxel connected, within the mid-plane
+//     band and going down and at most kChinDepth backwards, to the bone at that run's lowest level (the lower border
+//     of the mandible curves back, under the skin's horizontal reach);
 //  5. the ears: per side, where the head reaches furthest from the mid-sagittal plane over the levels from 25 mm
 //     below the pronasale to the glabella, in the middle half of the head's depth there; an ear's front is the most
 //     anterior coronal row whose reach on that side is within kEarReachTolerance of the furthest (the tragus lies on

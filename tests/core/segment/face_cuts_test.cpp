@@ -131,6 +131,18 @@ TEST(FaceCuts, TheMentonIsTheLowestBoneConnectedToTheChinNearTheSkin) {
   expect_error([&] { find_face_cuts(no_chin.head, no_chin.bone, FaceCutOptions()); }, "--bottom-cut");
 }
 
+// Lips apart further than kChinGap: the maxilla and upper teeth reach below the chin search's start (30 mm below the
+// pronasale) and make a short run there, 14 mm above the chin's bone; the chin's run is the taller one.
+TEST(FaceCuts, TheChinIsTheTallestRunOfBoneNearTheSkinNotTheTeethAboveIt) {
+  Head h;
+  fill(h.bone, {54, 80, 114}, {66, 86, 158});  // the nasal and frontal bones above the nasal aperture
+  fill(h.bone, {54, 76, 64}, {66, 86, 86});    // the maxilla and upper teeth below it, down to z = 64
+  const FaceCuts cuts = find_face_cuts(h.head, h.bone, FaceCutOptions());
+  ASSERT_TRUE(cuts.anatomy);
+  EXPECT_NEAR(cuts.anatomy->menton.z(), 40, 1e-9);
+  EXPECT_NEAR(cuts.bottom_z, 25, 1e-9);
+}
+
 // A field of view that cuts the face flat can leave the forehead as far forward as the nose (or further, when the cut
 // is slanted): the nose is the most anterior point in front of the nasal aperture, the highest run of levels without
 // bone near the skin.
