@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "core/mesh/corner_jacobian.h"
 
@@ -28,52 +29,60 @@ double normalized_determinant(const Eigen::Matrix3d& S) {
   return S.determinant() / (s2 * std::sqrt(s2));
 }
 
+namespace {
+
+// What both evaluations need of S: s^2 = |S|_F^2 / 3 (f) and its powers, det S, sigma, and the energy phi(sigma) =
+// h(sigma)^-q (q = 2 power / 3) with its first two derivatives by sigma; empty where the energy is infinite.
+struct SigmaTerms {
+  double f, f32, d, sigma, energy, dphi, d2phi;
+};
+
+std::optional<SigmaTerms> sigma_terms(const Eigen::Matrix3d& S, double delta2, double power) {
+  SigmaTerms t;
+  t.f = S.squaredNorm() / 3;
+  if (!(t.f > 0)) return std::nullopt;
+  t.f32 = t.f * std::sqrt(t.f);
+  t.d = S.determinant();
+  t.sigma = t.d / t.f32;
+  const double root = std::sqrt(t.sigma * t.sigma + 4 * delta2);
+  const double h = 0.5 * (t.sigma + root);
+  if (!(h > 0)) return std::nullopt;
+  const double q = 2.0 * power / 3.0;
+  t.energy = std::pow(h, -q);
+  const double dh = 0.5 * (1 + t.sigma / root), d2h = 2 * delta2 / (root * root * root);
+  t.dphi = -q * t.energy / h * dh;
+  t.d2phi = q * (q + 1) * t.energy / (h * h) * dh * dh - q * t.energy / h * d2h;
+  return t;
+}
+
+}  // namespace
+
 double CornerEnergy::operator()(const Eigen::Matrix3d& A, const Eigen::Matrix3d& Winv,
                                 Eigen::Matrix3d* gradient) const {
   const Eigen::Matrix3d S = A * Winv;
-  const double f = S.squaredNorm() / 3;  // s^2
-  if (!(f > 0)) return std::numeric_limits<double>::infinity();
-  const double f32 = f * std::sqrt(f);
-  const double sigma = S.determinant() / f32;
-  const double root = std::sqrt(sigma * sigma + 4 * delta2);
-  const double h = 0.5 * (sigma + root);
-  if (!(h > 0)) return std::numeric_limits<double>::infinity();
-  const double energy = std::pow(h, -2.0 * power / 3.0);  // h^-q, q = 2 power / 3
-  if (gradient) {
-    const double dphi = -(2.0 * power / 3.0) * energy / h * 0.5 * (1 + sigma / root);
-    const Eigen::Matrix3d dsigma = cofactor(S) / f32 - sigma * S / f;
-    *gradient = dphi * dsigma * Winv.transpose();
-  }
-  return energy;
+  const std::optional<SigmaTerms> t = sigma_terms(S, delta2, power);
+  if (!t) return std::numeric_limits<double>::infinity();
+  if (gradient) *gradient = t->dphi * (cofactor(S) / t->f32 - t->sigma * S / t->f) * Winv.transpose();
+  return t->energy;
 }
 
 double CornerEnergy::node(const Eigen::Matrix3d& A, const Eigen::Matrix3d& Winv, const Eigen::Vector3d& coefficient,
                           Eigen::Vector3d& gradient, Eigen::Matrix3d& hessian) const {
   const Eigen::Matrix3d S = A * Winv;
-  const double f = S.squaredNorm() / 3;
-  if (!(f > 0)) return std::numeric_limits<double>::infinity();
-  const double f32 = f * std::sqrt(f), f52 = f32 * f, f72 = f52 * f;
-  const double d = S.determinant();
-  const double sigma = d / f32;
-  const double root = std::sqrt(sigma * sigma + 4 * delta2);
-  const double h = 0.5 * (sigma + root);
-  if (!(h > 0)) return std::numeric_limits<double>::infinity();
-  const double q = 2.0 * power / 3.0;
-  const double energy = std::pow(h, -q);
-  const double dh = 0.5 * (1 + sigma / root), d2h = 2 * delta2 / (root * root * root);
-  const double dphi = -q * energy / h * dh;
-  const double d2phi = q * (q + 1) * energy / (h * h) * dh * dh - q * energy / h * d2h;
+  const std::optional<SigmaTerms> t = sigma_terms(S, delta2, power);
+  if (!t) return std::numeric_limits<double>::infinity();
+  const double f52 = t->f32 * t->f, f72 = f52 * t->f;
   // S moves with the node as S + x w^T, w = Winv^T c: |S|^2 is quadratic in x and det S linear (a rank-one update).
   const Eigen::Vector3d w = Winv.transpose() * coefficient;
   const Eigen::Vector3d df = (2.0 / 3.0) * S * w;
   const Eigen::Vector3d dd = cofactor(S) * w;
-  const Eigen::Vector3d dsigma = dd / f32 - 1.5 * d / f52 * df;
+  const Eigen::Vector3d dsigma = dd / t->f32 - 1.5 * t->d / f52 * df;
   Eigen::Matrix3d d2sigma =
-      -1.5 / f52 * (dd * df.transpose() + df * dd.transpose()) + 3.75 * d / f72 * df * df.transpose();
-  d2sigma.diagonal().array() -= d / f52 * w.squaredNorm();
-  gradient = dphi * dsigma;
-  hessian = d2phi * dsigma * dsigma.transpose() + dphi * d2sigma;
-  return energy;
+      -1.5 / f52 * (dd * df.transpose() + df * dd.transpose()) + 3.75 * t->d / f72 * df * df.transpose();
+  d2sigma.diagonal().array() -= t->d / f52 * w.squaredNorm();
+  gradient = t->dphi * dsigma;
+  hessian = t->d2phi * dsigma * dsigma.transpose() + t->dphi * d2sigma;
+  return t->energy;
 }
 
 const Eigen::Matrix3d& ideal_corner_inverse(CellType type, int k) {
