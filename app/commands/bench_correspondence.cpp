@@ -60,6 +60,8 @@ json to_json(const CorrespondenceCaseResult& r) {
             {"skin_correspondence_used", r.registered_skin ? "registered" : "features"},
             {"registered_failure", r.registered_failure},
             {"seconds", r.seconds}});
+  if (!r.landmark_shift.empty()) j["landmark_shift_mm"] = r.landmark_shift;
+  if (!r.cut_shift.empty()) j["cut_shift_mm"] = r.cut_shift;
   return j;
 }
 
@@ -91,6 +93,36 @@ std::string region_mean(const CorrespondenceError& e, const std::string& name) {
   return "–";
 }
 
+// The CT cases' input shifts (CorrespondenceCaseResult::landmark_shift, cut_shift); empty without CT cases.
+std::string input_shifts_markdown(const std::vector<CorrespondenceCaseResult>& results) {
+  std::ostringstream md;
+  bool any = false;
+  for (const CorrespondenceCaseResult& r : results) {
+    if (r.landmark_shift.empty() && r.cut_shift.empty()) continue;
+    if (!any)
+      md << "\nWhat the segmentation and the landmark finder found on each warped CT against the warp of what they "
+            "found on the original (mm; cuts signed, along the plane's axis):\n\n"
+         << "| case | landmarks mean | worst landmark | top cut | bottom cut | posterior cut | mid-sagittal plane |\n"
+         << "| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+    any = true;
+    double sum = 0, worst = -1;
+    std::string worst_name;
+    for (const auto& [name, shift] : r.landmark_shift) {
+      sum += shift;
+      if (shift > worst) worst = shift, worst_name = name;
+    }
+    const auto cut = [&](const std::string& name) {
+      const auto it = r.cut_shift.find(name);
+      return it == r.cut_shift.end() ? std::string("–") : fmt("%+.1f", it->second);
+    };
+    md << "| " << r.name << " | "
+       << (r.landmark_shift.empty() ? "–" : fmt("%.2f", sum / static_cast<double>(r.landmark_shift.size()))) << " | "
+       << (worst < 0 ? "–" : fmt("%.1f", worst) + " (" + worst_name + ")") << " | " << cut("top") << " | "
+       << cut("bottom") << " | " << cut("posterior") << " | " << cut("mid-sagittal") << " |\n";
+  }
+  return md.str();
+}
+
 std::string markdown(const std::vector<CorrespondenceCaseResult>& results, const std::string& setting) {
   std::ostringstream md;
   md << "Transfer options: " << setting << ".\n\n"
@@ -113,6 +145,7 @@ std::string markdown(const std::vector<CorrespondenceCaseResult>& results, const
        << " | " << r.inverted << " | " << fmt("%.3f", r.shape_mean / r.standard_shape_mean) << " | "
        << fmt("%.1f", r.dihedral_change_mean) << " | " << fmt("%.0f", r.seconds) << " |\n";
   }
+  md << input_shifts_markdown(results);
   return md.str();
 }
 

@@ -20,6 +20,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// A CT warp's ramp (mm) from its flat end slices to the full warp (smooth_warp.h), and the smallest det J it may have
+// on the CT's box.
+constexpr double kCtEndRamp = 30.0;
+constexpr double kMinWarpJacobian = 0.2;
+
 // Rows of V whose side mask has the skin's bit.
 Eigen::MatrixXd skin_points(const VolumeMesh& mesh) {
   const Eigen::VectorXi mask = side_mask_of(mesh);
@@ -96,6 +101,31 @@ FaceLandmarks standard_feature_landmarks(const StandardSetup& standard) {
   return l;
 }
 
+// The CT case's input shifts (CorrespondenceCaseResult::landmark_shift, cut_shift).
+void measure_input_shifts(const PatientSetup& original, const PatientSetup& warped, const SmoothWarp& warp,
+                          CorrespondenceCaseResult& r) {
+  if (original.landmarks && warped.landmarks)
+    for (const auto& [name, point] : original.landmarks->points) {
+      const auto found = warped.landmarks->points.find(name);
+      if (found != warped.landmarks->points.end()) r.landmark_shift[name] = (found->second - warp.apply(point)).norm();
+    }
+  if (!original.segmentation || !warped.segmentation || !original.landmarks) return;
+  const FaceCuts &a = original.segmentation->cuts, &b = warped.segmentation->cuts;
+  const auto& points = original.landmarks->points;
+  const Eigen::Vector3d at = points.count("nasion") ? points.at("nasion") : points.at("pronasale");
+  // Each cut: the axis it is a plane of constant value along, the original's and the warped CT's values.
+  const std::vector<std::tuple<std::string, int, double, double>> cuts = {
+      {"top", 2, a.top_z, b.top_z},
+      {"bottom", 2, a.bottom_z, b.bottom_z},
+      {"posterior", 1, a.posterior_y, b.posterior_y},
+      {"mid-sagittal", 0, a.centre_x, b.centre_x}};
+  for (const auto& [name, axis, original_value, warped_value] : cuts) {
+    Eigen::Vector3d on_cut = at;
+    on_cut(axis) = original_value;
+    r.cut_shift[name] = warped_value - warp.apply(on_cut)(axis);
+  }
+}
+
 }  // namespace
 
 SmoothWarp standard_warp(const std::string& name, const VolumeMesh& standard) {
@@ -167,7 +197,8 @@ std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const Standar
     if (it == models.end()) it = models.emplace(name, standard_model(name, standard.mesh)).first;
     return it->second;
   };
-  std::map<std::string, TransferResult> ct_originals;  // per CT file: its own transfer, the truth's basis
+  // Per CT file: its own segmentation and transfer, the truth's basis.
+  std::map<std::string, std::pair<PatientSetup, TransferResult>> ct_originals;
 
   std::vector<CorrespondenceCaseResult> results;
   for (size_t i = 0; i < plan.size(); ++i) {
@@ -201,16 +232,28 @@ std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const Standar
       } else {
         Stopwatch clock;
         if (!ct_originals.count(p.model)) {
-          const PatientSetup original = load_patient(p.model, options.segment, "", &values, progress);
+          PatientSetup setup = load_patient(p.model, options.segment, "", &values, progress);
           TransferResult t;
-          measure(standard, original, standard.mesh.V, regions, options, progress, &t);
-          ct_originals.emplace(p.model, std::move(t));
+          measure(standard, setup, standard.mesh.V, regions, options, progress, &t);
+          setup.mesh = VolumeMesh();  // only its landmarks and cuts are kept
+          setup.domain = TetDomain();
+          ct_originals.emplace(p.model, std::make_pair(std::move(setup), std::move(t)));
         }
-        const TransferResult& original = ct_originals.at(p.model);
+        const PatientSetup& original_setup = ct_originals.at(p.model).first;
+        const TransferResult& original = ct_originals.at(p.model).second;
         const CtVolume ct = read_ct_volume(p.model);
+        // The scan's first and last slices stay flat: where a field of view ends is no anatomy, and a transfer
+        // cannot follow a warp that bends them (the face region found ends at the scan's end slices).
+        const GridGeometry& grid = ct.intensity.geometry;
         const SmoothWarp warp =
             random_warp(static_cast<std::uint64_t>(p.ct_seed), original.patient_hex.V.colwise().mean().transpose(),
-                        skin_points(original.patient_hex), options.ct_ranges);
+                        skin_points(original.patient_hex), options.ct_ranges)
+                .with_flat_levels(grid.lower(2), grid.upper(2), kCtEndRamp);
+        if (min_jacobian_determinant(warp, Eigen::Vector3d(grid.lower(0), grid.lower(1), grid.lower(2)),
+                                     Eigen::Vector3d(grid.upper(0), grid.upper(1), grid.upper(2)),
+                                     41) <= kMinWarpJacobian)
+          throw Error("benchmark", p.name + ": the warp " + warp_description(warp) +
+                                       " is not safely invertible on the CT's box; choose other --ct-ranges");
         r.warp = warp_description(warp);
         const bool keep = !options.keep_warped_cts.empty();
         const fs::path file =
@@ -229,6 +272,7 @@ std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const Standar
         if (!keep) fs::remove(file);
         const Eigen::MatrixXd truth = warp.apply_rows(original.patient_hex.V);
         r = measure(standard, warped, truth, regions, options, progress);
+        measure_input_shifts(original_setup, warped, warp, r);
         r.seconds = clock.lap();
         r.warp_mean = (truth - original.patient_hex.V).rowwise().norm().mean();
         r.warp = warp_description(warp);

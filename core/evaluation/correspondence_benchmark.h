@@ -4,12 +4,14 @@
 //  - self-map: the standard onto tet models of its own volume (standard_remesh.h); the answer is the identity;
 //  - deformation: the same models under smooth invertible warps (smooth_warp.h) with known seeds, plus a chin moved
 //    forward and a longer nose; the answer is the warped standard;
-//  - CT equivariance: a CT and warped copies of it (warp_volume.h); the answer is the warp applied to the original
-//    CT's result (segmentation noise included).
+//  - CT equivariance: a CT and warped copies of it (warp_volume.h) whose first and last slices stay flat (where a
+//    scan ends is no anatomy); the answer is the warp applied to the original CT's result (segmentation noise
+//    included).
 // Each patient is constrained by the workflow's one policy (patient_from_mesh / load_patient: its sides and the
 // facial features at its landmarks).
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -63,7 +65,12 @@ struct CorrespondenceCaseResult {
   int inverted = 0;                                                  // inverted or degenerate cells of the result
   int folded_parametric_tets = 0;  // the patient's parametric tets inverted or degenerate (param_health.h)
   double shape_mean = 0, standard_shape_mean = 0, dihedral_change_mean = 0;
-  double seconds = 0;              // the transfer (and the CT's segmentation)
+  double seconds = 0;  // the transfer (and the CT's segmentation)
+  // CT cases: how far what the segmentation and the landmark finder found on the warped CT lies from the warp of what
+  // they found on the original, the transfer's inputs. Per landmark found on both: the distance (mm). Per cut
+  // ("top", "bottom", "posterior", "mid-sagittal"): the warped CT's plane minus the warp of the original's, along its
+  // normal (mm, signed), at the original's nasion (the pronasale when there is none) moved onto that plane.
+  std::map<std::string, double> landmark_shift, cut_shift;
   bool registered_skin = false;    // the transfer used the registered skin
   std::string registered_failure;  // why it used the feature lines though the registered skin was asked for
 };

@@ -30,9 +30,48 @@ SmoothWarp::SmoothWarp(const Eigen::Vector3d& centre, const Eigen::Matrix3d& lin
                        double turn_degrees)
     : centre_(centre), linear_(linear), bumps_(std::move(bumps)), turn_degrees_(turn_degrees) {}
 
-Eigen::Vector3d SmoothWarp::apply(const Eigen::Vector3d& x) const {
+SmoothWarp SmoothWarp::with_flat_levels(double low, double high, double ramp) const {
+  SmoothWarp w = *this;
+  w.flat_low_ = low;
+  w.flat_high_ = high;
+  w.flat_ramp_ = ramp;
+  return w;
+}
+
+double SmoothWarp::level_weight(double z, double* derivative) const {
+  *derivative = 0;
+  if (flat_ramp_ <= 0) return 1;
+  if (z <= flat_low_ || z >= flat_high_) return 0;
+  const auto step = [&](double t, double* slope) {  // cubic smoothstep of t = distance / ramp, and d/dz of it
+    if (t >= 1) {
+      *slope = 0;
+      return 1.0;
+    }
+    *slope = 6 * t * (1 - t) / flat_ramp_;
+    return t * t * (3 - 2 * t);
+  };
+  double rise_slope, fall_slope;
+  const double rise = step((z - flat_low_) / flat_ramp_, &rise_slope),
+               fall = step((flat_high_ - z) / flat_ramp_, &fall_slope);
+  *derivative = rise_slope * fall - rise * fall_slope;
+  return rise * fall;
+}
+
+Eigen::Vector3d SmoothWarp::unweighted(const Eigen::Vector3d& x) const {
   Eigen::Vector3d y = centre_ + linear_ * (x - centre_);
   for (const GaussianBump& b : bumps_) y += gaussian(b, x) * b.displacement;
+  return y;
+}
+
+double SmoothWarp::along_z(double z) const { return centre_.z() + linear_(2, 2) * (z - centre_.z()); }
+
+Eigen::Vector3d SmoothWarp::apply(const Eigen::Vector3d& x) const {
+  Eigen::Vector3d y = unweighted(x);
+  if (flat_ramp_ > 0) {
+    double slope;
+    const double along = along_z(x.z());
+    y.z() = along + level_weight(x.z(), &slope) * (y.z() - along);
+  }
   return y;
 }
 
@@ -48,6 +87,14 @@ Eigen::Matrix3d SmoothWarp::jacobian(const Eigen::Vector3d& x) const {
   for (const GaussianBump& b : bumps_) {
     const Eigen::Vector3d grad = -gaussian(b, x) * (x - b.centre) / (b.sigma * b.sigma);
     J += b.displacement * grad.transpose();
+  }
+  if (flat_ramp_ > 0) {
+    // Row z of d/dx [along(z) + w(z) n(x)], with n = (the unweighted W_z) - along.
+    double slope;
+    const double w = level_weight(x.z(), &slope);
+    Eigen::RowVector3d row = w * J.row(2);
+    row(2) += (1 - w) * linear_(2, 2) + slope * (unweighted(x).z() - along_z(x.z()));
+    J.row(2) = row;
   }
   return J;
 }
@@ -135,10 +182,14 @@ std::string warp_description(const SmoothWarp& warp) {
   char text[200];
   std::snprintf(text, sizeof text, "scale (%.3f, %.3f, %.3f), shear up to %.3f, %zu bump%s up to %.1f mm", A(0, 0),
                 A(1, 1), A(2, 2), shear, warp.bumps().size(), warp.bumps().size() == 1 ? "" : "s", bump);
-  if (warp.turn_degrees() == 0) return text;
-  char turn[40];
-  std::snprintf(turn, sizeof turn, ", turned %.1f deg", warp.turn_degrees());
-  return text + std::string(turn);
+  std::string description = text;
+  if (warp.turn_degrees() != 0) {
+    char turn[40];
+    std::snprintf(turn, sizeof turn, ", turned %.1f deg", warp.turn_degrees());
+    description += turn;
+  }
+  if (warp.has_flat_levels()) description += ", end slices flat";
+  return description;
 }
 
 }  // namespace facehex

@@ -9,6 +9,16 @@
 // gradient bound L = sum_i |d_i| exp(-1/2) / s_i is below the smallest singular value of A, W is injective on all of
 // R^3 (|W(x) - W(y)| >= (sigma_min(A) - L) |x - y|) and det J > 0 everywhere: the warps made below keep L at most
 // half of it.
+//
+// A warp of a CT can keep two slice planes flat (with_flat_levels: the scan's first and last slices). Its z component
+// is then
+//
+//   W_z(x) = c_z + A_zz (z - c_z) + w(z) n(x),   n(x) = A_zx (x - c_x) + A_zy (y - c_y) + sum_i d_iz g_i(x),
+//
+// where w is 1 between the levels but for a ramp of `ramp` mm at each, falls to 0 at both (a product of two cubic
+// smoothsteps) and is 0 beyond them: W maps each plane z = const outside the ramps' interior to a plane z = const, so
+// a volume cut at those levels stays a volume cut in slice planes. The x and y components are unchanged. The bound L
+// does not cover the term w'(z) n(x) of the Jacobian: min_jacobian_determinant checks such a warp.
 #include <Eigen/Core>
 #include <cstdint>
 #include <string>
@@ -30,6 +40,9 @@ class SmoothWarp {
   SmoothWarp(const Eigen::Vector3d& centre, const Eigen::Matrix3d& linear, std::vector<GaussianBump> bumps,
              double turn_degrees = 0);
 
+  // This warp with the slice planes z = low and z = high kept flat (the header), low < high, ramp > 0 (mm).
+  SmoothWarp with_flat_levels(double low, double high, double ramp) const;
+
   Eigen::Vector3d apply(const Eigen::Vector3d& x) const;
   Eigen::MatrixXd apply_rows(const Eigen::MatrixXd& V) const;  // each row of #V x 3
   Eigen::Matrix3d jacobian(const Eigen::Vector3d& x) const;
@@ -43,12 +56,19 @@ class SmoothWarp {
   const Eigen::Matrix3d& linear() const { return linear_; }
   const std::vector<GaussianBump>& bumps() const { return bumps_; }
   double turn_degrees() const { return turn_degrees_; }
+  bool has_flat_levels() const { return flat_ramp_ > 0; }
 
  private:
+  // The weight w(z) of the header and its derivative; 1 and 0 without flat levels.
+  double level_weight(double z, double* derivative) const;
+  Eigen::Vector3d unweighted(const Eigen::Vector3d& x) const;  // c + A (x - c) + sum_i d_i g_i(x)
+  double along_z(double z) const;                              // c_z + A_zz (z - c_z)
+
   Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();
   Eigen::Matrix3d linear_ = Eigen::Matrix3d::Identity();
   std::vector<GaussianBump> bumps_;
   double turn_degrees_ = 0;
+  double flat_low_ = 0, flat_high_ = 0, flat_ramp_ = 0;  // ramp 0: no flat levels
 };
 
 // The ranges a seeded random warp draws from.
@@ -76,7 +96,8 @@ SmoothWarp local_warp(const Eigen::Vector3d& at, const Eigen::Vector3d& displace
 double min_jacobian_determinant(const SmoothWarp& warp, const Eigen::Vector3d& lower, const Eigen::Vector3d& upper,
                                 int steps);
 
-// One line for reports: "scale (1.05, 0.93, 1.10), shear up to 0.04, 4 bumps up to 7.2 mm[, turned 6.2 deg]".
+// One line for reports: "scale (1.05, 0.93, 1.10), shear up to 0.04, 4 bumps up to 7.2 mm[, turned 6.2 deg][, end
+// slices flat]".
 std::string warp_description(const SmoothWarp& warp);
 
 }  // namespace facehex

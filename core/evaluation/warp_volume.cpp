@@ -2,15 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace facehex {
 
 Field warp_volume(const Field& field, const SmoothWarp& warp) {
   const GridGeometry& g = field.geometry;
-  // The image of the original box's boundary bounds the image of the box (W is a homeomorphism).
+  // The image of the original box's boundary bounds the image of the box (W is a homeomorphism); across, its faces
+  // sampled every 4 voxels with a margin of 2.
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  // The lowest level of the image of the top slice and the highest of the bottom slice's.
-  double top_lowest = std::numeric_limits<double>::infinity(), bottom_highest = -top_lowest;
   for (int a = 0; a < 3; ++a)
     for (const int side : {0, g.dims[a] - 1}) {
       const int b = (a + 1) % 3, c = (a + 2) % 3;
@@ -23,20 +23,26 @@ Field warp_volume(const Field& field, const SmoothWarp& warp) {
           const Eigen::Vector3d y = warp.apply(g.point(ijk(0), ijk(1), ijk(2)));
           lo = lo.cwiseMin(y);
           hi = hi.cwiseMax(y);
-          if (a == 2 && side == 0) bottom_highest = std::max(bottom_highest, y.z());
-          if (a == 2 && side != 0) top_lowest = std::min(top_lowest, y.z());
         }
     }
-  lo -= 2 * g.spacing;  // the faces were sampled every 4 voxels
+  lo -= 2 * g.spacing;
   hi += 2 * g.spacing;
-  // A scanner's volume ends in slice planes; W bends the original's: the slices are cropped to those the original
-  // covers across their whole area.
-  lo.z() = bottom_highest + 2 * g.spacing.z();
-  hi.z() = top_lowest - 2 * g.spacing.z();
+  // A scanner's volume ends in slice planes; W may bend the original's: the slices are cropped to those the original
+  // covers across their whole area, between the highest level of the bottom slice's image and the lowest of the top
+  // slice's (every voxel of both: a warp that keeps them flat keeps all of the original's levels).
+  double top_lowest = std::numeric_limits<double>::infinity(), bottom_highest = -top_lowest;
+  for (int j = 0; j < g.dims[1]; ++j)
+    for (int i = 0; i < g.dims[0]; ++i) {
+      bottom_highest = std::max(bottom_highest, warp.apply(g.point(i, j, 0)).z());
+      top_lowest = std::min(top_lowest, warp.apply(g.point(i, j, g.dims[2] - 1)).z());
+    }
+  lo.z() = bottom_highest;
+  hi.z() = top_lowest;
   GridGeometry target;
   target.spacing = g.spacing;
   target.origin = lo;
-  for (int a = 0; a < 3; ++a) target.dims[a] = static_cast<int>(std::ceil((hi(a) - lo(a)) / g.spacing(a))) + 1;
+  for (int a = 0; a < 2; ++a) target.dims[a] = static_cast<int>(std::ceil((hi(a) - lo(a)) / g.spacing(a))) + 1;
+  target.dims[2] = static_cast<int>(std::floor((hi.z() - lo.z()) / g.spacing.z() + 1e-9)) + 1;  // not beyond the top
   const float air = *std::min_element(field.data.begin(), field.data.end());
   Field out(target, air);
 #pragma omp parallel for schedule(dynamic)

@@ -157,5 +157,76 @@ TEST(WarpVolume, TheWarpedVolumeHoldsAtWOfXWhatTheOriginalHoldsAtX) {
   EXPECT_GT(outside, 0);
 }
 
+// A CT warp with flat end slices: the planes z = low and z = high (and all beyond) map onto planes of constant z,
+// the middle moves as the warp without them, the Jacobian is still the derivative of apply() (in the ramps too) and the
+// warp is invertible on a head-sized box for the benchmark's moderate and strong ranges.
+TEST(SmoothWarp, FlatLevelsKeepTheEndSlicesFlatAndTheMiddleAsItWas) {
+  const RandomWarpRanges moderate{0.08, 0.04, 4, 4.0, 25.0, 40.0}, strong{0.10, 0.04, 6, 10.0, 25.0, 40.0, 10.0};
+  for (const RandomWarpRanges& ranges : {moderate, strong})
+    for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+      const SmoothWarp plain = random_warp(seed, Eigen::Vector3d(5, -3, 2), anchors(), ranges),
+                       w = plain.with_flat_levels(-70, 70, 30);
+      EXPECT_NE(warp_description(w).find("end slices flat"), std::string::npos);
+      for (const double z : {-70.0, -80.0, 70.0, 75.0}) {
+        const double level = w.apply(Eigen::Vector3d(0, 0, z)).z();
+        for (int i = -100; i <= 100; i += 25)
+          for (int j = -100; j <= 100; j += 25) EXPECT_NEAR(w.apply(Eigen::Vector3d(i, j, z)).z(), level, 1e-9);
+      }
+      bool bends = false;  // without flat levels the end slice is not flat
+      for (int i = -100; i <= 100; i += 25)
+        bends = bends || std::abs(plain.apply(Eigen::Vector3d(i, 50, 70)).z() -
+                                  plain.apply(Eigen::Vector3d(0, 0, 70)).z()) > 0.5;
+      EXPECT_TRUE(bends) << seed;
+      for (int i = -60; i <= 60; i += 30)
+        for (int k = -30; k <= 30; k += 15) {
+          const Eigen::Vector3d x(i, 20, k);
+          EXPECT_LT((w.apply(x) - plain.apply(x)).norm(), 1e-12) << "beyond the ramps the warp is unchanged";
+        }
+      for (const double z : {-65.0, -52.0, -41.0, 43.0, 58.0, 69.0}) {  // in the ramps
+        const Eigen::Vector3d x(17, -23, z);
+        Eigen::Matrix3d fd;
+        const double h = 1e-5;
+        for (int a = 0; a < 3; ++a) {
+          const Eigen::Vector3d e = h * Eigen::Vector3d::Unit(a);
+          fd.col(a) = (w.apply(x + e) - w.apply(x - e)) / (2 * h);
+        }
+        EXPECT_LT((fd - w.jacobian(x)).norm(), 1e-6) << "seed " << seed << " z " << z;
+        EXPECT_LT((w.inverse(w.apply(x)) - x).norm(), 1e-8);
+      }
+      EXPECT_GT(min_jacobian_determinant(w, Eigen::Vector3d(-120, -120, -90), Eigen::Vector3d(120, 120, 90), 31), 0.2)
+          << "seed " << seed;
+    }
+}
+
+// A volume warped with flat end slices keeps every slice level the original has, its ends at the images of the
+// original's end slices.
+TEST(WarpVolume, FlatEndSlicesKeepAllOfTheOriginalsLevels) {
+  GridGeometry g;
+  g.dims = {41, 41, 31};
+  g.spacing = Eigen::Vector3d(2, 2, 3);
+  g.origin = Eigen::Vector3d(-40, -40, -45);
+  Field f(g, 1.0f);
+  const SmoothWarp w =
+      random_warp(2, Eigen::Vector3d::Zero(), anchors() * 0.5, RandomWarpRanges{0.08, 0.04, 4, 4.0, 25.0, 40.0})
+          .with_flat_levels(g.lower(2), g.upper(2), 20);
+  const Field warped = warp_volume(f, w);
+  const double bottom = w.apply(Eigen::Vector3d(0, 0, g.lower(2))).z(),
+               top = w.apply(Eigen::Vector3d(0, 0, g.upper(2))).z();
+  EXPECT_NEAR(warped.geometry.lower(2), bottom, 1e-9);
+  EXPECT_LE(warped.geometry.upper(2), top + 1e-9);
+  EXPECT_GT(warped.geometry.upper(2), top - g.spacing.z());
+  // The end slices hold the original's tissue wherever their columns lie inside the original's box.
+  int inside = 0;
+  for (const int k : {0, warped.geometry.dims[2] - 1})
+    for (int j = 0; j < warped.geometry.dims[1]; j += 2)
+      for (int i = 0; i < warped.geometry.dims[0]; i += 2) {
+        const Eigen::Vector3d x = w.inverse(warped.geometry.point(i, j, k));
+        if (std::abs(x.x()) > 39 || std::abs(x.y()) > 39) continue;
+        ++inside;
+        EXPECT_EQ(warped(i, j, k), 1.0f);
+      }
+  EXPECT_GT(inside, 200);
+}
+
 }  // namespace
 }  // namespace facehex
