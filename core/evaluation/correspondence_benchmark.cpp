@@ -249,11 +249,17 @@ std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const Standar
             random_warp(static_cast<std::uint64_t>(p.ct_seed), original.patient_hex.V.colwise().mean().transpose(),
                         skin_points(original.patient_hex), options.ct_ranges)
                 .with_flat_levels(grid.lower(2), grid.upper(2), kCtEndRamp);
-        if (min_jacobian_determinant(warp, Eigen::Vector3d(grid.lower(0), grid.lower(1), grid.lower(2)),
-                                     Eigen::Vector3d(grid.upper(0), grid.upper(1), grid.upper(2)),
-                                     41) <= kMinWarpJacobian)
+        // Checked where the head is (the original's face region and the ramp's length around it, within the scan): a
+        // wide scan's far corners, all air, may fold in the ramps, where the slices' tilt grows with the distance.
+        const Eigen::Vector3d scan_lower(grid.lower(0), grid.lower(1), grid.lower(2)),
+            scan_upper(grid.upper(0), grid.upper(1), grid.upper(2));
+        const Eigen::Vector3d head_lower =
+            (original.patient_hex.V.colwise().minCoeff().transpose().array() - kCtEndRamp).max(scan_lower.array());
+        const Eigen::Vector3d head_upper =
+            (original.patient_hex.V.colwise().maxCoeff().transpose().array() + kCtEndRamp).min(scan_upper.array());
+        if (min_jacobian_determinant(warp, head_lower, head_upper, 41) <= kMinWarpJacobian)
           throw Error("benchmark", p.name + ": the warp " + warp_description(warp) +
-                                       " is not safely invertible on the CT's box; choose other --ct-ranges");
+                                       " is not safely invertible about the head; choose other --ct-ranges");
         r.warp = warp_description(warp);
         const bool keep = !options.keep_warped_cts.empty();
         const fs::path file =
