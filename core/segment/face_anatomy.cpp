@@ -23,6 +23,7 @@ constexpr double kApertureHeight = 6.0;        // mm: a run of levels this tall 
 constexpr double kChinSoftTissue = 25.0;       // mm: bone this close behind the skin is near it (chin, not nose)
 constexpr double kChinGap = 8.0;               // mm of levels without such bone within the chin's run (lips apart)
 constexpr double kChinDepth = 30.0;            // mm the mandible's lower border reaches back from the chin's front
+constexpr double kMaxRoll = 20.0;              // degrees a head tilts towards a shoulder in a scanner, at most
 constexpr double kEarReachTolerance = 3.0;     // mm: rows whose side reaches this close to the widest are the ear
 constexpr double kBrowReach[2] = {3.0, 30.0};  // mm above the nasion where the brow is looked for
 // A head, an infant's included, is wider and deeper than this, and its nose tip stands at least this far in front of
@@ -345,6 +346,15 @@ FaceAnatomy find_face_anatomy(const Mask& head, const Mask& bone) {
     if (const auto s = slice_symmetry(sections, k, x0)) slices.push_back(*s);
   if (slices.size() < 3) not_found("the face's mirror symmetry", "--mid-plane");
   fit_plane(slices, anatomy);
+  if (std::abs(anatomy.roll_degrees) > kMaxRoll) {
+    std::ostringstream why;
+    why.precision(1);
+    why << std::fixed << "the face's mirror symmetry gives a mid-sagittal plane leaning "
+        << std::abs(anatomy.roll_degrees) << " degrees, beyond the " << kMaxRoll
+        << " a head tilts in a scanner (a head turned far about the vertical axis misleads it)";
+    throw Error("segment",
+                why.str() + "; place the cuts with --top-cut, --bottom-cut, --posterior-cut and --mid-plane");
+  }
 
   const Profile profile(head, anatomy, bottom, top);
   const double z_lo = g.point(0, 0, lowest).z(), z_hi = g.point(0, 0, top).z(), tie = 0.5 * g.spacing.y();

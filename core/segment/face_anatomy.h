@@ -12,7 +12,9 @@
 //     from the plane); c minimises the mean squared difference within kSymmetryReach of the plane (among equals, the
 //     nearest to the head's mean x). A straight line c(z) fitted through the levels' c (least squares, then again
 //     without the levels more than 3 mm off it) is the plane's trace: its slope is the head's roll (tilt towards a
-//     shoulder). A turned head keeps its plane through the nose, at the depth of the face's features;
+//     shoulder), refused beyond kMaxRoll (20 degrees: no head lies so in a scanner, and a fit that leans more has
+//     read the symmetry wrongly, as on a head turned far about the vertical axis). A turned head keeps its plane
+//     through the nose, at the depth of the face's features;
 //  3. the skin profile: per head level, the most anterior head voxel within kProfileBand of c(z);
 //     pronasale = the most anterior profile point at the levels of the nasal aperture (the highest run, at least
 //     kApertureHeight tall, of levels where the bone within the profile band lies more than kChinSoftTissue behind the

@@ -171,6 +171,20 @@ TEST(FaceCuts, ATiltedHeadKeepsItsMidPlaneAndLandmarks) {
   EXPECT_NEAR(a.pronasale.y(), prn.y(), 2.0);
 }
 
+// Tilted 25 degrees, beyond any head in a scanner (a symmetry fit that leans so far has read the face wrongly): an
+// error naming the angle and the options that place the cuts by hand, not a model cut along a wrong plane.
+TEST(FaceCuts, APlaneLeaningBeyondTwentyDegreesIsRefused) {
+  const Head h(rotation(25, Eigen::Vector3d::UnitY()), false);
+  try {
+    find_face_cuts(h.head, h.bone, FaceCutOptions());
+    ADD_FAILURE() << "a 25-degree roll was accepted";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("mid-sagittal plane leaning 2"), std::string::npos) << what;
+    EXPECT_NE(what.find("--mid-plane"), std::string::npos) << what;
+  }
+}
+
 TEST(FaceCuts, ATurnedHeadKeepsItsMidPlaneNearTheNose) {
   for (const double degrees : {-15.0, 10.0, 15.0}) {
     const Eigen::Matrix3d pose = rotation(degrees, Eigen::Vector3d::UnitZ());
