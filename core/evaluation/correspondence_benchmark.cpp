@@ -112,7 +112,10 @@ void measure_input_shifts(const PatientSetup& original, const PatientSetup& warp
   if (!original.segmentation || !warped.segmentation || !original.landmarks) return;
   const FaceCuts &a = original.segmentation->cuts, &b = warped.segmentation->cuts;
   const auto& points = original.landmarks->points;
-  const Eigen::Vector3d at = points.count("nasion") ? points.at("nasion") : points.at("pronasale");
+  auto where = points.find("nasion");
+  if (where == points.end()) where = points.find("pronasale");
+  if (where == points.end()) return;
+  const Eigen::Vector3d at = where->second;
   // Each cut: the axis it is a plane of constant value along, the original's and the warped CT's values.
   const std::vector<std::tuple<std::string, int, double, double>> cuts = {
       {"top", 2, a.top_z, b.top_z},

@@ -47,10 +47,11 @@ std::string point_text(const Eigen::Vector3d& p) {
                              "cuts with " + options);
 }
 
+// The options that place every cut by hand, so that no anatomy is looked for.
+const char* const kAllCutOptions = "--top-cut, --bottom-cut, --posterior-cut and --mid-plane";
+
 [[noreturn]] void not_a_head(const std::string& why) {
-  throw Error("segment", "not a plausible head: " + why +
-                             "; if it is one, place the cuts with --top-cut, --bottom-cut, --posterior-cut and "
-                             "--mid-plane");
+  throw Error("segment", "not a plausible head: " + why + "; if it is one, place the cuts with " + kAllCutOptions);
 }
 
 std::string mm(double x) {
@@ -352,8 +353,7 @@ FaceAnatomy find_face_anatomy(const Mask& head, const Mask& bone) {
     why << std::fixed << "the face's mirror symmetry gives a mid-sagittal plane leaning "
         << std::abs(anatomy.roll_degrees) << " degrees, beyond the " << kMaxRoll
         << " a head tilts in a scanner (a head turned far about the vertical axis misleads it)";
-    throw Error("segment",
-                why.str() + "; place the cuts with --top-cut, --bottom-cut, --posterior-cut and --mid-plane");
+    throw Error("segment", why.str() + "; place the cuts with " + kAllCutOptions);
   }
 
   const Profile profile(head, anatomy, bottom, top);

@@ -23,6 +23,17 @@ Eigen::MatrixXd anchors() {
   return A;
 }
 
+// dW/dx at x by central differences.
+Eigen::Matrix3d central_difference_jacobian(const SmoothWarp& w, const Eigen::Vector3d& x) {
+  const double h = 1e-5;
+  Eigen::Matrix3d fd;
+  for (int a = 0; a < 3; ++a) {
+    const Eigen::Vector3d e = h * Eigen::Vector3d::Unit(a);
+    fd.col(a) = (w.apply(x + e) - w.apply(x - e)) / (2 * h);
+  }
+  return fd;
+}
+
 TEST(SmoothWarp, RandomWarpsArePositivelyOrientedEverywhereOnAGrid) {
   for (std::uint64_t seed = 1; seed <= 8; ++seed) {
     const SmoothWarp w = random_warp(seed, Eigen::Vector3d(5, -3, 2), anchors());
@@ -95,13 +106,7 @@ TEST(SmoothWarp, InverseUndoesApplyAndTheJacobianIsItsDerivative) {
   for (Eigen::Index i = 0; i < V.rows(); ++i) {
     const Eigen::Vector3d x = V.row(i).transpose();
     EXPECT_LT((w.inverse(w.apply(x)) - x).norm(), 1e-8);
-    Eigen::Matrix3d fd;
-    const double h = 1e-5;
-    for (int a = 0; a < 3; ++a) {
-      const Eigen::Vector3d e = h * Eigen::Vector3d::Unit(a);
-      fd.col(a) = (w.apply(x + e) - w.apply(x - e)) / (2 * h);
-    }
-    EXPECT_LT((fd - w.jacobian(x)).norm(), 1e-7);
+    EXPECT_LT((central_difference_jacobian(w, x) - w.jacobian(x)).norm(), 1e-7);
   }
 }
 
@@ -184,13 +189,7 @@ TEST(SmoothWarp, FlatLevelsKeepTheEndSlicesFlatAndTheMiddleAsItWas) {
         }
       for (const double z : {-65.0, -52.0, -41.0, 43.0, 58.0, 69.0}) {  // in the ramps
         const Eigen::Vector3d x(17, -23, z);
-        Eigen::Matrix3d fd;
-        const double h = 1e-5;
-        for (int a = 0; a < 3; ++a) {
-          const Eigen::Vector3d e = h * Eigen::Vector3d::Unit(a);
-          fd.col(a) = (w.apply(x + e) - w.apply(x - e)) / (2 * h);
-        }
-        EXPECT_LT((fd - w.jacobian(x)).norm(), 1e-6) << "seed " << seed << " z " << z;
+        EXPECT_LT((central_difference_jacobian(w, x) - w.jacobian(x)).norm(), 1e-6) << "seed " << seed << " z " << z;
         EXPECT_LT((w.inverse(w.apply(x)) - x).norm(), 1e-8);
       }
       EXPECT_GT(min_jacobian_determinant(w, Eigen::Vector3d(-120, -120, -90), Eigen::Vector3d(120, 120, 90), 31), 0.2)
