@@ -253,6 +253,7 @@ class Repair {
     set_state(again);
     run_.untangle.free_vertices = std::max(run_.untangle.free_vertices, again.free_vertices);
     run_.untangle.sweeps += again.sweeps;
+    run_.untangle.stalled_passes += again.stalled_passes;
   }
 
   // While unusable cells remain: widen the region that may move (a fold may need room beyond two rings; not after the

@@ -66,6 +66,9 @@ struct UntangleReport {
   double min_scaled_jacobian_before = 0, min_scaled_jacobian_after = 0;
   int free_vertices = 0;  // vertices allowed to move
   int sweeps = 0;
+  // Passes stopped because their unusable cells had not become fewer for a while (untangle.h): what the report's
+  // counts after them say is left is what those passes could not untangle.
+  int stalled_passes = 0;
   int released_feature_vertices = 0;  // feature pins released to untangle the last folds (transfer_pipeline)
   int released_side_vertices = 0;     // vertices moved in space, off exact sides, to untangle what remained
 };

@@ -30,6 +30,9 @@ constexpr double kLongestStep = 0.5;     // a step moves its vertex at most this
 constexpr double kMovedBy = 1e-4;        // a vertex that moved more than this share of its edge wakes its neighbours
 constexpr double kSettledBy = 1e-3;      // a sweep whose largest move is below this share of the edges has settled
 constexpr int kFairSweeps = 30;          // a smoothing with nothing unusable left stops after this many sweeps
+// A repair (not a whole-mesh relaxation, whose sweeps improve every cell's shape whatever the folds do) stops when
+// its unusable cells have not become fewer for this many sweeps: what it could untangle from there, it has.
+constexpr int kStalledSweeps = 20;
 
 struct CellState {
   bool unusable = false;
@@ -57,16 +60,19 @@ class LocalShapeSolver {
   }
 
   int free_vertex_count() const { return static_cast<int>(free_vertices_.size()); }
+  // The last run() stopped because its unusable cells stopped becoming fewer.
+  bool stalled() const { return stalled_; }
 
-  // Sweeps until nothing is unusable and the smoothing has settled, or max_sweeps; returns the sweeps made.
+  // Sweeps until nothing is unusable and the smoothing has settled, the repair has stalled (stalled()), or max_sweeps;
+  // returns the sweeps made.
   int run() {
     const int nv = mesh_.num_vertices();
     active_.assign(nv, 0);
     for (int v : free_vertices_) active_[v] = 1;
     std::vector<char> next_active(nv, 0);
     std::vector<Step> steps(nv);
-    int sweeps = 0;
-    for (; sweeps < options_.max_sweeps; ++sweeps) {
+    int sweeps = 0, fewest_unusable = std::numeric_limits<int>::max(), since_fewer = 0;
+    while (sweeps < options_.max_sweeps) {
       update_delta();
       int visited = 0;
       // The even slabs step in parallel, then the odd ones (slab_schedule.h), each slab in its own Gauss-Seidel order.
@@ -94,8 +100,13 @@ class LocalShapeSolver {
       active_.swap(next_active);
       int unusable_left = 0;
       for (int c : touched_cells_) unusable_left += cell_state_[c].unusable;
-      report_progress(options_.progress, "untangling", (sweeps + 1.0) / options_.max_sweeps);
-      if (unusable_left == 0 && (visited == 0 || moved < kSettledBy * size || sweeps >= kFairSweeps)) break;
+      ++sweeps;
+      report_progress(options_.progress, "untangling", static_cast<double>(sweeps) / options_.max_sweeps);
+      if (unusable_left == 0 && (visited == 0 || moved < kSettledBy * size || sweeps > kFairSweeps)) break;
+      since_fewer = unusable_left < fewest_unusable ? 0 : since_fewer + 1;
+      fewest_unusable = std::min(fewest_unusable, unusable_left);
+      stalled_ = unusable_left > 0 && !options_.whole_mesh && since_fewer >= kStalledSweeps;
+      if (stalled_) break;
     }
     return sweeps;
   }
@@ -319,6 +330,7 @@ class LocalShapeSolver {
   const UntangleOptions& options_;
   const CellBounds& bounds_;
   int threads_ = 1;
+  bool stalled_ = false;
   CornerEnergy energy_;  // delta2 follows the worst corner (update_delta)
   std::vector<int> free_vertices_;
   std::vector<std::vector<int>> cells_of_, slabs_;
@@ -362,6 +374,7 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
   LocalShapeSolver solver(mesh, placement, options, bounds);
   report.free_vertices = solver.free_vertex_count();
   report.sweeps = solver.run();
+  report.stalled_passes = solver.stalled();
   tally(report.inverted_after, report.degenerate_after, report.bad_after, report.min_scaled_jacobian_after);
   return report;
 }

@@ -63,7 +63,8 @@ json untangle_json(const UntangleReport& u) {
           {"free_vertices", u.free_vertices},
           {"released_feature_vertices", u.released_feature_vertices},
           {"released_side_vertices", u.released_side_vertices},
-          {"sweeps", u.sweeps}};
+          {"sweeps", u.sweeps},
+          {"stalled_passes", u.stalled_passes}};
 }
 
 // The relaxation's report and how far the relaxation and the repair moved the vertices from where the mapping put
@@ -241,7 +242,11 @@ std::string run_summary_text(const TransferRun& run, const MeshQualityReport& st
   }
   os << "repair: " << run.untangle.inverted_before << " inverted, " << run.untangle.degenerate_before << " flat, "
      << run.untangle.bad_before << " below their scaled-Jacobian bound before; after: " << run.untangle.inverted_after
-     << " inverted, " << run.untangle.degenerate_after << " flat, " << run.untangle.bad_after << "\n"
+     << " inverted, " << run.untangle.degenerate_after << " flat, " << run.untangle.bad_after
+     << (run.untangle.stalled_passes > 0 ? " (" + std::to_string(run.untangle.stalled_passes) +
+                                               " passes stopped when their folds stopped decreasing)"
+                                         : std::string())
+     << "\n"
      << "standard hex mesh:\n"
      << quality_text(standard_quality) << "patient hex mesh:\n"
      << quality_text(patient_quality) << "  side vertices off the patient surface: p95 " << fmt("%.2g", distance.p95)
