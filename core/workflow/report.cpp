@@ -243,9 +243,10 @@ std::string run_summary_text(const TransferRun& run, const MeshQualityReport& st
   os << "repair: " << run.untangle.inverted_before << " inverted, " << run.untangle.degenerate_before << " flat, "
      << run.untangle.bad_before << " below their scaled-Jacobian bound before; after: " << run.untangle.inverted_after
      << " inverted, " << run.untangle.degenerate_after << " flat, " << run.untangle.bad_after
-     << (run.untangle.stalled_passes > 0 ? " (" + std::to_string(run.untangle.stalled_passes) +
-                                               " passes stopped when their folds stopped decreasing)"
-                                         : std::string())
+     << (run.untangle.stalled_passes == 1  ? " (1 pass stopped when its folds stopped decreasing)"
+         : run.untangle.stalled_passes > 1 ? " (" + std::to_string(run.untangle.stalled_passes) +
+                                                 " passes stopped when their folds stopped decreasing)"
+                                           : std::string())
      << "\n"
      << "standard hex mesh:\n"
      << quality_text(standard_quality) << "patient hex mesh:\n"
