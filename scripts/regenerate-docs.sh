@@ -5,10 +5,13 @@
 # with the date, the commit, the core count and the CPU model. Everything outside the markers is left as it is.
 #
 # Usage, from anywhere in the repository, after a Release build of facehex:
-#   scripts/regenerate-docs.sh [--only benchmarks|results|correspondence|registered] [--keep DIR] [--from DIR]
-#     --only benchmarks|results|correspondence|registered  run and write one part only (correspondence: the
-#                                correspondence section of docs/results.md, from `facehex bench --correspondence`;
-#                                registered: its tables of the registered skin, --skin-correspondence registered)
+#   scripts/regenerate-docs.sh [--only benchmarks|results|correspondence|registered|landmarks] [--keep DIR]
+#                              [--from DIR]
+#     --only benchmarks|results|correspondence|registered|landmarks  run and write one part only (correspondence:
+#                                the correspondence section of docs/results.md, from `facehex bench
+#                                --correspondence`; registered: its tables of the registered skin,
+#                                --skin-correspondence registered; landmarks: the automatic landmarks against the
+#                                hand-placed ones in docs/benchmarks.md, from `facehex segment` and `constraints`)
 #     --keep DIR                 keep the raw JSON, logs and plots in DIR (default: a temporary folder, removed)
 #     --from DIR                 run nothing: write the pages from the JSON a previous --keep DIR left
 #   FACEHEX=path/to/facehex overrides build/bin/facehex.
@@ -31,12 +34,12 @@ while [ $# -gt 0 ]; do
     --only) only=${2:?--only needs benchmarks or results}; shift 2 ;;
     --keep) keep=${2:?--keep needs a folder}; shift 2 ;;
     --from) from=${2:?--from needs a folder}; shift 2 ;;
-    -h|--help) sed -n '2,21p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,24p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "regenerate-docs.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
-case "$only" in ""|benchmarks|results|correspondence|registered) ;;
-  *) echo "regenerate-docs.sh: --only benchmarks|results|correspondence|registered" >&2; exit 2 ;;
+case "$only" in ""|benchmarks|results|correspondence|registered|landmarks) ;;
+  *) echo "regenerate-docs.sh: --only benchmarks|results|correspondence|registered|landmarks" >&2; exit 2 ;;
 esac
 want() { [ -z "$only" ] || [ "$only" = "$1" ]; }
 
@@ -120,6 +123,21 @@ EOF
       -o "$out/registered" "${extra[@]}"
     step registered-held "$facehex" bench --correspondence --skin-correspondence registered --hold-skin \
       --cts "$cts" -o "$out/registered-held" "${extra[@]}"
+  fi
+  if want landmarks; then
+    # The landmarks `facehex run` finds on each real CT (its model at the default edge length, with the CT's
+    # mid-sagittal plane), on the Visible Human's model at the paper's 2 mm, and on the bundled patient model.
+    step landmarks-bundled-ct "$facehex" segment resources/ct/headsq/headsq.mhd -o "$out/bundled-ct.vtu" \
+      --write-landmarks "$out/landmarks-bundled-ct.json"
+    step landmarks-bundled-patient "$facehex" constraints resources/patients/headsq/patient.vtu \
+      -o "$out/bundled-patient-constraints.json" --write-landmarks "$out/landmarks-bundled-patient.json"
+    if [ -f ../shared/data/ct/vhfemale-head.mha ]; then
+      step landmarks-vhf "$facehex" segment ../shared/data/ct/vhfemale-head.mha -o "$out/vhf.vtu" \
+        --write-landmarks "$out/landmarks-vhf.json"
+      step landmarks-vhf-2mm "$facehex" segment ../shared/data/ct/vhfemale-head.mha --edge-length 2 \
+        -o "$out/vhf-2mm.vtu" --write-landmarks "$out/landmarks-vhf-2mm.json"
+      rm -f "$out"/vhf*.vtu
+    fi
   fi
   if want benchmarks; then
     step bench-sizes "$facehex" bench --sizes 10000,50000,200000 --json
@@ -342,6 +360,38 @@ if only in ("", "registered"):
     write_blocks("docs/results.md", blocks)
     shutil.copyfile(os.path.join(out, "registered", "correspondence_skin_error.png"),
                     os.path.join(root, "docs", "img", "results_registered_skin_error.png"))
+
+# ---- docs/benchmarks.md: the landmarks against the hand-placed ones ----
+if only in ("", "landmarks"):
+    import math
+
+    def landmarks(name):
+        path = os.path.join(out, f"landmarks-{name}.json")
+        return {l["name"]: l for l in json.load(open(path))["landmarks"]} if os.path.exists(path) else None
+
+    def reference(name):
+        return {l["name"]: l for l in json.load(open(os.path.join(root, "tests/data/landmarks", name)))["landmarks"]}
+
+    columns = [("Visible Human (1 mm), `run` (2.5 mm edge)", "vhf", "vhfemale-head.json"),
+               ("Visible Human, `--edge-length 2`", "vhf-2mm", "vhfemale-head.json"),
+               ("bundled CT (3.2 mm), `run`", "bundled-ct", "headsq.json"),
+               ("bundled patient model (no plane stored)", "bundled-patient", "headsq.json")]
+    columns = [(label, landmarks(key), reference(ref)) for label, key, ref in columns if landmarks(key) is not None]
+    names = []
+    for _, _, ref in columns:
+        names += [k for k in ref if k not in names]
+    rows = []
+    for name in names:
+        cells = []
+        for _, found, ref in columns:
+            if name not in ref or name not in found:
+                cells.append("—" if name in ref else "not placed")
+                continue
+            d = math.dist(found[name]["position"], ref[name]["position"])
+            cells.append(f"{d:.1f}" + (" (estimated)" if found[name]["status"] == "estimated" else ""))
+        rows.append([name] + cells)
+    write_blocks("docs/benchmarks.md", {
+        "bench-landmarks": machine_line().split(" Wall-clock")[0] + "\n\n" + table(["landmark"] + [c[0] for c in columns], rows)})
 
 # ---- docs/benchmarks.md ----
 if only in ("", "benchmarks"):

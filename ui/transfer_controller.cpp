@@ -309,7 +309,8 @@ void TransferController::placeFeatures(Role role, double band, const FaceLandmar
   const VolumeMesh& mesh = session_->model(role).mesh;
   FaceLandmarks landmarks;
   const ConstraintSet features = landmark_feature_constraints(
-      mesh.V, side_mask_of(mesh), feature_values(session_->constraints(Role::Standard).set), band, &landmarks, given);
+      mesh.V, side_mask_of(mesh), landmark_options_for(mesh, session_->model(role).path.toStdString()),
+      feature_values(session_->constraints(Role::Standard).set), band, &landmarks, given);
   session_->setFeatureConstraints(role, features, landmarks, what);
 }
 

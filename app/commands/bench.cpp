@@ -142,8 +142,9 @@ nlohmann::json time_transfer(VolumeMesh patient, const std::optional<ConstraintS
   check_and_orient_tet_mesh(patient, source);
   stages["mesh_check"] = clock.lap();
   const Eigen::VectorXi side_mask = side_mask_of(patient);
-  const ConstraintSet used =
-      set ? *set : automatic_constraints(patient.V, side_mask, standard.feature_values, kFeatureBand, nullptr);
+  const ConstraintSet used = set ? *set
+                                 : automatic_constraints(patient.V, side_mask, landmark_options_for(patient, source),
+                                                         standard.feature_values, kFeatureBand, nullptr);
   stages["constraints"] = clock.lap();
   const ModelParameterization p =
       parameterize_model(patient.V, patient.tets(), side_mask, used, source, standard.fields);

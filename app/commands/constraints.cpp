@@ -43,8 +43,8 @@ int cmd_constraints(const Argv& argv) {
   const std::map<std::string, double> values =
       args.has("own-values") ? own_feature_values(mesh, args.number("band", 0.01, 50), path)
                              : feature_values(read_constraint_set(find_standard(args.get("standard")).constraints));
-  const ConstraintSet set =
-      automatic_constraints(mesh.V, mask, values, args.number("band", 0.01, 50), &landmarks, given ? &*given : nullptr);
+  const ConstraintSet set = automatic_constraints(mesh.V, mask, landmark_options_for(mesh, path), values,
+                                                  args.number("band", 0.01, 50), &landmarks, given ? &*given : nullptr);
   write_constraint_set(args.get("output"), set);
   if (args.has("write-landmarks")) write_landmark_file(args.get("write-landmarks"), named_landmarks(landmarks));
   std::cout << "mid-sagittal plane x = " << landmarks.x_mid << " mm\n";

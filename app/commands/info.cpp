@@ -1,10 +1,12 @@
 #include <iostream>
+#include <optional>
 
 #include "app/cli_args.h"
 #include "app/commands/commands.h"
 #include "core/fields/constraint_set.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh/corner_jacobian.h"
+#include "core/mesh/mid_sagittal_plane.h"
 #include "core/mesh/sides.h"
 
 namespace facehex::cli {
@@ -38,7 +40,11 @@ int cmd_info(const Argv& argv) {
   std::cout << "  arrays:";
   for (const auto& [name, a] : m.point_data) std::cout << " " << name << "(point," << a.cols() << ")";
   for (const auto& [name, a] : m.cell_data) std::cout << " " << name << "(cell," << a.cols() << ")";
+  for (const auto& [name, a] : m.field_data)
+    std::cout << " " << name << "(field," << a.rows() << "x" << a.cols() << ")";
   std::cout << "\n";
+  if (const std::optional<double> x = mid_sagittal_x(m, path))
+    std::cout << "  mid-sagittal plane x = " << *x << " mm (from the segmentation; the landmarks are found on it)\n";
   return 0;
 }
 

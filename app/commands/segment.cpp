@@ -44,7 +44,7 @@ int cmd_segment(const Argv& argv) {
     });
   std::cout << "\nwrote " << args.get("output") << "\n";
   if (args.has("write-landmarks")) {
-    const FaceLandmarks landmarks = find_face_landmarks(model.V, mask);
+    const FaceLandmarks landmarks = find_face_landmarks(model.V, mask, landmark_options_for(model, args.get("CT")));
     std::cout << landmarks_text(landmarks, "  ");
     check_plausible(landmarks, "give them with --landmarks FILE to run or constraints");
     write_landmark_file(args.get("write-landmarks"), named_landmarks(landmarks));

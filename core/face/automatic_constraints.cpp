@@ -11,9 +11,10 @@ std::map<std::string, double> feature_values(const ConstraintSet& standard) {
 }
 
 ConstraintSet landmark_feature_constraints(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
+                                           const LandmarkOptions& landmark_options,
                                            const std::map<std::string, double>& values, double band,
                                            FaceLandmarks* landmarks_out, const FaceLandmarks* given) {
-  const FaceLandmarks landmarks = given ? *given : find_face_landmarks(V, side_mask);
+  const FaceLandmarks landmarks = given ? *given : find_face_landmarks(V, side_mask, landmark_options);
   const std::string remedy = given ? "correct the landmark file" : "give the landmarks with --landmarks FILE";
   check_plausible(landmarks, remedy);
   ConstraintSet set = feature_constraints(landmarks, values, band);
@@ -23,10 +24,12 @@ ConstraintSet landmark_feature_constraints(const Eigen::MatrixXd& V, const Eigen
 }
 
 ConstraintSet automatic_constraints(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
+                                    const LandmarkOptions& landmark_options,
                                     const std::map<std::string, double>& values, double band,
                                     FaceLandmarks* landmarks_out, const FaceLandmarks* given) {
   ConstraintSet set = side_constraints();
-  for (Constraint& c : landmark_feature_constraints(V, side_mask, values, band, landmarks_out, given).constraints)
+  for (Constraint& c :
+       landmark_feature_constraints(V, side_mask, landmark_options, values, band, landmarks_out, given).constraints)
     set.constraints.push_back(std::move(c));
   return set;
 }

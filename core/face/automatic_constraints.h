@@ -18,17 +18,19 @@ constexpr double kFeatureBand = 2.0;  // mm, width of the slabs selecting featur
 std::map<std::string, double> feature_values(const ConstraintSet& standard);
 
 // The feature constraints alone at the landmarks of the model (V #V x 3, side_mask #V), with the given feature
-// values: at `given` landmarks (the user's), else at those find_face_landmarks finds. Either set must pass
-// check_plausible. `landmarks_out` receives where they were placed. Throws facehex::Error("landmarks", ...) when a
-// landmark is not found or the set is implausible (naming the landmark and --landmarks FILE), and
+// values: at `given` landmarks (the user's), else at those find_face_landmarks finds with `landmark_options`. Either
+// set must pass check_plausible. `landmarks_out` receives where they were placed. Throws facehex::Error("landmarks",
+// ...) when a landmark is not found or the set is implausible (naming the landmark and --landmarks FILE), and
 // facehex::Error("feature constraints", ...) when a feature has no value.
 ConstraintSet landmark_feature_constraints(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
+                                           const LandmarkOptions& landmark_options,
                                            const std::map<std::string, double>& values, double band = kFeatureBand,
                                            FaceLandmarks* landmarks_out = nullptr,
                                            const FaceLandmarks* given = nullptr);
 
 // The six sides plus landmark_feature_constraints, with the same arguments and errors.
 ConstraintSet automatic_constraints(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
+                                    const LandmarkOptions& landmark_options,
                                     const std::map<std::string, double>& values, double band = kFeatureBand,
                                     FaceLandmarks* landmarks_out = nullptr, const FaceLandmarks* given = nullptr);
 

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/face/mouth_corners.h"
+#include "core/mesh/mid_sagittal_plane.h"
 #include "core/mesh/sides.h"
 #include "core/util/error.h"
 #include "core/util/mirror_symmetry.h"
@@ -197,25 +198,32 @@ constexpr double kLipsReaches[] = {50.0, 65.0};
 constexpr double kFlatTie = 0.5;
 
 // The subnasale: the profile point between the upper lip and the nose (`nose`: its tip, or the lowest point of a
-// field-of-view cut) deepest behind the chord joining them, where the columella meets the lip.
+// field-of-view cut) deepest behind the chord joining them, moved up to where the columella meets the lip: the lip
+// below the columella is often nearly vertical, and its top is the highest point from the deepest one up whose depth,
+// averaged with its neighbours' (the profile of a 2-3 mm mesh is rough by half a millimetre), stays within
+// kColumellaTie of the deepest's.
 Eigen::Vector3d subnasale(const Profile& profile, const Eigen::Vector3d& ls, const Eigen::Vector3d& nose) {
-  std::optional<Eigen::Vector3d> best;
+  constexpr double kColumellaTie = 0.75;  // mm
+  std::vector<Eigen::Vector3d> lip;       // the profile from the upper lip up to the nose
+  for (const auto& bin : profile.bins)
+    if (bin && bin->z() >= ls.z() && bin->z() <= nose.z()) lip.push_back(*bin);
+  if (lip.empty()) require(std::nullopt, "subnasale");
+  std::size_t deepest = 0;
   double depth = -std::numeric_limits<double>::infinity();
-  for (const auto& bin : profile.bins) {
-    if (!bin || bin->z() <= ls.z() || bin->z() >= nose.z()) continue;
-    const double t = (bin->z() - ls.z()) / (nose.z() - ls.z());
-    const double d = ls.y() + t * (nose.y() - ls.y()) - bin->y();
-    if (d > depth) depth = d, best = bin;
+  for (std::size_t i = 0; i < lip.size(); ++i) {
+    const double t = (lip[i].z() - ls.z()) / (nose.z() - ls.z());
+    const double d = ls.y() + t * (nose.y() - ls.y()) - lip[i].y();
+    if (d > depth) depth = d, deepest = i;
   }
-  // The lip below the columella is often nearly vertical: its top, as deep as the deepest point within 0.5 mm.
-  Eigen::Vector3d sn = require(best, "subnasale");
-  for (double z = sn.z() + 1; z < nose.z(); z += 1) {
-    const std::optional<Eigen::Vector3d> p = profile.extreme(z - 0.5, z + 0.5, true);
-    if (!p) continue;  // a bin between the mesh's vertices
-    if (p->y() > best->y() + 0.5) break;
-    sn = *p;
-  }
-  return sn;
+  const auto smoothed_y = [&](std::size_t i) {
+    const std::size_t first = i > 0 ? i - 1 : i, last = std::min(i + 1, lip.size() - 1);
+    double sum = 0;
+    for (std::size_t j = first; j <= last; ++j) sum += lip[j].y();
+    return sum / static_cast<double>(last - first + 1);
+  };
+  std::size_t top = deepest;
+  while (top + 1 < lip.size() && smoothed_y(top + 1) <= smoothed_y(deepest) + kColumellaTie) ++top;
+  return lip[top];
 }
 
 // The soft-tissue pogonion and menton under the lower lip (face_landmarks.h); none when the model ends above them.
@@ -236,10 +244,16 @@ void add_chin(const Profile& profile, const std::vector<int>& skin, const Eigen:
   // The chin's underside turns back towards the neck: a lowest point on the model's bottom edge is a cut, not a menton.
   double zmin = std::numeric_limits<double>::infinity();
   for (int v : skin) zmin = std::min(zmin, V(v, 2));
-  if (lowest && lowest->z() > zmin + 2.0) l.points["menton"] = *lowest;
+  if (lowest && lowest->z() > zmin + 2.0) l.points["menton"] = Eigen::Vector3d(l.x_mid, lowest->y(), lowest->z());
 }
 
 }  // namespace
+
+LandmarkOptions landmark_options_for(const VolumeMesh& model, const std::string& source) {
+  LandmarkOptions options;
+  options.mid_sagittal_x = mid_sagittal_x(model, source);
+  return options;
+}
 
 FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
                                   const LandmarkOptions& options) {
@@ -261,7 +275,9 @@ FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorX
   // The nose tip near the middle, then the plane through it.
   const auto first = skin_profile(V, skin, l.x_mid, 20.0).extreme(zmin + 0.1 * height, zmax - 0.1 * height, true);
   // The middle of the skin within 1 mm of the front there: the tip of a nose, or the middle of a field-of-view cut.
-  l.x_mid = mirror_plane(V, skin, require(first, "nose tip"), zmin + 0.1 * height, zmax - 0.1 * height);
+  l.x_mid = options.mid_sagittal_x
+                ? *options.mid_sagittal_x
+                : mirror_plane(V, skin, require(first, "nose tip"), zmin + 0.1 * height, zmax - 0.1 * height);
   const Profile profile = skin_profile(V, skin, l.x_mid, options.profile_band);
   const Eigen::Vector3d front = require(profile.extreme(zmin + 0.1 * height, zmax - 0.1 * height, true), "nose tip");
   const std::optional<std::pair<double, double>> cut =
@@ -285,7 +301,10 @@ FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorX
   }
   const char* lips[] = {"subnasale", "upper lip", "stomion", "lower lip"};
   if (turns.size() < 4) require(std::nullopt, lips[turns.size()]);
-  const Eigen::Vector3d ls = turns[1].point, st = turns[2].point, li = turns[3].point;
+  // The upper lip's front can be flat, and its turn then a corner of the lip's rise: labrale superius is the most
+  // anterior point between the hollows either side of it.
+  const Eigen::Vector3d st = turns[2].point, li = turns[3].point;
+  const Eigen::Vector3d ls = require(profile.extreme(st.z(), turns[0].point.z(), true), "upper lip");
   const Eigen::Vector3d sn = subnasale(profile, ls, nose);
   // Above the nose: found above a cut that ends below the top of the skin, else placed by typical adult proportions
   // on the cut (nose tip 15 mm above the subnasale, nasion 40 mm above the tip, glabella 12 mm above the nasion).

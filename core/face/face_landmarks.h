@@ -3,9 +3,10 @@
 // (paper 3.4: mid-sagittal line, eyebrow line, below-nose line, middle lip line).
 //
 // Frame: +x lateral, +y anterior (the face looks to +y), +z superior. The skin is the model's w1 side (side_mask).
-//  - mid-sagittal plane x = x_mid: the skin's mirror plane (the median over 2 mm rows of z of the plane that best
-//    mirrors the row's front, core/util/mirror_symmetry.h), searched near the most anterior point within 20 mm of the
-//    middle of the skin's x range;
+//  - mid-sagittal plane x = x_mid: the model's own when it carries one (a segmented CT's, LandmarkOptions), else the
+//    skin's mirror plane (the median over 2 mm rows of z of the plane that best mirrors the row's front,
+//    core/util/mirror_symmetry.h), searched near the most anterior point within 20 mm of the middle of the skin's x
+//    range;
 //  - the profile: for 1 mm bins of z, the most anterior skin point within `profile_band` of the plane, moved onto it
 //    (a band wider than the philtrum's groove would catch its ridges);
 //  - pronasale (nose tip): the most anterior profile point in the middle 80 % of the z range;
@@ -15,13 +16,15 @@
 //    anterior). After any prominence on the nose's own underside: the first hollow (the subnasale's), then labrale
 //    superius (the next prominence), stomion (the next hollow, lip contact or the middle of an open mouth) and labrale
 //    inferius (the next prominence). Turns measured against chords, not windows of fixed height, keep their order on a
-//    longer nose or lip and on a pitched head. subnasale, the point between the upper lip and the nose deepest behind
-//    the chord joining them, moved up to the top of the lip's part as deep within 0.5 mm (where the columella meets the
-//    lip); nasion: the least anterior point 10-45 mm above the nose tip; glabella (brow ridge): the middle of the
-//    points within 0.5 mm of the most anterior one 3-30 mm above the nasion (a flat brow's centre); pogonion
+//    longer nose or lip and on a pitched head. labrale superius is then the most anterior point between the hollows
+//    either side of its turn (the front of a flat lip, not the corner of its rise). subnasale, the point between the
+//    upper lip and the nose deepest behind the chord joining them, moved up to the top of the lip's part as deep within
+//    0.75 mm, depths averaged over three bins (where the columella meets the lip); nasion: the least anterior point
+//    10-45 mm above the nose tip; glabella (brow ridge): the middle of the points within 0.5 mm of the most anterior
+//    one 3-30 mm above the nasion (a flat brow's centre); pogonion
 //    (soft-tissue chin): the most anterior point up to 30 mm below the labiomental fold (the first local minimum below
 //    the labrale inferius); menton (soft tissue): the lowest skin point within 3 mm of the plane and 20 mm behind the
-//    pogonion (the underside of the chin), unless it lies on the model's bottom edge.
+//    pogonion (the underside of the chin), moved onto the plane, unless it lies on the model's bottom edge.
 // A field-of-view cut: when the front of the profile is a plateau (within clipped_depth of its most anterior point;
 // bins without a vertex, between the vertices of a coarse model, neither end nor extend it) at least clipped_length
 // long, the scan cut the face flat there (a nose drops more than that within 25 mm of its
@@ -37,6 +40,7 @@
 #include <Eigen/Core>
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -60,7 +64,14 @@ struct LandmarkOptions {
   double profile_band = 1.5;     // mm
   double clipped_depth = 3.5;    // mm: profile points this close to the most anterior one are on a front plateau
   double clipped_length = 25.0;  // mm: a front plateau this long is a field-of-view cut, not anatomy
+  // The mid-sagittal plane x = mid_sagittal_x when it is known (the CT's, core/segment/face_anatomy.h: the whole
+  // head's symmetry reads it better than the skin of the face alone); else the skin's mirror plane.
+  std::optional<double> mid_sagittal_x;
 };
+
+// The options for `model`: its own mid-sagittal plane when it carries one (core/mesh/mid_sagittal_plane.h). Throws
+// facehex::Error(source, ...) when that plane is malformed.
+LandmarkOptions landmark_options_for(const VolumeMesh& model, const std::string& source);
 
 // V #V x 3, side_mask #V. Throws facehex::Error("landmarks", ...) naming the landmark that cannot be found.
 FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,

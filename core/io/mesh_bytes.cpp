@@ -90,6 +90,7 @@ std::vector<char> to_bytes(const VolumeMesh& mesh) {
   for (CellType t : mesh.types) w.value<std::int32_t>(static_cast<std::int32_t>(t));
   w.arrays(mesh.point_data);
   w.arrays(mesh.cell_data);
+  w.arrays(mesh.field_data);
   return std::move(w.bytes);
 }
 
@@ -120,6 +121,7 @@ VolumeMesh mesh_from_bytes(const std::vector<char>& bytes, const std::string& su
   for (CellType& t : mesh.types) t = static_cast<CellType>(r.value<std::int32_t>());
   mesh.point_data = r.arrays();
   mesh.cell_data = r.arrays();
+  mesh.field_data = r.arrays();
   if (!r.done()) throw Error(subject, "unexpected mesh data from the reading process");
   return mesh;
 }

@@ -102,6 +102,7 @@ VolumeMesh from_grid(const std::string& path, vtkUnstructuredGrid* grid) {
   cells.finish(&mesh);
   vtk_arrays_to_matrices(path, grid->GetPointData(), mesh.num_vertices(), &mesh.point_data);
   vtk_arrays_to_matrices(path, grid->GetCellData(), mesh.num_cells(), &mesh.cell_data);
+  vtk_arrays_to_matrices(path, grid->GetFieldData(), -1, &mesh.field_data);
   check_volume_mesh(path, mesh);
   return mesh;
 }
@@ -124,6 +125,7 @@ vtkSmartPointer<vtkUnstructuredGrid> to_grid(const VolumeMesh& mesh, const std::
   }
   matrices_to_vtk_arrays(mesh.point_data, grid->GetPointData(), single_precision);
   matrices_to_vtk_arrays(mesh.cell_data, grid->GetCellData(), single_precision);
+  matrices_to_vtk_arrays(mesh.field_data, grid->GetFieldData(), {});
   return grid;
 }
 

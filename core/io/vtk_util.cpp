@@ -139,19 +139,19 @@ void vtk_arrays_to_matrices(const std::string& path, vtkFieldData* data, int row
     vtkDataArray* array = data->GetArray(i);  // null for string arrays
     if (!array) continue;
     const std::string name = array->GetName() && *array->GetName() ? array->GetName() : "array" + std::to_string(i);
-    if (array->GetNumberOfTuples() != rows) {
+    if (rows >= 0 && array->GetNumberOfTuples() != rows) {
       throw Error(path, "data array '" + name + "' has " + std::to_string(array->GetNumberOfTuples()) +
                             " values, expected " + std::to_string(rows) + " (truncated file?)");
     }
-    const int k = array->GetNumberOfComponents();
-    Eigen::MatrixXd m(rows, k);
-    for (int r = 0; r < rows; ++r)
+    const int k = array->GetNumberOfComponents(), n = static_cast<int>(array->GetNumberOfTuples());
+    Eigen::MatrixXd m(n, k);
+    for (int r = 0; r < n; ++r)
       for (int c = 0; c < k; ++c) m(r, c) = array->GetComponent(r, c);
     (*out)[name] = std::move(m);
   }
 }
 
-void matrices_to_vtk_arrays(const std::map<std::string, Eigen::MatrixXd>& arrays, vtkDataSetAttributes* out,
+void matrices_to_vtk_arrays(const std::map<std::string, Eigen::MatrixXd>& arrays, vtkFieldData* out,
                             const std::set<std::string>& single_precision) {
   for (const auto& [name, m] : arrays) {
     vtkSmartPointer<vtkDataArray> array;

@@ -27,12 +27,12 @@ void run_vtk(const std::string& path, const std::string& what, vtkAlgorithm* alg
              const std::function<int()>& action = nullptr);
 
 // Numeric arrays of `data` (one row per tuple) into `out`, by name; unnamed arrays become "array<i>", non-numeric
-// arrays (strings) are skipped. Throws unless every array has `rows` tuples.
+// arrays (strings) are skipped. Throws unless every array has `rows` tuples (any number when rows < 0: field data).
 void vtk_arrays_to_matrices(const std::string& path, vtkFieldData* data, int rows,
                             std::map<std::string, Eigen::MatrixXd>* out);
 // Each matrix as an array with as many components as columns: doubles, or 32-bit floats if its name is in
 // `single_precision`.
-void matrices_to_vtk_arrays(const std::map<std::string, Eigen::MatrixXd>& arrays, vtkDataSetAttributes* out,
+void matrices_to_vtk_arrays(const std::map<std::string, Eigen::MatrixXd>& arrays, vtkFieldData* out,
                             const std::set<std::string>& single_precision = {});
 
 // The points and triangles of a polydata (polygons must all be triangles: throws facehex::Error(subject, ...)

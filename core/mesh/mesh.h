@@ -27,6 +27,7 @@ const char* cell_type_name(CellType t);
 
 using PointData = std::map<std::string, Eigen::MatrixXd>;  // each array #V x k
 using CellData = std::map<std::string, Eigen::MatrixXd>;   // each array #C x k
+using FieldData = std::map<std::string, Eigen::MatrixXd>;  // each array n x k: facts about the whole mesh
 
 // A tetrahedral or hex-dominant (hex + wedge) volume mesh with attached data arrays.
 struct VolumeMesh {
@@ -35,6 +36,7 @@ struct VolumeMesh {
   std::vector<CellType> types;  // #C
   PointData point_data;
   CellData cell_data;
+  FieldData field_data;  // e.g. a segmented CT's mid-sagittal plane (core/face/face_landmarks.h)
 
   int num_vertices() const { return static_cast<int>(V.rows()); }
   int num_cells() const { return static_cast<int>(C.rows()); }

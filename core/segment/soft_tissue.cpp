@@ -5,6 +5,7 @@
 #include <set>
 #include <sstream>
 
+#include "core/mesh/mid_sagittal_plane.h"
 #include "core/segment/distance_transform.h"
 #include "core/segment/face_anatomy.h"
 #include "core/segment/iso_surface.h"
@@ -314,6 +315,7 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
     }
   }
   model.mesh = std::move(tets.mesh);
+  set_mid_sagittal_x(model.mesh, model.cuts.centre_x);
   model.boundary_faces = std::move(tets.boundary_faces);
   model.boundary_sides = tets.boundary_labels.array() - 1;
   step("checks", 0.95);

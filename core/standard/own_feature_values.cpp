@@ -10,7 +10,8 @@
 namespace facehex {
 
 std::map<std::string, double> own_feature_values(const VolumeMesh& model, double band, const std::string& source) {
-  return own_feature_values(model, find_face_landmarks(model.V, side_mask_of(model)), band, source);
+  return own_feature_values(
+      model, find_face_landmarks(model.V, side_mask_of(model), landmark_options_for(model, source)), band, source);
 }
 
 std::map<std::string, double> own_feature_values(const VolumeMesh& model, const FaceLandmarks& landmarks, double band,

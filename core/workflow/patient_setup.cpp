@@ -46,7 +46,8 @@ void choose_constraints(PatientSetup& patient, const std::string& constraints_fi
         landmarks_file.empty()
             ? std::nullopt
             : std::optional<FaceLandmarks>(landmarks_from(read_landmark_file(landmarks_file), landmarks_file));
-    patient.constraints = automatic_constraints(patient.domain.V, patient.domain.side_mask, *feature_values,
+    patient.constraints = automatic_constraints(patient.domain.V, patient.domain.side_mask,
+                                                landmark_options_for(patient.mesh, patient.path), *feature_values,
                                                 kFeatureBand, &landmarks, given ? &*given : nullptr);
     patient.landmarks = landmarks;
     patient.constraints_note = "automatic constraints: six sides and " + std::to_string(feature_specs().size()) +

@@ -133,7 +133,8 @@ TEST(BundledTemplate, IsValidWithTheFeaturesOfTheFirstStandard) {
   // cell after the repair, and the angles nearly kept (the map is close to the identity).
   const BundledModel patient_files = default_patient();
   const VolumeMesh patient = read_volume_mesh(patient_files.mesh);
-  const ConstraintSet patient_set = automatic_constraints(patient.V, side_mask_of(patient), feature_values(set));
+  const ConstraintSet patient_set = automatic_constraints(
+      patient.V, side_mask_of(patient), landmark_options_for(patient, patient_files.mesh), feature_values(set));
   const TransferRun run = run_transfer(hex, closed_domain(hex), set, standard.constraints, patient, patient_set,
                                        patient_files.mesh, TransferOptions{});
   // Its own parameterization folds at a handful of tets (the bone under the nose, the chin's lower edge), as the

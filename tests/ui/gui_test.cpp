@@ -208,8 +208,9 @@ void GuiTest::opensTheBundledDemo() {
   QVERIFY(session()->model(Role::Standard).mesh.count(CellType::Hex) > 0);
   // The constraints `facehex run` places: the six sides and the facial features, valued as the standard's.
   const LoadedModel& patient = session()->model(Role::Patient);
-  const ConstraintSet expected = automatic_constraints(patient.mesh.V, side_mask_of(patient.mesh),
-                                                       feature_values(session()->constraints(Role::Standard).set));
+  const ConstraintSet expected =
+      automatic_constraints(patient.mesh.V, side_mask_of(patient.mesh), landmark_options_for(patient.mesh, "patient"),
+                            feature_values(session()->constraints(Role::Standard).set));
   QCOMPARE(constraintCount(), 6 + int(feature_specs().size()));
   QCOMPARE(to_json(session()->constraints(Role::Patient).set), to_json(expected));
   for (int i = 0; i < constraintCount(); ++i) QVERIFY(!session()->constraintVertices(Role::Patient, i).empty());

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <random>
+#include <vector>
 
 #include "core/fields/constraint_set.h"
 #include "core/mesh/sides.h"
@@ -51,6 +53,80 @@ struct PhantomFace {
     side_mask = Eigen::VectorXi::Constant(V.rows(), side_bit(W1));
   }
 };
+
+// A phantom skin drawn through a piecewise-linear mid-sagittal profile, its (z, y) corners given from the top, with
+// the relief fading sideways (25 mm) on a face curved sideways, sampled every 0.5 mm in x and z. roughness: each row
+// of z is moved along y by a uniform random amount within +-roughness (seeded), as a 2-3 mm mesh roughens a profile.
+struct ProfilePhantom {
+  static constexpr double x0 = 0.0;
+  Eigen::MatrixXd V;
+  Eigen::VectorXi side_mask;
+
+  ProfilePhantom(const std::vector<Eigen::Vector2d>& corners, double roughness, unsigned seed) {
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<double> offset(-roughness, roughness);
+    const double ztop = corners.front().x(), zbottom = corners.back().x();
+    const int nx = 161, nz = static_cast<int>((ztop - zbottom) / 0.5) + 1;
+    V.resize(nx * nz, 3);
+    for (int k = 0; k < nz; ++k) {
+      const double z = ztop - 0.5 * k, rough = offset(random);
+      std::size_t c = 1;
+      while (c + 1 < corners.size() && corners[c].x() > z) ++c;
+      const double t = (z - corners[c - 1].x()) / (corners[c].x() - corners[c - 1].x());
+      const double profile = corners[c - 1].y() + t * (corners[c].y() - corners[c - 1].y()) + rough;
+      for (int i = 0; i < nx; ++i) {
+        const double x = x0 - 40 + 0.5 * i;
+        V.row(k * nx + i) << x, 60 + (profile - 60) * bump(x, x0, 25) - 0.01 * x * x, z;
+      }
+    }
+    side_mask = Eigen::VectorXi::Constant(V.rows(), side_bit(W1));
+  }
+};
+
+// A forehead, brow, nasion and a short nose above (tip at z 0, 2 mm in front of the lips: the chord from the upper lip
+// to the tip is nearly vertical, as under a nose clipped by the field of view), the columella running back to the
+// subnasale at z -10, a vertical upper lip below it down to z -20, the lips and the chin.
+const std::vector<Eigen::Vector2d> kVerticalLip = {{60, 78},  {42, 85},    {30, 80},    {0, 90},   {-10, 84},
+                                                   {-20, 84}, {-22, 87.5}, {-25, 88.3}, {-30, 84}, {-36, 87},
+                                                   {-44, 80}, {-54, 86},   {-62, 76},   {-70, 70}};
+
+TEST(FaceLandmarks, SubnasaleAtTheTopOfARoughVerticalLip) {
+  // The lip from the subnasale down is vertical: only its top is where the columella meets it. On a rough profile
+  // the walk up it must not stop at the first row that stands out by a few tenths of a millimetre.
+  for (unsigned seed = 1; seed <= 12; ++seed) {
+    const ProfilePhantom face(kVerticalLip, 0.4, seed);
+    LandmarkOptions options;
+    options.mid_sagittal_x = ProfilePhantom::x0;
+    const FaceLandmarks l = find_face_landmarks(face.V, face.side_mask, options);
+    EXPECT_NEAR(l.points.at("subnasale").z(), -10, 1.5) << "seed " << seed;
+  }
+}
+
+TEST(FaceLandmarks, LabraleSuperiusIsTheFrontOfTheUpperLip) {
+  // The upper lip leans forward from the subnasale to its front at z -19 and then falls steeply back to the stomion
+  // (as on the bundled CT): the lip's turn, the profile's point furthest from the chord of its neighbours, can be the
+  // top of the fall (z -21.5), but labrale superius is the front.
+  const std::vector<Eigen::Vector2d> profile = {
+      {60, 78},      {42, 85},  {30, 80},    {0, 95},   {-10, 84}, {-17, 86}, {-19, 86.4}, {-21.5, 85.6},
+      {-22.5, 84.5}, {-24, 80}, {-26, 79.5}, {-32, 84}, {-40, 78}, {-50, 85}, {-60, 74},   {-70, 70}};
+  for (unsigned seed = 1; seed <= 6; ++seed) {
+    const ProfilePhantom face(profile, 0.1, seed);
+    const FaceLandmarks l = find_face_landmarks(face.V, face.side_mask);
+    EXPECT_NEAR(l.points.at("labrale superius").z(), -19, 1.0) << "seed " << seed;
+  }
+}
+
+TEST(FaceLandmarks, AKnownMidSagittalPlaneIsUsed) {
+  // The plane the segmentation found (here 1.2 mm beside the skin's own mirror plane) places the profile and the
+  // mid-sagittal feature.
+  const PhantomFace face;
+  LandmarkOptions options;
+  options.mid_sagittal_x = PhantomFace::x0 + 1.2;
+  const FaceLandmarks l = find_face_landmarks(face.V, face.side_mask, options);
+  EXPECT_EQ(l.x_mid, PhantomFace::x0 + 1.2);
+  for (const char* name : {"pronasale", "subnasale", "stomion", "nasion", "glabella"})
+    EXPECT_EQ(l.points.at(name).x(), PhantomFace::x0 + 1.2) << name;
+}
 
 TEST(FaceLandmarks, PhantomLandmarksWithinOneAndAHalfMillimetres) {
   const PhantomFace face;

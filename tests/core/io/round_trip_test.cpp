@@ -43,13 +43,17 @@ class VtkRoundTrip : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(VtkRoundTrip, VtkFormatsKeepGeometryAndAllDataArrays) {
   TempDir dir;
-  const VolumeMesh mesh = test::sample_mesh();
+  VolumeMesh mesh = test::sample_mesh();
+  // Field data: facts about the whole mesh, of any number of tuples (a segmented CT's mid-sagittal plane is one).
+  mesh.field_data["mid_sagittal_x"] = Eigen::MatrixXd::Constant(1, 1, 258.6262461290185);
+  mesh.field_data["frame"] = (Eigen::MatrixXd(2, 3) << 1, 0, 0, 0, 0.5, -1.0 / 3).finished();
   const std::string path = dir.file("mesh" + GetParam());
   write_volume_mesh(path, mesh);
   const VolumeMesh back = read_volume_mesh(path);
   expect_same_geometry(mesh, back);
   expect_same_arrays(mesh.point_data, back.point_data);
   expect_same_arrays(mesh.cell_data, back.cell_data);
+  expect_same_arrays(mesh.field_data, back.field_data);
   EXPECT_EQ(dir.entries(), std::vector<std::string>{"mesh" + GetParam()}) << "temporary file left behind";
 }
 

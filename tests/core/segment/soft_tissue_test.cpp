@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/mesh/mid_sagittal_plane.h"
 #include "core/mesh/sides.h"
 #include "core/util/error.h"
 #include "core/util/resources.h"
@@ -107,6 +108,8 @@ TEST(SoftTissue, RealCtMakesASixSidedModel) {
   EXPECT_NEAR(m.thresholds.bone, 1150, 100);
   EXPECT_EQ(m.edge_length, 2.0);  // a face of this size keeps the paper's edge length
   expect_valid_patient(m);
+  // The model carries the CT's mid-sagittal plane, for the landmark finder.
+  EXPECT_EQ(mid_sagittal_x(m.mesh, "model"), m.cuts.centre_x);
 }
 
 TEST(SoftTissue, ALargeModelIsMeshedCoarserUnlessTheEdgeLengthIsGiven) {
