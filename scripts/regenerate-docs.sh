@@ -385,7 +385,7 @@ if only in ("", "landmarks"):
         cells = []
         for _, found, ref in columns:
             if name not in ref or name not in found:
-                cells.append("—" if name in ref else "not placed")
+                cells.append("not found" if name in ref else "no reference")
                 continue
             d = math.dist(found[name]["position"], ref[name]["position"])
             cells.append(f"{d:.1f}" + (" (estimated)" if found[name]["status"] == "estimated" else ""))
