@@ -18,6 +18,29 @@ namespace facehex {
 namespace {
 
 constexpr double kCtBlur = 0.4;  // Gaussian sigma of the resampled CT, in units of its coarsest voxel spacing
+// mm of air kept around the body's box: more than the closing's and the surface blur's reach.
+constexpr double kBodyBoxMargin = 10.0;
+
+// The body's box in x and y, with kBodyBoxMargin of air around it (within the grid), and every slice: a scan's field
+// of view is often several times the head's section, and every later step costs its voxel count. The slices stay
+// whole: the scan's top and bottom are what the cuts' margins are measured from.
+std::pair<std::array<int, 3>, std::array<int, 3>> body_box(const Mask& body) {
+  const GridGeometry& g = body.geometry;
+  std::array<int, 3> lo = {g.dims[0], g.dims[1], 0}, hi = {0, 0, g.dims[2]};
+  for (int k = 0; k < g.dims[2]; ++k)
+    for (int j = 0; j < g.dims[1]; ++j)
+      for (int i = 0; i < g.dims[0]; ++i)
+        if (body(i, j, k)) {
+          lo[0] = std::min(lo[0], i), hi[0] = std::max(hi[0], i + 1);
+          lo[1] = std::min(lo[1], j), hi[1] = std::max(hi[1], j + 1);
+        }
+  for (int a = 0; a < 2; ++a) {
+    const int margin = static_cast<int>(std::ceil(kBodyBoxMargin / g.spacing(a)));
+    lo[a] = std::max(0, lo[a] - margin);
+    hi[a] = std::min(g.dims[a], hi[a] + margin);
+  }
+  return {lo, hi};
+}
 
 std::string number(double v) {
   std::ostringstream s;
@@ -218,12 +241,19 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   // Trilinear interpolation of a coarse CT has creases along its voxel planes, which the thresholded surface would
   // show as terraces: blur by a fraction of the CT's coarsest spacing first.
   step("resampling the CT", 0.02);
-  const Field intensity = gaussian_smooth(resample(ct.intensity, options.working_spacing),
-                                          kCtBlur * ct.intensity.geometry.spacing.maxCoeff());
-  const Mask raw_body = largest_component(at_least(intensity, model.thresholds.skin));
-  if (std::count(raw_body.data.begin(), raw_body.data.end(), 1) == 0)
-    throw Error("segment",
-                "no voxel reaches the skin threshold " + number(model.thresholds.skin) + "; lower the skin threshold");
+  Field intensity;
+  Mask raw_body;
+  {
+    const Field scan = gaussian_smooth(resample(ct.intensity, options.working_spacing),
+                                       kCtBlur * ct.intensity.geometry.spacing.maxCoeff());
+    const Mask scan_body = largest_component(at_least(scan, model.thresholds.skin));
+    if (std::count(scan_body.data.begin(), scan_body.data.end(), 1) == 0)
+      throw Error("segment", "no voxel reaches the skin threshold " + number(model.thresholds.skin) +
+                                 "; lower the skin threshold");
+    const auto [box_lo, box_hi] = body_box(scan_body);
+    intensity = crop(scan, box_lo, box_hi);
+    raw_body = crop(scan_body, box_lo, box_hi);
+  }
   check_head_size(raw_body);
   step("the head", 0.05);
   const Mask body = open(raw_body, options.opening_radius);

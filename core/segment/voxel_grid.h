@@ -50,6 +50,21 @@ struct VoxelGrid {
 using Mask = VoxelGrid<std::uint8_t>;  // 0 = outside, 1 = inside
 using Field = VoxelGrid<float>;
 
+// The voxels lo <= (i, j, k) < hi of a grid (within it), at the same physical positions.
+template <class T>
+VoxelGrid<T> crop(const VoxelGrid<T>& grid, const std::array<int, 3>& lo, const std::array<int, 3>& hi) {
+  GridGeometry g = grid.geometry;
+  for (int a = 0; a < 3; ++a) {
+    g.dims[a] = hi[a] - lo[a];
+    g.origin(a) += lo[a] * g.spacing(a);
+  }
+  VoxelGrid<T> out(g, T());
+  for (int k = 0; k < g.dims[2]; ++k)
+    for (int j = 0; j < g.dims[1]; ++j)
+      for (int i = 0; i < g.dims[0]; ++i) out(i, j, k) = grid(i + lo[0], j + lo[1], k + lo[2]);
+  return out;
+}
+
 // Trilinear interpolation at a physical point; points beyond the voxel centres take the nearest border value.
 double sample(const Field& field, const Eigen::Vector3d& p);
 

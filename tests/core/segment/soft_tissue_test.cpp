@@ -100,6 +100,30 @@ TEST(SoftTissue, PhantomGivesOneShellWithSixSides) {
   }
 }
 
+TEST(SoftTissue, AWiderFieldOfViewGivesTheSameModel) {
+  // The phantom with 60 mm more air on each side in x and y (a scan's field of view is often several times the head's
+  // section): the segmentation works on the body's box, so the model is the same, vertex for vertex.
+  const CtVolume ct = testing::ellipsoid_phantom();
+  CtVolume wide = ct;
+  GridGeometry& g = wide.intensity.geometry;
+  const int pad = 30;  // voxels of 2 mm
+  g.dims[0] += 2 * pad, g.dims[1] += 2 * pad;
+  g.origin -= Eigen::Vector3d(pad, pad, 0) * 2.0;
+  wide.intensity.data.assign(g.size(), 0.0f);
+  const GridGeometry& o = ct.intensity.geometry;
+  for (int k = 0; k < o.dims[2]; ++k)
+    for (int j = 0; j < o.dims[1]; ++j)
+      for (int i = 0; i < o.dims[0]; ++i) wide.intensity(i + pad, j + pad, k) = ct.intensity(i, j, k);
+  SegmentOptions options = testing::phantom_options(ct);
+  options.skin_threshold = 500;  // the air added would move the histogram's thresholds
+  options.bone_threshold = 1500;
+  const PatientModel a = build_patient_model(ct, options), b = build_patient_model(wide, options);
+  ASSERT_EQ(a.mesh.num_vertices(), b.mesh.num_vertices());
+  ASSERT_EQ(a.mesh.num_cells(), b.mesh.num_cells());
+  EXPECT_EQ((a.mesh.V - b.mesh.V).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ(a.mesh.C, b.mesh.C);
+}
+
 TEST(SoftTissue, RealCtMakesASixSidedModel) {
   // The bundled headsq CT (resources/ct/headsq).
   const PatientModel m = build_patient_model(read_ct_volume(default_ct()));
