@@ -37,6 +37,8 @@ Field resample(const Field& field, double spacing) {
 
 Field resample(const Field& field, const GridGeometry& target) {
   Field out(target, 0.0f);
+  // Every voxel is sampled on its own: the slices split over threads with the same result.
+#pragma omp parallel for schedule(static)
   for (int k = 0; k < target.dims[2]; ++k)
     for (int j = 0; j < target.dims[1]; ++j)
       for (int i = 0; i < target.dims[0]; ++i) out(i, j, k) = static_cast<float>(sample(field, target.point(i, j, k)));
@@ -56,6 +58,7 @@ Field gaussian_smooth(const Field& field, double sigma) {
     for (double& w : kernel) w /= total;
     const Field in = out;
     const int len = g.dims[axis];
+#pragma omp parallel for schedule(static)
     for (int k = 0; k < g.dims[2]; ++k)
       for (int j = 0; j < g.dims[1]; ++j)
         for (int i = 0; i < g.dims[0]; ++i) {
