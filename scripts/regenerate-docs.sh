@@ -136,8 +136,21 @@ EOF
         --write-landmarks "$out/landmarks-vhf.json"
       step landmarks-vhf-2mm "$facehex" segment ../shared/data/ct/vhfemale-head.mha --edge-length 2 \
         -o "$out/vhf-2mm.vtu" --write-landmarks "$out/landmarks-vhf-2mm.json"
-      rm -f "$out"/vhf*.vtu
     fi
+    # The models with their sides and landmarks, pictured (needs xvfb-run and python3-vtk9).
+    if command -v xvfb-run >/dev/null && /usr/bin/python3 -c 'import vtk' 2>/dev/null; then
+      for model in bundled-ct:headsq:headsq vhf:vhfemale:vhfemale-head; do
+        IFS=: read -r key picture reference <<<"$model"
+        [ -f "$out/$key.vtu" ] || continue
+        for view in front side cuts; do
+          xvfb-run -a /usr/bin/python3 scripts/render_model_landmarks.py "$out/$key.vtu" "$out/landmarks-$key.json" \
+            "$view" "docs/img/${picture}_model_$view.png" \
+            "$picture, facehex segment: sides, landmarks found (blue), estimated (orange), placed by hand (black)" \
+            "tests/data/landmarks/$reference.json"
+        done
+      done
+    fi
+    rm -f "$out"/*.vtu
   fi
   if want benchmarks; then
     step bench-sizes "$facehex" bench --sizes 10000,50000,200000 --json

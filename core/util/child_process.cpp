@@ -133,8 +133,8 @@ bool ChildProcess::read_some() {
   return true;
 }
 
-void ChildProcess::read_all() {
-  while (fd_ >= 0) {
+void ChildProcess::read_all(std::size_t until_bytes) {
+  while (fd_ >= 0 && output_.size() < until_bytes) {
     int wait_ms = -1;
     if (limits_.seconds > 0) {
       const double left = started_ + limits_.seconds - now();
@@ -220,6 +220,16 @@ std::vector<char> compute_in_child(const std::string& subject, const std::string
         }
       },
       limits);
+  // The result's kind and size come first: room for all of it at once, rather than a buffer grown (and its fresh
+  // pages faulted in) again and again as a large volume arrives.
+  std::uint8_t kind = 0;
+  std::uint64_t size = 0;
+  const std::size_t header = sizeof kind + sizeof size;
+  child.read_all(header);
+  if (child.output().size() >= header) {
+    std::memcpy(&size, child.output().data() + sizeof kind, sizeof size);
+    if (limits.memory_bytes == 0 || size <= limits.memory_bytes) child.reserve_output(header + size);
+  }
   child.read_all();
   child.reap();
   if (child.timed_out())
@@ -227,16 +237,13 @@ std::vector<char> compute_in_child(const std::string& subject, const std::string
                              " s (a damaged file?); stopped");
   if (child.crashed())
     throw Error(subject, what + " crashed (" + child.signal_name() + "): the file is damaged or not what it claims");
-  const std::vector<char>& out = child.output();
-  std::uint8_t kind = 0;
-  std::uint64_t size = 0;
-  if (child.exit_code() != 0 || out.size() < sizeof kind + sizeof size)
+  std::vector<char> payload = child.take_output();
+  if (child.exit_code() != 0 || payload.size() < header)
     throw Error(subject, what + " ended without a result (exit code " + std::to_string(child.exit_code()) + ")");
-  std::memcpy(&kind, out.data(), sizeof kind);
-  std::memcpy(&size, out.data() + sizeof kind, sizeof size);
-  const std::size_t header = sizeof kind + sizeof size;
-  if (out.size() != header + size) throw Error(subject, what + " sent an incomplete result");
-  std::vector<char> payload(out.begin() + static_cast<std::ptrdiff_t>(header), out.end());
+  std::memcpy(&kind, payload.data(), sizeof kind);
+  std::memcpy(&size, payload.data() + sizeof kind, sizeof size);
+  if (payload.size() != header + size) throw Error(subject, what + " sent an incomplete result");
+  payload.erase(payload.begin(), payload.begin() + static_cast<std::ptrdiff_t>(header));  // in place: no new pages
   if (kind == kOutOfMemory)
     throw Error(subject, what + " needs more than " + gigabytes(limits.memory_bytes) +
                              " of memory (a damaged file, or sizes it does not hold?)");

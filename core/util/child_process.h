@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -37,12 +38,16 @@ class ChildProcess {
   int fd() const { return fd_; }      // the read end, -1 once the child closed it
   // Reads what the child wrote so far (blocks until something comes); false once the pipe is closed.
   bool read_some();
-  // Reads until the child closes the pipe; kills it when its time is up (timed_out()).
-  void read_all();
+  // Reads until the child closes the pipe, or until at least `until_bytes` have come; kills it when its time is up
+  // (timed_out()).
+  void read_all(std::size_t until_bytes = std::numeric_limits<std::size_t>::max());
+  // Room for this many bytes of output, for a child that announces its result's size.
+  void reserve_output(std::size_t bytes) { output_.reserve(bytes); }
   void kill();
   void reap();  // closes the pipe and waits for the child to end
 
   const std::vector<char>& output() const { return output_; }
+  std::vector<char> take_output() { return std::move(output_); }
   bool timed_out() const { return timed_out_; }
   bool crashed() const;             // ended by a signal (after reap())
   std::string signal_name() const;  // of the signal that ended it
