@@ -1,3 +1,4 @@
+#include <cmath>
 #include <iostream>
 #include <optional>
 
@@ -43,8 +44,10 @@ int cmd_info(const Argv& argv) {
   for (const auto& [name, a] : m.field_data)
     std::cout << " " << name << "(field," << a.rows() << "x" << a.cols() << ")";
   std::cout << "\n";
-  if (const std::optional<double> x = mid_sagittal_x(m, path))
-    std::cout << "  mid-sagittal plane x = " << *x << " mm (from the segmentation; the landmarks are found on it)\n";
+  if (const std::optional<MidSagittalPlane> plane = mid_sagittal_plane(m, path))
+    std::cout << "  mid-sagittal plane x = " << plane->x << " mm at z = " << plane->z << " mm, leaning "
+              << std::atan(plane->slope) * 180 / M_PI
+              << " degrees (from the segmentation; the landmarks are found on it)\n";
   return 0;
 }
 

@@ -15,7 +15,7 @@
 namespace facehex {
 namespace {
 
-// Most anterior skin point per 1 mm bin of z near the plane x = x_mid.
+// Most anterior skin point per 1 mm bin of z near the mid-sagittal plane.
 struct Profile {
   double z0 = 0;
   std::vector<std::optional<Eigen::Vector3d>> bins;
@@ -132,7 +132,8 @@ struct Profile {
   }
 };
 
-Profile skin_profile(const Eigen::MatrixXd& V, const std::vector<int>& skin, double x_mid, double band) {
+Profile skin_profile(const Eigen::MatrixXd& V, const std::vector<int>& skin, const MidSagittalPlane& plane,
+                     double band) {
   Profile p;
   double zmin = std::numeric_limits<double>::infinity(), zmax = -zmin;
   for (int v : skin) {
@@ -142,9 +143,10 @@ Profile skin_profile(const Eigen::MatrixXd& V, const std::vector<int>& skin, dou
   p.z0 = std::floor(zmin);
   p.bins.resize(static_cast<size_t>(std::ceil(zmax) - p.z0) + 1);
   for (int v : skin) {
-    if (std::abs(V(v, 0) - x_mid) > band) continue;
+    const double x = plane.x_at(V(v, 2));
+    if (std::abs(V(v, 0) - x) > band) continue;
     auto& bin = p.bins[static_cast<size_t>(V(v, 2) - p.z0)];
-    if (!bin || V(v, 1) > bin->y()) bin = Eigen::Vector3d(x_mid, V(v, 1), V(v, 2));  // on the plane
+    if (!bin || V(v, 1) > bin->y()) bin = Eigen::Vector3d(x, V(v, 1), V(v, 2));  // on the plane
   }
   return p;
 }
@@ -237,21 +239,22 @@ void add_chin(const Profile& profile, const std::vector<int>& skin, const Eigen:
   std::optional<Eigen::Vector3d> lowest;
   for (int v : skin) {
     const Eigen::Vector3d p = V.row(v).transpose();
-    if (std::abs(p.x() - l.x_mid) <= 3.0 && p.y() >= pog->y() - 20 && p.z() < pog->z() &&
+    if (std::abs(p.x() - l.x_at(p.z())) <= 3.0 && p.y() >= pog->y() - 20 && p.z() < pog->z() &&
         (!lowest || p.z() < lowest->z()))
       lowest = p;
   }
   // The chin's underside turns back towards the neck: a lowest point on the model's bottom edge is a cut, not a menton.
   double zmin = std::numeric_limits<double>::infinity();
   for (int v : skin) zmin = std::min(zmin, V(v, 2));
-  if (lowest && lowest->z() > zmin + 2.0) l.points["menton"] = Eigen::Vector3d(l.x_mid, lowest->y(), lowest->z());
+  if (lowest && lowest->z() > zmin + 2.0)
+    l.points["menton"] = Eigen::Vector3d(l.x_at(lowest->z()), lowest->y(), lowest->z());
 }
 
 }  // namespace
 
 LandmarkOptions landmark_options_for(const VolumeMesh& model, const std::string& source) {
   LandmarkOptions options;
-  options.mid_sagittal_x = mid_sagittal_x(model, source);
+  options.mid_sagittal_plane = mid_sagittal_plane(model, source);
   return options;
 }
 
@@ -273,12 +276,16 @@ FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorX
   l.x_mid = 0.5 * (xmin + xmax);
   const double height = zmax - zmin;
   // The nose tip near the middle, then the plane through it.
-  const auto first = skin_profile(V, skin, l.x_mid, 20.0).extreme(zmin + 0.1 * height, zmax - 0.1 * height, true);
+  const auto first =
+      skin_profile(V, skin, {l.x_mid, 0, 0}, 20.0).extreme(zmin + 0.1 * height, zmax - 0.1 * height, true);
   // The middle of the skin within 1 mm of the front there: the tip of a nose, or the middle of a field-of-view cut.
-  l.x_mid = options.mid_sagittal_x
-                ? *options.mid_sagittal_x
-                : mirror_plane(V, skin, require(first, "nose tip"), zmin + 0.1 * height, zmax - 0.1 * height);
-  const Profile profile = skin_profile(V, skin, l.x_mid, options.profile_band);
+  if (options.mid_sagittal_plane) {
+    l.x_mid = options.mid_sagittal_plane->x, l.x_slope = options.mid_sagittal_plane->slope;
+    l.plane_z = options.mid_sagittal_plane->z;
+  } else {
+    l.x_mid = mirror_plane(V, skin, require(first, "nose tip"), zmin + 0.1 * height, zmax - 0.1 * height);
+  }
+  const Profile profile = skin_profile(V, skin, {l.x_mid, l.x_slope, l.plane_z}, options.profile_band);
   const Eigen::Vector3d front = require(profile.extreme(zmin + 0.1 * height, zmax - 0.1 * height, true), "nose tip");
   const std::optional<std::pair<double, double>> cut =
       profile.clipped_run(front.y(), options.clipped_depth, options.clipped_length);
@@ -324,7 +331,7 @@ FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorX
   } else {
     auto on_cut = [&](double z) {
       const std::optional<Eigen::Vector3d> p = profile.extreme(z - 1, z + 1, true);
-      return Eigen::Vector3d(l.x_mid, p ? p->y() : front.y(), z);
+      return Eigen::Vector3d(l.x_at(z), p ? p->y() : front.y(), z);
     };
     prn = on_cut(std::min(sn.z() + 15, zmax - 20));
     n = on_cut(std::min(prn.z() + 40, zmax - 13));
@@ -334,7 +341,7 @@ FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorX
   l.points = {{"pronasale", prn},       {"subnasale", sn},        {"nasion", n},  {"glabella", g},
               {"labrale superius", ls}, {"labrale inferius", li}, {"stomion", st}};
   add_chin(profile, skin, V, l);
-  if (const auto corners = mouth_corners(V, skin, l.x_mid, st, ls)) {
+  if (const auto corners = mouth_corners(V, skin, l.x_at(st.z()), st, ls)) {
     l.points["cheilion right"] = corners->first;
     l.points["cheilion left"] = corners->second;
   }
@@ -458,8 +465,8 @@ ConstraintSet feature_constraints(const FaceLandmarks& landmarks, const std::map
            << at.z() << ") mm, " << (landmarks.given ? "given" : "found on the model");
     c.origin = origin.str();
     if (spec.field == 0) {
-      p.point = Eigen::Vector3d(landmarks.x_mid, 0, 0);
-      p.normal = Eigen::Vector3d::UnitX();
+      p.point = Eigen::Vector3d(landmarks.x_mid, 0, landmarks.plane_z);
+      p.normal = Eigen::Vector3d(1, 0, -landmarks.x_slope).normalized();
       p.region = "volume";
     } else {
       p.point = at;

@@ -3,10 +3,10 @@
 // (paper 3.4: mid-sagittal line, eyebrow line, below-nose line, middle lip line).
 //
 // Frame: +x lateral, +y anterior (the face looks to +y), +z superior. The skin is the model's w1 side (side_mask).
-//  - mid-sagittal plane x = x_mid: the model's own when it carries one (a segmented CT's, LandmarkOptions), else the
-//    skin's mirror plane (the median over 2 mm rows of z of the plane that best mirrors the row's front,
-//    core/util/mirror_symmetry.h), searched near the most anterior point within 20 mm of the middle of the skin's x
-//    range;
+//  - mid-sagittal plane x = x_at(z): the model's own when it carries one (a segmented CT's, LandmarkOptions, leaning
+//    with a head tilted towards a shoulder), else the skin's vertical mirror plane x = x_mid (the median over 2 mm rows
+//    of z of the plane that best mirrors the row's front, core/util/mirror_symmetry.h), searched near the most anterior
+//    point within 20 mm of the middle of the skin's x range;
 //  - the profile: for 1 mm bins of z, the most anterior skin point within `profile_band` of the plane, moved onto it
 //    (a band wider than the philtrum's groove would catch its ridges);
 //  - pronasale (nose tip): the most anterior profile point in the middle 80 % of the z range;
@@ -47,11 +47,15 @@
 #include "core/face/landmark_file.h"
 #include "core/fields/constraint_set.h"
 #include "core/mesh/mesh.h"
+#include "core/mesh/mid_sagittal_plane.h"
 
 namespace facehex {
 
 struct FaceLandmarks {
-  double x_mid = 0;
+  // The mid-sagittal plane x_at(z) = x_mid + x_slope (z - plane_z): vertical, leaning towards a shoulder by
+  // atan(x_slope).
+  double x_mid = 0, x_slope = 0, plane_z = 0;
+  double x_at(double z) const { return x_mid + x_slope * (z - plane_z); }
   std::map<std::string, Eigen::Vector3d> points;  // "pronasale", "subnasale", "nasion", "glabella", "stomion", ...
   // Where the profile is clipped flat by the scan's field of view (z range, mm; NaN if it is not), and the landmarks
   // that lie inside the cut and were placed by typical proportions instead of found.
@@ -64,9 +68,9 @@ struct LandmarkOptions {
   double profile_band = 1.5;     // mm
   double clipped_depth = 3.5;    // mm: profile points this close to the most anterior one are on a front plateau
   double clipped_length = 25.0;  // mm: a front plateau this long is a field-of-view cut, not anatomy
-  // The mid-sagittal plane x = mid_sagittal_x when it is known (the CT's, core/segment/face_anatomy.h: the whole
-  // head's symmetry reads it better than the skin of the face alone); else the skin's mirror plane.
-  std::optional<double> mid_sagittal_x;
+  // The mid-sagittal plane when it is known (the CT's, core/segment/face_anatomy.h: the whole head's symmetry reads it
+  // better than the skin of the face alone, and its lean too); else the skin's vertical mirror plane.
+  std::optional<MidSagittalPlane> mid_sagittal_plane;
 };
 
 // The options for `model`: its own mid-sagittal plane when it carries one (core/mesh/mid_sagittal_plane.h). Throws

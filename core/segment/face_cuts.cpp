@@ -75,4 +75,10 @@ void find_jaw_cut(const Mask& model, double clearance, FaceCuts& cuts) {
   }
 }
 
+MidSagittalPlane landmark_plane(const FaceCuts& cuts, const FaceCutOptions& given) {
+  if (cuts.anatomy && !given.centre_x && std::abs(cuts.anatomy->roll_degrees) > kLandmarkPlaneMinLean)
+    return {cuts.anatomy->centre_x, cuts.anatomy->roll_slope, cuts.anatomy->roll_z};
+  return {cuts.centre_x, 0, 0};
+}
+
 }  // namespace facehex

@@ -26,6 +26,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/mesh/mid_sagittal_plane.h"
 #include "core/mesh/sides.h"
 #include "core/segment/face_anatomy.h"
 #include "core/segment/voxel_grid.h"
@@ -60,6 +61,13 @@ struct FaceCuts {
 // The anatomy is looked for unless all four values are given. Throws facehex::Error("segment", ...) if it cannot be
 // found (naming the option that places the cut by hand) or if the cuts leave no face (bottom above top, ...).
 FaceCuts find_face_cuts(const Mask& head, const Mask& bone, const FaceCutOptions& options);
+
+// The mid-sagittal plane the landmarks are read on (core/mesh/mid_sagittal_plane.h), stored with the model: the cuts'
+// plane, leaning as the head does when the symmetry's fit leans more than kLandmarkPlaneMinLean, else vertical through
+// centre_x (as a plane given with --mid-plane is). On upright heads the fit leans by a few degrees through the neck and
+// skull, and the face's profile is read better on the vertical (docs/benchmarks.md).
+constexpr double kLandmarkPlaneMinLean = 5.0;  // degrees
+MidSagittalPlane landmark_plane(const FaceCuts& cuts, const FaceCutOptions& given);
 
 // Sets cuts.jaw_z from the model mask (before the cuts are applied): `clearance` mm above the highest model voxel in
 // the posterior plane's voxel row that lies within one voxel of the mid-plane x = centre_x.

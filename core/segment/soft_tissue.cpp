@@ -345,7 +345,7 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
     }
   }
   model.mesh = std::move(tets.mesh);
-  set_mid_sagittal_x(model.mesh, model.cuts.centre_x);
+  set_mid_sagittal_plane(model.mesh, landmark_plane(model.cuts, options.cuts));
   model.boundary_faces = std::move(tets.boundary_faces);
   model.boundary_sides = tets.boundary_labels.array() - 1;
   step("checks", 0.95);

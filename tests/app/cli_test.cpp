@@ -313,8 +313,9 @@ TEST_F(Cli, SegmentTakesTheCutsGivenAndRejectsBadOnes) {
   EXPECT_LT(model.V.col(1).minCoeff(), 110.0 + 1.0);  // the lateral ends lie on the plane
   // The mid-sagittal plane given (or found) travels with the model, for the landmark finder.
   r = run("info " + path("cut.vtu"));
-  EXPECT_NE(r.output.find("mid_sagittal_x(field,1x1)"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("mid-sagittal plane x = 100 mm"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("mid_sagittal_plane(field,1x3)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("mid-sagittal plane x = 100 mm at z = 0 mm, leaning 0 degrees"), std::string::npos)
+      << r.output;
 
   for (const char* bad :
        {"--ear-clearance -1", "--brow-clearance -2", "--top-cut nan", "--chin-clearance x", "--max-depth 0",

@@ -96,7 +96,7 @@ TEST(FaceLandmarks, SubnasaleAtTheTopOfARoughVerticalLip) {
   for (unsigned seed = 1; seed <= 12; ++seed) {
     const ProfilePhantom face(kVerticalLip, 0.4, seed);
     LandmarkOptions options;
-    options.mid_sagittal_x = ProfilePhantom::x0;
+    options.mid_sagittal_plane = MidSagittalPlane{ProfilePhantom::x0, 0, 0};
     const FaceLandmarks l = find_face_landmarks(face.V, face.side_mask, options);
     EXPECT_NEAR(l.points.at("subnasale").z(), -10, 1.5) << "seed " << seed;
   }
@@ -121,11 +121,41 @@ TEST(FaceLandmarks, AKnownMidSagittalPlaneIsUsed) {
   // mid-sagittal feature.
   const PhantomFace face;
   LandmarkOptions options;
-  options.mid_sagittal_x = PhantomFace::x0 + 1.2;
+  options.mid_sagittal_plane = MidSagittalPlane{PhantomFace::x0 + 1.2, 0, 0};
   const FaceLandmarks l = find_face_landmarks(face.V, face.side_mask, options);
   EXPECT_EQ(l.x_mid, PhantomFace::x0 + 1.2);
   for (const char* name : {"pronasale", "subnasale", "stomion", "nasion", "glabella"})
     EXPECT_EQ(l.points.at(name).x(), PhantomFace::x0 + 1.2) << name;
+}
+
+TEST(FaceLandmarks, AHeadTiltedTowardsAShoulderIsReadOnItsLeaningPlane) {
+  // The phantom tilted by 12 degrees about the y axis through (x0, 0): its midline runs along x = x0 - tan(12) z, the
+  // lips 6-8 mm beside the nose's vertical. With the plane the segmentation found (leaning so), every profile landmark
+  // lies where the tilt moved it, on that plane.
+  const double tilt = 12 * M_PI / 180, c = std::cos(tilt), s = std::sin(tilt);
+  PhantomFace face;
+  for (Eigen::Index v = 0; v < face.V.rows(); ++v) {
+    const double dx = face.V(v, 0) - PhantomFace::x0, z = face.V(v, 2);
+    face.V(v, 0) = PhantomFace::x0 + c * dx - s * z;
+    face.V(v, 2) = s * dx + c * z;
+  }
+  LandmarkOptions options;
+  options.mid_sagittal_plane = MidSagittalPlane{PhantomFace::x0, -std::tan(tilt), 0};
+  const FaceLandmarks l = find_face_landmarks(face.V, face.side_mask, options);
+  const std::map<std::string, double> expected_z = {
+      {"pronasale", 0},          {"subnasale", -14.6}, {"labrale superius", -24}, {"stomion", -31},
+      {"labrale inferius", -38}, {"nasion", 25.8},     {"glabella", 40}};
+  for (const auto& [name, z] : expected_z) {
+    ASSERT_TRUE(l.points.count(name)) << name;
+    const Eigen::Vector3d p = l.points.at(name);
+    EXPECT_NEAR(p.z(), c * z, 1.5) << name;
+    EXPECT_NEAR(p.x(), PhantomFace::x0 - s * z, 1.5) << name;
+  }
+  // The mid-sagittal feature's plane leans with it.
+  const ConstraintSet set =
+      feature_constraints(l, {{"eyebrow line", 0.9}, {"below-nose line", 0.6}, {"middle lip line", 0.5}}, 2.0);
+  const PlaneSelection& mid = *set.constraints.front().select.plane;
+  EXPECT_NEAR(mid.normal.dot(Eigen::Vector3d(-std::tan(tilt), 0, 1).normalized()), 0, 1e-12);
 }
 
 TEST(FaceLandmarks, PhantomLandmarksWithinOneAndAHalfMillimetres) {

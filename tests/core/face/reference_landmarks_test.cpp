@@ -45,7 +45,7 @@ void expect_near_reference(const FaceLandmarks& found, const std::string& refere
 }
 
 // The skin (side w1) vertices stored as "x y z" lines (tests/data/landmarks/README.md), all labelled skin, and the
-// model's mid-sagittal plane where a comment line "# mid_sagittal_x X" gives it.
+// model's mid-sagittal plane where a comment line "# mid_sagittal_plane X SLOPE Z" gives it.
 struct SkinPoints {
   Eigen::MatrixXd V;
   Eigen::VectorXi side_mask;
@@ -56,9 +56,14 @@ SkinPoints read_skin_points(const std::string& file) {
   EXPECT_TRUE(in) << file;
   std::vector<Eigen::Vector3d> points;
   SkinPoints skin;
-  const std::string plane = std::string("# ") + kMidSagittalXField + " ";
+  const std::string plane = std::string("# ") + kMidSagittalPlaneField + " ";
   for (std::string line; std::getline(in, line);) {
-    if (line.rfind(plane, 0) == 0) skin.options.mid_sagittal_x = std::stod(line.substr(plane.size()));
+    if (line.rfind(plane, 0) == 0) {
+      std::istringstream values(line.substr(plane.size()));
+      MidSagittalPlane p;
+      values >> p.x >> p.slope >> p.z;
+      skin.options.mid_sagittal_plane = p;
+    }
     if (line.empty() || line[0] == '#') continue;
     std::istringstream s(line);
     Eigen::Vector3d p;
@@ -105,9 +110,9 @@ TEST(ReferenceLandmarks, VisibleHumanFemaleDefaultModelWithItsPlane) {
   // bridges the closed lips' groove (the stomion lies in front of the CT's by about 2 mm at the same height), and the
   // mouth line traced on it ends further out and lower than the left corner placed on the CT.
   const SkinPoints skin = read_skin_points(kData + "vhfemale-head-default-skin.xyz");
-  ASSERT_TRUE(skin.options.mid_sagittal_x);
+  ASSERT_TRUE(skin.options.mid_sagittal_plane);
   const FaceLandmarks found = find_face_landmarks(skin.V, skin.side_mask, skin.options);
-  EXPECT_EQ(found.x_mid, *skin.options.mid_sagittal_x);
+  EXPECT_EQ(found.x_mid, skin.options.mid_sagittal_plane->x);
   EXPECT_NO_THROW(check_plausible(found, "test"));
   expect_near_reference(found, kData + "vhfemale-head.json", 2.0, 11, 0, {{"stomion", 2.5}, {"cheilion left", 3.0}});
 }

@@ -45,7 +45,7 @@ TEST_P(VtkRoundTrip, VtkFormatsKeepGeometryAndAllDataArrays) {
   TempDir dir;
   VolumeMesh mesh = test::sample_mesh();
   // Field data: facts about the whole mesh, of any number of tuples (a segmented CT's mid-sagittal plane is one).
-  mesh.field_data["mid_sagittal_x"] = Eigen::MatrixXd::Constant(1, 1, 258.6262461290185);
+  mesh.field_data["mid_sagittal_plane"] = (Eigen::MatrixXd(1, 3) << 258.6262461290185, 0.0122, 80.5).finished();
   mesh.field_data["frame"] = (Eigen::MatrixXd(2, 3) << 1, 0, 0, 0, 0.5, -1.0 / 3).finished();
   const std::string path = dir.file("mesh" + GetParam());
   write_volume_mesh(path, mesh);

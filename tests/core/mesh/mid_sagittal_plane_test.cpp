@@ -11,23 +11,29 @@ namespace {
 
 TEST(MidSagittalPlane, SetThenReadBack) {
   VolumeMesh mesh;
-  EXPECT_FALSE(mid_sagittal_x(mesh, "model.vtu"));
-  set_mid_sagittal_x(mesh, 98.37);
-  EXPECT_EQ(mid_sagittal_x(mesh, "model.vtu"), 98.37);
+  EXPECT_FALSE(mid_sagittal_plane(mesh, "model.vtu"));
+  set_mid_sagittal_plane(mesh, {98.37, -0.05, 80});
+  const std::optional<MidSagittalPlane> plane = mid_sagittal_plane(mesh, "model.vtu");
+  ASSERT_TRUE(plane);
+  EXPECT_EQ(plane->x, 98.37);
+  EXPECT_EQ(plane->slope, -0.05);
+  EXPECT_EQ(plane->z, 80);
+  EXPECT_DOUBLE_EQ(plane->x_at(100), 98.37 - 1.0);
 }
 
 TEST(MidSagittalPlane, MalformedFieldDataIsAnErrorNamingTheFile) {
-  for (const Eigen::MatrixXd& bad :
-       {Eigen::MatrixXd(0, 1), Eigen::MatrixXd(Eigen::MatrixXd::Constant(2, 1, 1.0)),
-        Eigen::MatrixXd(Eigen::MatrixXd::Constant(1, 1, std::numeric_limits<double>::quiet_NaN()))}) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const Eigen::MatrixXd& bad : {Eigen::MatrixXd(0, 3), Eigen::MatrixXd(Eigen::MatrixXd::Constant(1, 1, 98.0)),
+                                     Eigen::MatrixXd((Eigen::MatrixXd(1, 3) << 98, nan, 80).finished()),
+                                     Eigen::MatrixXd((Eigen::MatrixXd(1, 3) << 98, 2.0, 80).finished())}) {
     VolumeMesh mesh;
-    mesh.field_data[kMidSagittalXField] = bad;
+    mesh.field_data[kMidSagittalPlaneField] = bad;
     try {
-      mid_sagittal_x(mesh, "model.vtu");
-      ADD_FAILURE() << "accepted " << bad.rows() << " x " << bad.cols();
+      mid_sagittal_plane(mesh, "model.vtu");
+      ADD_FAILURE() << "accepted " << bad;
     } catch (const Error& e) {
       EXPECT_NE(std::string(e.what()).find("model.vtu"), std::string::npos) << e.what();
-      EXPECT_NE(std::string(e.what()).find("mid_sagittal_x"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("mid_sagittal_plane"), std::string::npos) << e.what();
     }
   }
 }

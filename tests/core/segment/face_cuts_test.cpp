@@ -169,6 +169,18 @@ TEST(FaceCuts, ATiltedHeadKeepsItsMidPlaneAndLandmarks) {
       Eigen::Vector3d(60, 60, 90) + rotation(15, Eigen::Vector3d::UnitY()) * Eigen::Vector3d(0, 44, 10);
   EXPECT_NEAR(a.centre_at(prn.z()), prn.x(), 2.0);
   EXPECT_NEAR(a.pronasale.y(), prn.y(), 2.0);
+  // The landmarks are read on the leaning plane; on an upright head, and on a plane given, on the vertical.
+  const FaceCuts tilted = find_face_cuts(h.head, h.bone, FaceCutOptions());
+  const MidSagittalPlane plane = landmark_plane(tilted, FaceCutOptions());
+  EXPECT_EQ(plane.slope, tilted.anatomy->roll_slope);
+  EXPECT_NEAR(plane.x_at(prn.z()), prn.x(), 2.0);
+  const Head upright(Eigen::Matrix3d::Identity(), false);
+  const FaceCuts straight = find_face_cuts(upright.head, upright.bone, FaceCutOptions());
+  EXPECT_EQ(landmark_plane(straight, FaceCutOptions()).slope, 0.0);
+  EXPECT_EQ(landmark_plane(straight, FaceCutOptions()).x, straight.centre_x);
+  FaceCutOptions given;
+  given.centre_x = 61.0;
+  EXPECT_EQ(landmark_plane(find_face_cuts(h.head, h.bone, given), given).slope, 0.0);
 }
 
 // Tilted 25 degrees, beyond any head in a scanner (a symmetry fit that leans so far has read the face wrongly): an

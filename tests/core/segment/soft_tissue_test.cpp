@@ -133,7 +133,11 @@ TEST(SoftTissue, RealCtMakesASixSidedModel) {
   EXPECT_EQ(m.edge_length, 2.0);  // a face of this size keeps the paper's edge length
   expect_valid_patient(m);
   // The model carries the CT's mid-sagittal plane, for the landmark finder.
-  EXPECT_EQ(mid_sagittal_x(m.mesh, "model"), m.cuts.centre_x);
+  const std::optional<MidSagittalPlane> plane = mid_sagittal_plane(m.mesh, "model");
+  ASSERT_TRUE(plane && m.cuts.anatomy);
+  EXPECT_EQ(plane->x, m.cuts.centre_x);
+  EXPECT_LT(std::abs(m.cuts.anatomy->roll_degrees), 5.0);  // upright: the plane is vertical
+  EXPECT_EQ(plane->slope, 0.0);
 }
 
 TEST(SoftTissue, ALargeModelIsMeshedCoarserUnlessTheEdgeLengthIsGiven) {
