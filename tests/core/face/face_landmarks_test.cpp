@@ -54,6 +54,11 @@ struct PhantomFace {
   }
 };
 
+// Where PhantomFace's profile landmarks lie (z, mm).
+const std::map<std::string, double> kPhantomProfileZ = {
+    {"pronasale", 0},          {"subnasale", -14.6}, {"labrale superius", -24}, {"stomion", -31},
+    {"labrale inferius", -38}, {"nasion", 25.8},     {"glabella", 40}};
+
 // A phantom skin drawn through a piecewise-linear mid-sagittal profile, its (z, y) corners given from the top, with
 // the relief fading sideways (25 mm) on a face curved sideways, sampled every 0.5 mm in x and z. roughness: each row
 // of z is moved along y by a uniform random amount within +-roughness (seeded), as a 2-3 mm mesh roughens a profile.
@@ -142,10 +147,7 @@ TEST(FaceLandmarks, AHeadTiltedTowardsAShoulderIsReadOnItsLeaningPlane) {
   LandmarkOptions options;
   options.mid_sagittal_plane = MidSagittalPlane{PhantomFace::x0, -std::tan(tilt), 0};
   const FaceLandmarks l = find_face_landmarks(face.V, face.side_mask, options);
-  const std::map<std::string, double> expected_z = {
-      {"pronasale", 0},          {"subnasale", -14.6}, {"labrale superius", -24}, {"stomion", -31},
-      {"labrale inferius", -38}, {"nasion", 25.8},     {"glabella", 40}};
-  for (const auto& [name, z] : expected_z) {
+  for (const auto& [name, z] : kPhantomProfileZ) {
     ASSERT_TRUE(l.points.count(name)) << name;
     const Eigen::Vector3d p = l.points.at(name);
     EXPECT_NEAR(p.z(), c * z, 1.5) << name;
@@ -163,10 +165,7 @@ TEST(FaceLandmarks, PhantomLandmarksWithinOneAndAHalfMillimetres) {
   const FaceLandmarks l = find_face_landmarks(face.V, face.side_mask);
   constexpr double tolerance = 1.5;  // mm: 1 mm profile bins on a 0.5 mm sampling
   EXPECT_NEAR(l.x_mid, PhantomFace::x0, 0.5);
-  const std::map<std::string, double> expected_z = {
-      {"pronasale", 0},          {"subnasale", -14.6}, {"labrale superius", -24}, {"stomion", -31},
-      {"labrale inferius", -38}, {"nasion", 25.8},     {"glabella", 40}};
-  for (const auto& [name, z] : expected_z) {
+  for (const auto& [name, z] : kPhantomProfileZ) {
     ASSERT_TRUE(l.points.count(name)) << name;
     const Eigen::Vector3d p = l.points.at(name);
     EXPECT_NEAR(p.z(), z, tolerance) << name;
