@@ -282,7 +282,9 @@ FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorX
   if (options.mid_sagittal_plane) {
     l.x_mid = options.mid_sagittal_plane->x, l.x_slope = options.mid_sagittal_plane->slope;
     l.plane_z = options.mid_sagittal_plane->z;
+    l.plane_source = "model";
   } else {
+    l.plane_source = "skin";
     l.x_mid = mirror_plane(V, skin, require(first, "nose tip"), zmin + 0.1 * height, zmax - 0.1 * height);
   }
   const Profile profile = skin_profile(V, skin, {l.x_mid, l.x_slope, l.plane_z}, options.profile_band);
@@ -419,6 +421,7 @@ FaceLandmarks landmarks_from(const std::vector<NamedLandmark>& given, const std:
     if (!l.points.count(spec.landmark))
       throw Error(source, "the " + spec.name + " needs the landmark '" + spec.landmark + "', which the file lacks");
   l.x_mid = l.points.at("pronasale").x();
+  l.plane_source = "given";
   l.given = true;
   return l;
 }

@@ -56,6 +56,9 @@ struct FaceLandmarks {
   // atan(x_slope).
   double x_mid = 0, x_slope = 0, plane_z = 0;
   double x_at(double z) const { return x_mid + x_slope * (z - plane_z); }
+  // Where the plane came from: "model" (the model's own, LandmarkOptions), "skin" (the skin's mirror plane) or
+  // "given" (through the given pronasale).
+  std::string plane_source;
   std::map<std::string, Eigen::Vector3d> points;  // "pronasale", "subnasale", "nasion", "glabella", "stomion", ...
   // Where the profile is clipped flat by the scan's field of view (z range, mm; NaN if it is not), and the landmarks
   // that lie inside the cut and were placed by typical proportions instead of found.

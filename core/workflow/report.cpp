@@ -178,7 +178,12 @@ json landmarks_json(const std::optional<FaceLandmarks>& landmarks) {
   return {{"source", landmarks->given ? "given" : "found"},
           {"found", landmarks->points.size() - estimated},
           {"estimated", estimated},
-          {"estimated_names", landmarks->estimated}};
+          {"estimated_names", landmarks->estimated},
+          {"mid_sagittal_plane",
+           {{"x", landmarks->x_mid},
+            {"slope", landmarks->x_slope},
+            {"z", landmarks->plane_z},
+            {"source", landmarks->plane_source}}}};
 }
 
 json run_report(const TransferRun& run, const MeshQualityReport& standard_quality,

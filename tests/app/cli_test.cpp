@@ -144,6 +144,11 @@ TEST_F(Cli, DemoRunsTheWholeChainFromTheBundledCt) {
   EXPECT_EQ(report["landmarks"]["source"], "found");
   EXPECT_GT(report["landmarks"]["found"].get<int>(), 0);
   EXPECT_EQ(report["landmarks"]["estimated"].get<int>(), report["landmarks"]["estimated_names"].size());
+  // Found on the plane the segmentation stored with the model, near the hand-placed reference's x = 99 (upright:
+  // vertical).
+  EXPECT_EQ(report["landmarks"]["mid_sagittal_plane"]["source"], "model");
+  EXPECT_NEAR(report["landmarks"]["mid_sagittal_plane"]["x"].get<double>(), 99.0, 1.5);
+  EXPECT_EQ(report["landmarks"]["mid_sagittal_plane"]["slope"].get<double>(), 0.0);
   // The registered skin, by default: most of the skin matched, the features at the found landmarks left out.
   const auto& skin = report["skin_correspondence"];
   EXPECT_EQ(skin["mode"], "registered");

@@ -129,6 +129,8 @@ TEST(FaceLandmarks, AKnownMidSagittalPlaneIsUsed) {
   options.mid_sagittal_plane = MidSagittalPlane{PhantomFace::x0 + 1.2, 0, 0};
   const FaceLandmarks l = find_face_landmarks(face.V, face.side_mask, options);
   EXPECT_EQ(l.x_mid, PhantomFace::x0 + 1.2);
+  EXPECT_EQ(l.plane_source, "model");
+  EXPECT_EQ(find_face_landmarks(face.V, face.side_mask).plane_source, "skin");
   for (const char* name : {"pronasale", "subnasale", "stomion", "nasion", "glabella"})
     EXPECT_EQ(l.points.at(name).x(), PhantomFace::x0 + 1.2) << name;
 }
