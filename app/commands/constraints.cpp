@@ -47,8 +47,8 @@ int cmd_constraints(const Argv& argv) {
                                                   args.number("band", 0.01, 50), &landmarks, given ? &*given : nullptr);
   write_constraint_set(args.get("output"), set);
   if (args.has("write-landmarks")) write_landmark_file(args.get("write-landmarks"), named_landmarks(landmarks));
-  std::cout << "mid-sagittal plane x = " << landmarks.x_at(landmarks.plane_z) << " mm at z = " << landmarks.plane_z
-            << " mm, slope dx/dz " << landmarks.x_slope << " (" << landmarks.plane_source << ")\n";
+  std::cout << "mid-sagittal plane x = " << landmarks.plane.x << " mm at z = " << landmarks.plane.z
+            << " mm, slope dx/dz " << landmarks.plane.slope << " (" << landmarks.plane_source << ")\n";
   std::cout << landmarks_text(landmarks, "");
   for (const auto& c : set.constraints)
     if (!c.select.side) std::cout << c.name << ": " << kFieldNames[c.field] << " = " << c.value << "\n";

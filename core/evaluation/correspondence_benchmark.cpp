@@ -42,7 +42,7 @@ Eigen::Vector3d chin_point(const Eigen::MatrixXd& skin, const FaceLandmarks& lm)
   Eigen::Vector3d best = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
   for (Eigen::Index i = 0; i < skin.rows(); ++i) {
     const Eigen::Vector3d p = skin.row(i).transpose();
-    if (std::abs(p.x() - lm.x_mid) <= 10 && p.z() <= lip_z - 12 && p.z() >= lip_z - 45 && !(p.y() <= best.y()))
+    if (std::abs(p.x() - lm.plane.x) <= 10 && p.z() <= lip_z - 12 && p.z() >= lip_z - 45 && !(p.y() <= best.y()))
       best = p;
   }
   if (!std::isfinite(best.y())) throw Error("landmarks", "no chin found below the lower lip of the standard");
@@ -94,7 +94,7 @@ FaceLandmarks standard_feature_landmarks(const StandardSetup& standard) {
     for (const Constraint& c : standard.constraints.constraints)
       if (c.name == spec.name && c.select.plane) {
         if (spec.field == 0)
-          l.x_mid = c.select.plane->point.x();
+          l.plane.x = c.select.plane->point.x();
         else
           l.points[spec.landmark] = c.select.plane->point;
       }
@@ -220,7 +220,7 @@ std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const Standar
         if (options.true_landmarks) {
           FaceLandmarks moved = standard_landmarks;
           for (auto& [name, point] : moved.points) point = warp.apply(point);
-          moved.x_mid = warp.apply(Eigen::Vector3d(standard_landmarks.x_mid, 0, 0)).x();
+          moved.plane.x = warp.apply(Eigen::Vector3d(standard_landmarks.plane.x, 0, 0)).x();
           patient.constraints = side_constraints();
           for (const Constraint& c : feature_constraints(moved, values, kFeatureBand).constraints)
             patient.constraints.constraints.push_back(c);

@@ -48,7 +48,7 @@ std::vector<std::vector<Eigen::Vector3i>> opening_walls(const TetDomain& d) {
 // An opening's anatomical name from where its centroid lies against the landmarks.
 std::string opening_name(const Eigen::Vector3d& c, const FaceLandmarks& lm, int index) {
   const auto at = [&](const char* name) { return lm.points.at(name); };
-  const std::string end = c.x() < lm.x_mid ? "at -x" : "at +x";
+  const std::string end = c.x() < lm.plane.x ? "at -x" : "at +x";
   if (lm.points.count("pronasale") && c.z() > at("pronasale").z() + 5) return "eye " + end;
   if (lm.points.count("subnasale") && c.z() > at("subnasale").z() - 4) return "nostril " + end;
   if (lm.points.count("stomion") && std::abs(c.z() - at("stomion").z()) < 12) return "mouth";

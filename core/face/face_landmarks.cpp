@@ -239,7 +239,7 @@ void add_chin(const Profile& profile, const std::vector<int>& skin, const Eigen:
   std::optional<Eigen::Vector3d> lowest;
   for (int v : skin) {
     const Eigen::Vector3d p = V.row(v).transpose();
-    if (std::abs(p.x() - l.x_at(p.z())) <= 3.0 && p.y() >= pog->y() - 20 && p.z() < pog->z() &&
+    if (std::abs(p.x() - l.plane.x_at(p.z())) <= 3.0 && p.y() >= pog->y() - 20 && p.z() < pog->z() &&
         (!lowest || p.z() < lowest->z()))
       lowest = p;
   }
@@ -247,7 +247,7 @@ void add_chin(const Profile& profile, const std::vector<int>& skin, const Eigen:
   double zmin = std::numeric_limits<double>::infinity();
   for (int v : skin) zmin = std::min(zmin, V(v, 2));
   if (lowest && lowest->z() > zmin + 2.0)
-    l.points["menton"] = Eigen::Vector3d(l.x_at(lowest->z()), lowest->y(), lowest->z());
+    l.points["menton"] = Eigen::Vector3d(l.plane.x_at(lowest->z()), lowest->y(), lowest->z());
 }
 
 }  // namespace
@@ -273,21 +273,18 @@ FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorX
     zmax = std::max(zmax, V(v, 2));
   }
   FaceLandmarks l;
-  l.x_mid = 0.5 * (xmin + xmax);
   const double height = zmax - zmin;
-  // The nose tip near the middle, then the plane through it.
-  const auto first =
-      skin_profile(V, skin, {l.x_mid, 0, 0}, 20.0).extreme(zmin + 0.1 * height, zmax - 0.1 * height, true);
-  // The middle of the skin within 1 mm of the front there: the tip of a nose, or the middle of a field-of-view cut.
   if (options.mid_sagittal_plane) {
-    l.x_mid = options.mid_sagittal_plane->x, l.x_slope = options.mid_sagittal_plane->slope;
-    l.plane_z = options.mid_sagittal_plane->z;
+    l.plane = *options.mid_sagittal_plane;
     l.plane_source = "model";
   } else {
+    // The nose tip near the middle of the skin's x range, then the skin's mirror plane searched near it.
+    const auto first = skin_profile(V, skin, {0.5 * (xmin + xmax), 0, 0}, 20.0)
+                           .extreme(zmin + 0.1 * height, zmax - 0.1 * height, true);
+    l.plane.x = mirror_plane(V, skin, require(first, "nose tip"), zmin + 0.1 * height, zmax - 0.1 * height);
     l.plane_source = "skin";
-    l.x_mid = mirror_plane(V, skin, require(first, "nose tip"), zmin + 0.1 * height, zmax - 0.1 * height);
   }
-  const Profile profile = skin_profile(V, skin, {l.x_mid, l.x_slope, l.plane_z}, options.profile_band);
+  const Profile profile = skin_profile(V, skin, l.plane, options.profile_band);
   const Eigen::Vector3d front = require(profile.extreme(zmin + 0.1 * height, zmax - 0.1 * height, true), "nose tip");
   const std::optional<std::pair<double, double>> cut =
       profile.clipped_run(front.y(), options.clipped_depth, options.clipped_length);
@@ -333,7 +330,7 @@ FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorX
   } else {
     auto on_cut = [&](double z) {
       const std::optional<Eigen::Vector3d> p = profile.extreme(z - 1, z + 1, true);
-      return Eigen::Vector3d(l.x_at(z), p ? p->y() : front.y(), z);
+      return Eigen::Vector3d(l.plane.x_at(z), p ? p->y() : front.y(), z);
     };
     prn = on_cut(std::min(sn.z() + 15, zmax - 20));
     n = on_cut(std::min(prn.z() + 40, zmax - 13));
@@ -343,7 +340,7 @@ FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorX
   l.points = {{"pronasale", prn},       {"subnasale", sn},        {"nasion", n},  {"glabella", g},
               {"labrale superius", ls}, {"labrale inferius", li}, {"stomion", st}};
   add_chin(profile, skin, V, l);
-  if (const auto corners = mouth_corners(V, skin, l.x_at(st.z()), st, ls)) {
+  if (const auto corners = mouth_corners(V, skin, l.plane.x_at(st.z()), st, ls)) {
     l.points["cheilion right"] = corners->first;
     l.points["cheilion left"] = corners->second;
   }
@@ -420,7 +417,7 @@ FaceLandmarks landmarks_from(const std::vector<NamedLandmark>& given, const std:
   for (const FeatureSpec& spec : feature_specs())
     if (!l.points.count(spec.landmark))
       throw Error(source, "the " + spec.name + " needs the landmark '" + spec.landmark + "', which the file lacks");
-  l.x_mid = l.points.at("pronasale").x();
+  l.plane.x = l.points.at("pronasale").x();
   l.plane_source = "given";
   l.given = true;
   return l;
@@ -468,8 +465,8 @@ ConstraintSet feature_constraints(const FaceLandmarks& landmarks, const std::map
            << at.z() << ") mm, " << (landmarks.given ? "given" : "found on the model");
     c.origin = origin.str();
     if (spec.field == 0) {
-      p.point = Eigen::Vector3d(landmarks.x_mid, 0, landmarks.plane_z);
-      p.normal = Eigen::Vector3d(1, 0, -landmarks.x_slope).normalized();
+      p.point = Eigen::Vector3d(landmarks.plane.x, 0, landmarks.plane.z);
+      p.normal = Eigen::Vector3d(1, 0, -landmarks.plane.slope).normalized();
       p.region = "volume";
     } else {
       p.point = at;

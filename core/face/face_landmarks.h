@@ -3,10 +3,10 @@
 // (paper 3.4: mid-sagittal line, eyebrow line, below-nose line, middle lip line).
 //
 // Frame: +x lateral, +y anterior (the face looks to +y), +z superior. The skin is the model's w1 side (side_mask).
-//  - mid-sagittal plane x = x_at(z): the model's own when it carries one (a segmented CT's, LandmarkOptions, leaning
-//    with a head tilted towards a shoulder), else the skin's vertical mirror plane x = x_mid (the median over 2 mm rows
-//    of z of the plane that best mirrors the row's front, core/util/mirror_symmetry.h), searched near the most anterior
-//    point within 20 mm of the middle of the skin's x range;
+//  - mid-sagittal plane x = plane.x_at(z): the model's own when it carries one (a segmented CT's, LandmarkOptions,
+//    leaning with a head tilted towards a shoulder), else the skin's vertical mirror plane (the median over 2 mm rows
+//    of z of the plane that best mirrors the row's front, core/util/mirror_symmetry.h), searched near the most
+//    anterior point within 20 mm of the middle of the skin's x range;
 //  - the profile: for 1 mm bins of z, the most anterior skin point within `profile_band` of the plane, moved onto it
 //    (a band wider than the philtrum's groove would catch its ridges);
 //  - pronasale (nose tip): the most anterior profile point in the middle 80 % of the z range;
@@ -52,10 +52,7 @@
 namespace facehex {
 
 struct FaceLandmarks {
-  // The mid-sagittal plane x_at(z) = x_mid + x_slope (z - plane_z): vertical, leaning towards a shoulder by
-  // atan(x_slope).
-  double x_mid = 0, x_slope = 0, plane_z = 0;
-  double x_at(double z) const { return x_mid + x_slope * (z - plane_z); }
+  MidSagittalPlane plane;  // the profile's plane, x = plane.x_at(z)
   // Where the plane came from: "model" (the model's own, LandmarkOptions), "skin" (the skin's mirror plane) or
   // "given" (through the given pronasale).
   std::string plane_source;

@@ -65,15 +65,8 @@ std::string mm(double x) {
 
 void check_head_size(const Mask& head) {
   const GridGeometry& g = head.geometry;
-  int lo[2] = {g.dims[0], g.dims[1]}, hi[2] = {-1, -1};
-  for (int k = 0; k < g.dims[2]; ++k)
-    for (int j = 0; j < g.dims[1]; ++j)
-      for (int i = 0; i < g.dims[0]; ++i)
-        if (head(i, j, k)) {
-          lo[0] = std::min(lo[0], i), hi[0] = std::max(hi[0], i);
-          lo[1] = std::min(lo[1], j), hi[1] = std::max(hi[1], j);
-        }
-  const double width = (hi[0] - lo[0] + 1) * g.spacing.x(), depth = (hi[1] - lo[1] + 1) * g.spacing.y();
+  const auto [lo, hi] = occupied_box(head);
+  const double width = (hi[0] - lo[0]) * g.spacing.x(), depth = (hi[1] - lo[1]) * g.spacing.y();
   if (!(width >= kMinHeadSize && depth >= kMinHeadSize))
     throw Error("segment", "not a plausible head: the body found is " + mm(width) + " wide and " + mm(depth) +
                                " deep, a head at least " + mm(kMinHeadSize) + " both ways");

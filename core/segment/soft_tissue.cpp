@@ -26,14 +26,8 @@ constexpr double kBodyBoxMargin = 10.0;
 // whole: the scan's top and bottom are what the cuts' margins are measured from.
 std::pair<std::array<int, 3>, std::array<int, 3>> body_box(const Mask& body) {
   const GridGeometry& g = body.geometry;
-  std::array<int, 3> lo = {g.dims[0], g.dims[1], 0}, hi = {0, 0, g.dims[2]};
-  for (int k = 0; k < g.dims[2]; ++k)
-    for (int j = 0; j < g.dims[1]; ++j)
-      for (int i = 0; i < g.dims[0]; ++i)
-        if (body(i, j, k)) {
-          lo[0] = std::min(lo[0], i), hi[0] = std::max(hi[0], i + 1);
-          lo[1] = std::min(lo[1], j), hi[1] = std::max(hi[1], j + 1);
-        }
+  auto [lo, hi] = occupied_box(body);
+  lo[2] = 0, hi[2] = g.dims[2];
   for (int a = 0; a < 2; ++a) {
     const int margin = static_cast<int>(std::ceil(kBodyBoxMargin / g.spacing(a)));
     lo[a] = std::max(0, lo[a] - margin);

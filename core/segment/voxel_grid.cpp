@@ -5,6 +5,19 @@
 
 namespace facehex {
 
+std::pair<std::array<int, 3>, std::array<int, 3>> occupied_box(const Mask& mask) {
+  const GridGeometry& g = mask.geometry;
+  std::array<int, 3> lo = g.dims, hi = {0, 0, 0};
+  for (int k = 0; k < g.dims[2]; ++k)
+    for (int j = 0; j < g.dims[1]; ++j)
+      for (int i = 0; i < g.dims[0]; ++i)
+        if (mask(i, j, k)) {
+          const int at[3] = {i, j, k};
+          for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], at[a]), hi[a] = std::max(hi[a], at[a] + 1);
+        }
+  return {lo, hi};
+}
+
 double sample(const Field& field, const Eigen::Vector3d& p) {
   const GridGeometry& g = field.geometry;
   int base[3];

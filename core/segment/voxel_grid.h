@@ -7,6 +7,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace facehex {
@@ -49,6 +50,9 @@ struct VoxelGrid {
 
 using Mask = VoxelGrid<std::uint8_t>;  // 0 = outside, 1 = inside
 using Field = VoxelGrid<float>;
+
+// The box of a mask's nonzero voxels: lo <= (i, j, k) < hi; lo = dims and hi = 0 when there are none.
+std::pair<std::array<int, 3>, std::array<int, 3>> occupied_box(const Mask& mask);
 
 // The voxels lo <= (i, j, k) < hi of a grid (within it), at the same physical positions.
 template <class T>

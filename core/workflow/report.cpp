@@ -180,9 +180,9 @@ json landmarks_json(const std::optional<FaceLandmarks>& landmarks) {
           {"estimated", estimated},
           {"estimated_names", landmarks->estimated},
           {"mid_sagittal_plane",
-           {{"x", landmarks->x_mid},
-            {"slope", landmarks->x_slope},
-            {"z", landmarks->plane_z},
+           {{"x", landmarks->plane.x},
+            {"slope", landmarks->plane.slope},
+            {"z", landmarks->plane.z},
             {"source", landmarks->plane_source}}}};
 }
 

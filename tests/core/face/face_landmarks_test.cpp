@@ -128,7 +128,7 @@ TEST(FaceLandmarks, AKnownMidSagittalPlaneIsUsed) {
   LandmarkOptions options;
   options.mid_sagittal_plane = MidSagittalPlane{PhantomFace::x0 + 1.2, 0, 0};
   const FaceLandmarks l = find_face_landmarks(face.V, face.side_mask, options);
-  EXPECT_EQ(l.x_mid, PhantomFace::x0 + 1.2);
+  EXPECT_EQ(l.plane.x, PhantomFace::x0 + 1.2);
   EXPECT_EQ(l.plane_source, "model");
   EXPECT_EQ(find_face_landmarks(face.V, face.side_mask).plane_source, "skin");
   for (const char* name : {"pronasale", "subnasale", "stomion", "nasion", "glabella"})
@@ -166,7 +166,7 @@ TEST(FaceLandmarks, PhantomLandmarksWithinOneAndAHalfMillimetres) {
   const PhantomFace face;
   const FaceLandmarks l = find_face_landmarks(face.V, face.side_mask);
   constexpr double tolerance = 1.5;  // mm: 1 mm profile bins on a 0.5 mm sampling
-  EXPECT_NEAR(l.x_mid, PhantomFace::x0, 0.5);
+  EXPECT_NEAR(l.plane.x, PhantomFace::x0, 0.5);
   for (const auto& [name, z] : kPhantomProfileZ) {
     ASSERT_TRUE(l.points.count(name)) << name;
     const Eigen::Vector3d p = l.points.at(name);

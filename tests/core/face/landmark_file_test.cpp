@@ -159,7 +159,7 @@ TEST(LandmarkPlausibility, NamedLandmarksKeepTheirStatus) {
     EXPECT_EQ(n.status, n.name == "pronasale" ? LandmarkStatus::estimated : LandmarkStatus::found) << n.name;
   const FaceLandmarks given = landmarks_from(named, "file.json");
   EXPECT_TRUE(given.given);
-  EXPECT_EQ(given.x_mid, 0);
+  EXPECT_EQ(given.plane.x, 0);
   for (const NamedLandmark& n : named_landmarks(given)) EXPECT_EQ(n.status, LandmarkStatus::given);
   std::vector<NamedLandmark> missing = named;
   missing.erase(

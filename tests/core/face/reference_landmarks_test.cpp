@@ -112,7 +112,7 @@ TEST(ReferenceLandmarks, VisibleHumanFemaleDefaultModelWithItsPlane) {
   const SkinPoints skin = read_skin_points(kData + "vhfemale-head-default-skin.xyz");
   ASSERT_TRUE(skin.options.mid_sagittal_plane);
   const FaceLandmarks found = find_face_landmarks(skin.V, skin.side_mask, skin.options);
-  EXPECT_EQ(found.x_mid, skin.options.mid_sagittal_plane->x);
+  EXPECT_EQ(found.plane.x, skin.options.mid_sagittal_plane->x);
   EXPECT_NO_THROW(check_plausible(found, "test"));
   expect_near_reference(found, kData + "vhfemale-head.json", 2.0, 11, 0, {{"stomion", 2.5}, {"cheilion left", 3.0}});
 }
