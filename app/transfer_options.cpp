@@ -15,7 +15,7 @@ namespace {
 // The thresholds and cuts a CT was segmented with, and the options that change them, on stderr.
 void print_segmentation(const CtSegmentation& segmentation) {
   std::cerr << "segmentation: " << segmentation_summary(segmentation)
-            << "\n  (change with --skin, --bone, --top-cut, --bottom-cut, --posterior-cut, --mid-plane)\n";
+            << "\n  (change with --skin, --bone, --head-turn, --top-cut, --bottom-cut, --posterior-cut, --mid-plane)\n";
 }
 
 }  // namespace
@@ -31,8 +31,13 @@ void add_segment_options(Args& args) {
       .option("anterior",
               "voxel axis the face looks to: +x -x +y -y +z -z (default: from a DICOM series' orientation, else +y)")
       .option("superior", "voxel axis towards the top of the head (default: from a DICOM series, else +z)")
+      .option("head-turn",
+              "degrees the head is turned about the vertical axis in the scanner, towards +x from +y; the cuts are "
+              "placed in the head frame turned back by it, and the model stays in the CT's frame (default: from the "
+              "head's mirror symmetry, none under 2; 0: the CT's own frame)")
       .option("top-cut",
-              "height z (mm, segmentation frame) of the top cut (default: --brow-clearance above the glabella)")
+              "height z (mm, head frame: the segmentation frame unless the head is turned) of the top cut (default: "
+              "--brow-clearance above the glabella)")
       .option("bottom-cut",
               "height z (mm) of the bottom cut (default: --chin-clearance below the menton, the chin's lowest bone)")
       .option("posterior-cut",
@@ -109,6 +114,7 @@ SegmentOptions segment_options(const Args& args) {
     return x;
   };
   FaceCutOptions& cuts = o.cuts;
+  if (args.has("head-turn")) cuts.head_turn = args.number("head-turn", -45, 45);
   if (args.has("top-cut")) cuts.top_z = finite("top-cut");
   if (args.has("bottom-cut")) cuts.bottom_z = finite("bottom-cut");
   if (args.has("posterior-cut")) cuts.posterior_y = finite("posterior-cut");

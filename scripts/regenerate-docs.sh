@@ -137,16 +137,35 @@ EOF
       step landmarks-vhf-2mm "$facehex" segment ../shared/data/ct/vhfemale-head.mha --edge-length 2 \
         -o "$out/vhf-2mm.vtu" --write-landmarks "$out/landmarks-vhf-2mm.json"
     fi
+    # Known answers for a head turned in the scanner: the CTs turned about the vertical axis, the hand-placed
+    # landmarks turned with them (needs python3-vtk9).
+    if /usr/bin/python3 -c 'import vtk' 2>/dev/null; then
+      turns=(bundled-ct:resources/ct/headsq/headsq.mhd:headsq:12 bundled-ct:resources/ct/headsq/headsq.mhd:headsq:-20)
+      [ -f ../shared/data/ct/vhfemale-head.mha ] &&
+        turns+=(vhf:../shared/data/ct/vhfemale-head.mha:vhfemale-head:-10 vhf:../shared/data/ct/vhfemale-head.mha:vhfemale-head:15)
+      for turn in "${turns[@]}"; do
+        IFS=: read -r key ct reference degrees <<<"$turn"
+        /usr/bin/python3 scripts/turn_ct.py "$ct" "$degrees" "$out/turned.mha" "tests/data/landmarks/$reference.json" \
+          "$out/reference-$key-turned$degrees.json"
+        step "landmarks-$key-turned$degrees" "$facehex" segment "$out/turned.mha" -o "$out/$key-turned$degrees.vtu" \
+          --write-landmarks "$out/landmarks-$key-turned$degrees.json"
+        rm -f "$out/turned.mha"
+      done
+    fi
     # The models with their sides and landmarks, pictured (needs xvfb-run and python3-vtk9).
     if command -v xvfb-run >/dev/null && /usr/bin/python3 -c 'import vtk' 2>/dev/null; then
-      for model in bundled-ct:headsq:headsq vhf:vhfemale:vhfemale-head; do
-        IFS=: read -r key picture reference <<<"$model"
+      for model in bundled-ct:headsq:headsq:front,side,cuts vhf:vhfemale:vhfemale-head:front,side,cuts \
+        bundled-ct-turned-20:headsq_turned-20:reference-bundled-ct-turned-20:front,cuts \
+        vhf-turned15:vhfemale_turned15:reference-vhf-turned15:front,cuts; do
+        IFS=: read -r key picture reference views <<<"$model"
         [ -f "$out/$key.vtu" ] || continue
-        for view in front side cuts; do
+        reference_file="tests/data/landmarks/$reference.json"
+        [[ $reference == reference-* ]] && reference_file="$out/$reference.json"
+        for view in ${views//,/ }; do
           xvfb-run -a /usr/bin/python3 scripts/render_model_landmarks.py "$out/$key.vtu" "$out/landmarks-$key.json" \
             "$view" "docs/img/${picture}_model_$view.png" \
             "$picture, facehex segment: sides, landmarks found (blue), estimated (orange), placed by hand (black)" \
-            "tests/data/landmarks/$reference.json"
+            "$reference_file"
         done
       done
     fi
@@ -383,12 +402,17 @@ if only in ("", "landmarks"):
         return {l["name"]: l for l in json.load(open(path))["landmarks"]} if os.path.exists(path) else None
 
     def reference(name):
-        return {l["name"]: l for l in json.load(open(os.path.join(root, "tests/data/landmarks", name)))["landmarks"]}
+        path = os.path.join(out, name) if name.startswith("reference-") else os.path.join(root, "tests/data/landmarks", name)
+        return {l["name"]: l for l in json.load(open(path))["landmarks"]}
 
     columns = [("Visible Human (1 mm), `run` (2.5 mm edge)", "vhf", "vhfemale-head.json"),
                ("Visible Human, `--edge-length 2`", "vhf-2mm", "vhfemale-head.json"),
                ("bundled CT (3.2 mm), `run`", "bundled-ct", "headsq.json"),
                ("bundled patient model (no plane stored)", "bundled-patient", "headsq.json")]
+    # The CTs turned about the vertical axis (scripts/turn_ct.py), against the reference turned with them.
+    for key, label, degrees in [("vhf", "Visible Human", -10), ("vhf", "Visible Human", 15),
+                                ("bundled-ct", "bundled CT", 12), ("bundled-ct", "bundled CT", -20)]:
+        columns.append((f"{label} turned {degrees} deg", f"{key}-turned{degrees}", f"reference-{key}-turned{degrees}.json"))
     columns = [(label, landmarks(key), reference(ref)) for label, key, ref in columns if landmarks(key) is not None]
     names = []
     for _, _, ref in columns:

@@ -93,9 +93,13 @@ SegmentationDialog::SegmentationDialog(QWidget* parent) : QDialog(parent) {
             tr("Body above this intensity; automatic: from the histogram. ") + units);
   addNumber(Bone, tr("Bone threshold"), -1e5, 1e5, QString(), "segmentBone",
             tr("Bone above this intensity; automatic: from the histogram. ") + units);
+  addNumber(HeadTurnAngle, tr("Head turn"), -45, 45, tr(" deg"), "segmentHeadTurn",
+            tr("Degrees the head is turned about the vertical axis in the scanner, towards +x from +y; the cuts are "
+               "placed in the head frame turned back by it, and the model stays in the CT's frame. Automatic: from "
+               "the head's mirror symmetry, none under 2 degrees; 0: the CT's own frame."));
   const QString frame =
-      tr("Millimetres in the segmentation frame: the file's coordinates, axes swapped or negated so "
-         "the face looks to +y and the top of the head is +z.");
+      tr("Millimetres in the head frame: the file's coordinates, axes swapped or negated so the face looks to +y "
+         "and the top of the head is +z, turned back by the head's turn.");
   addNumber(TopCut, tr("Top cut z"), -1e4, 1e4, tr(" mm"), "segmentTopCut",
             tr("Automatic: the brow clearance above the glabella, within the CT. ") + frame);
   addNumber(BottomCut, tr("Bottom cut z"), -1e4, 1e4, tr(" mm"), "segmentBottomCut",
@@ -136,6 +140,7 @@ void SegmentationDialog::setOptions(const SegmentOptions& o) {
   selectAxis(superior_, o.orientation.superior);
   numbers_[Skin].set(o.skin_threshold);
   numbers_[Bone].set(o.bone_threshold);
+  numbers_[HeadTurnAngle].set(o.cuts.head_turn);
   numbers_[TopCut].set(o.cuts.top_z);
   numbers_[BottomCut].set(o.cuts.bottom_z);
   numbers_[PosteriorCut].set(o.cuts.posterior_y);
@@ -153,6 +158,7 @@ SegmentOptions SegmentationDialog::options() const {
   o.orientation.superior = superior_->currentData().toString().toStdString();
   o.skin_threshold = numbers_[Skin].get();
   o.bone_threshold = numbers_[Bone].get();
+  o.cuts.head_turn = numbers_[HeadTurnAngle].get();
   o.cuts.top_z = numbers_[TopCut].get();
   o.cuts.bottom_z = numbers_[BottomCut].get();
   o.cuts.posterior_y = numbers_[PosteriorCut].get();
@@ -164,7 +170,7 @@ SegmentOptions SegmentationDialog::options() const {
 }
 
 void SegmentationDialog::showFound(const TissueThresholds& thresholds, const FaceCuts& cuts) {
-  const std::array<double, kNumbers> found = {thresholds.skin, thresholds.bone,  cuts.top_z,
+  const std::array<double, kNumbers> found = {thresholds.skin, thresholds.bone,  cuts.turn.degrees, cuts.top_z,
                                               cuts.bottom_z,   cuts.posterior_y, cuts.centre_x};
   for (int n = 0; n < kNumbers; ++n)
     if (numbers_[n].automatic->isChecked()) numbers_[n].value->setValue(found[n]);

@@ -1,9 +1,10 @@
 #pragma once
 // The options of a CT's segmentation (core/segment/soft_tissue.h), asked before a CT is segmented: tet edge length,
-// the voxel axes the face and the top of the head point along, the skin and bone thresholds, and the four cut
-// planes. Thresholds and cuts are "automatic" (found in the CT) unless unticked; after a segmentation the dialog can
-// show the values that were found, so unticking one starts from it (the loop: segment, look, move a cut, segment
-// again). The same options as `facehex segment`, with the same defaults.
+// the voxel axes the face and the top of the head point along, the skin and bone thresholds, the head's turn about
+// the vertical axis and the four cut planes (in the head frame that turn gives). Thresholds and cuts are "automatic"
+// (found in the CT) unless unticked; after a segmentation the dialog can show the values that were found, so unticking
+// one starts from it (the loop: segment, look, move a cut, segment again). The same options as `facehex segment`, with
+// the same defaults.
 #include <QDialog>
 #include <array>
 
@@ -36,7 +37,7 @@ class SegmentationDialog : public QDialog {
     void set(const std::optional<double>& given);
     std::optional<double> get() const;
   };
-  enum Number { Skin, Bone, TopCut, BottomCut, PosteriorCut, MidPlane, kNumbers };
+  enum Number { Skin, Bone, HeadTurnAngle, TopCut, BottomCut, PosteriorCut, MidPlane, kNumbers };
 
   QLabel* heading_;
   QDoubleSpinBox *edgeLength_, *browClearance_, *chinClearance_, *earClearance_;

@@ -6,6 +6,7 @@
 #include "core/face/automatic_constraints.h"
 #include "core/face/landmark_file.h"
 #include "core/io/mesh_io.h"
+#include "core/mesh/mid_sagittal_plane.h"
 #include "core/standard/own_feature_values.h"
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
@@ -47,8 +48,8 @@ int cmd_constraints(const Argv& argv) {
                                                   args.number("band", 0.01, 50), &landmarks, given ? &*given : nullptr);
   write_constraint_set(args.get("output"), set);
   if (args.has("write-landmarks")) write_landmark_file(args.get("write-landmarks"), named_landmarks(landmarks));
-  std::cout << "mid-sagittal plane x = " << landmarks.plane.x << " mm at z = " << landmarks.plane.z
-            << " mm, slope dx/dz " << landmarks.plane.slope << " (" << landmarks.plane_source << ")\n";
+  std::cout << "mid-sagittal plane " << mid_sagittal_plane_text(landmarks.plane) << " (" << landmarks.plane_source
+            << ")\n";
   std::cout << landmarks_text(landmarks, "");
   for (const auto& c : set.constraints)
     if (!c.select.side) std::cout << c.name << ": " << kFieldNames[c.field] << " = " << c.value << "\n";

@@ -45,9 +45,8 @@ int cmd_info(const Argv& argv) {
     std::cout << " " << name << "(field," << a.rows() << "x" << a.cols() << ")";
   std::cout << "\n";
   if (const std::optional<MidSagittalPlane> plane = mid_sagittal_plane(m, path))
-    std::cout << "  mid-sagittal plane x = " << plane->x << " mm at z = " << plane->z << " mm, leaning "
-              << std::atan(plane->slope) * 180 / M_PI
-              << " degrees (from the segmentation; the landmarks are found on it)\n";
+    std::cout << "  mid-sagittal plane " << mid_sagittal_plane_text(*plane)
+              << " (from the segmentation; the landmarks are found on it)\n";
   return 0;
 }
 

@@ -44,18 +44,8 @@ Field warp_volume(const Field& field, const SmoothWarp& warp) {
   for (int a = 0; a < 2; ++a) target.dims[a] = static_cast<int>(std::ceil((hi(a) - lo(a)) / g.spacing(a))) + 1;
   target.dims[2] = static_cast<int>(std::floor((hi.z() - lo.z()) / g.spacing.z() + 1e-9)) + 1;  // not beyond the top
   const float air = *std::min_element(field.data.begin(), field.data.end());
-  Field out(target, air);
-#pragma omp parallel for schedule(dynamic)
-  for (int k = 0; k < target.dims[2]; ++k)
-    for (int j = 0; j < target.dims[1]; ++j)
-      for (int i = 0; i < target.dims[0]; ++i) {
-        const Eigen::Vector3d x = warp.inverse(target.point(i, j, k));
-        bool inside = true;
-        for (int a = 0; a < 3; ++a)
-          inside = inside && x(a) >= g.lower(a) - 0.5 * g.spacing(a) && x(a) <= g.upper(a) + 0.5 * g.spacing(a);
-        if (inside) out(i, j, k) = static_cast<float>(sample(field, x));
-      }
-  return out;
+  return resample_mapped(
+      field, target, [&warp](const Eigen::Vector3d& y) { return warp.inverse(y); }, air);
 }
 
 }  // namespace facehex

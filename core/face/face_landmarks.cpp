@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/face/mouth_corners.h"
+#include "core/mesh/head_turn.h"
 #include "core/mesh/mid_sagittal_plane.h"
 #include "core/mesh/sides.h"
 #include "core/util/error.h"
@@ -143,7 +144,7 @@ Profile skin_profile(const Eigen::MatrixXd& V, const std::vector<int>& skin, con
   p.z0 = std::floor(zmin);
   p.bins.resize(static_cast<size_t>(std::ceil(zmax) - p.z0) + 1);
   for (int v : skin) {
-    const double x = plane.x_at(V(v, 2));
+    const double x = plane.x_at(V(v, 1), V(v, 2));
     if (std::abs(V(v, 0) - x) > band) continue;
     auto& bin = p.bins[static_cast<size_t>(V(v, 2) - p.z0)];
     if (!bin || V(v, 1) > bin->y()) bin = Eigen::Vector3d(x, V(v, 1), V(v, 2));  // on the plane
@@ -239,7 +240,7 @@ void add_chin(const Profile& profile, const std::vector<int>& skin, const Eigen:
   std::optional<Eigen::Vector3d> lowest;
   for (int v : skin) {
     const Eigen::Vector3d p = V.row(v).transpose();
-    if (std::abs(p.x() - l.plane.x_at(p.z())) <= 3.0 && p.y() >= pog->y() - 20 && p.z() < pog->z() &&
+    if (std::abs(p.x() - l.plane.x_at(p.y(), p.z())) <= 3.0 && p.y() >= pog->y() - 20 && p.z() < pog->z() &&
         (!lowest || p.z() < lowest->z()))
       lowest = p;
   }
@@ -247,7 +248,7 @@ void add_chin(const Profile& profile, const std::vector<int>& skin, const Eigen:
   double zmin = std::numeric_limits<double>::infinity();
   for (int v : skin) zmin = std::min(zmin, V(v, 2));
   if (lowest && lowest->z() > zmin + 2.0)
-    l.points["menton"] = Eigen::Vector3d(l.plane.x_at(lowest->z()), lowest->y(), lowest->z());
+    l.points["menton"] = Eigen::Vector3d(l.plane.x_at(lowest->y(), lowest->z()), lowest->y(), lowest->z());
 }
 
 }  // namespace
@@ -258,8 +259,11 @@ LandmarkOptions landmark_options_for(const VolumeMesh& model, const std::string&
   return options;
 }
 
-FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
-                                  const LandmarkOptions& options) {
+namespace {
+
+// find_face_landmarks on a model whose given plane, if any, is not turned.
+FaceLandmarks find_in_head_frame(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
+                                 const LandmarkOptions& options) {
   if (side_mask.size() != V.rows()) throw Error("landmarks", "the model has no side labels (side_mask)");
   std::vector<int> skin;
   for (int v = 0; v < V.rows(); ++v)
@@ -330,7 +334,8 @@ FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorX
   } else {
     auto on_cut = [&](double z) {
       const std::optional<Eigen::Vector3d> p = profile.extreme(z - 1, z + 1, true);
-      return Eigen::Vector3d(l.plane.x_at(z), p ? p->y() : front.y(), z);
+      const double y = p ? p->y() : front.y();
+      return Eigen::Vector3d(l.plane.x_at(y, z), y, z);
     };
     prn = on_cut(std::min(sn.z() + 15, zmax - 20));
     n = on_cut(std::min(prn.z() + 40, zmax - 13));
@@ -340,10 +345,28 @@ FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorX
   l.points = {{"pronasale", prn},       {"subnasale", sn},        {"nasion", n},  {"glabella", g},
               {"labrale superius", ls}, {"labrale inferius", li}, {"stomion", st}};
   add_chin(profile, skin, V, l);
-  if (const auto corners = mouth_corners(V, skin, l.plane.x_at(st.z()), st, ls)) {
+  if (const auto corners = mouth_corners(V, skin, l.plane.x_at(st.y(), st.z()), st, ls)) {
     l.points["cheilion right"] = corners->first;
     l.points["cheilion left"] = corners->second;
   }
+  return l;
+}
+
+}  // namespace
+
+FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
+                                  const LandmarkOptions& options) {
+  if (!options.mid_sagittal_plane || options.mid_sagittal_plane->turn == 0)
+    return find_in_head_frame(V, side_mask, options);
+  // A turned head's profile is read in its head frame, where the face looks to +y.
+  const HeadTurn turn = head_turn_of(*options.mid_sagittal_plane);
+  Eigen::MatrixXd head(V.rows(), 3);
+  for (int v = 0; v < V.rows(); ++v) head.row(v) = turn.to_head(V.row(v).transpose()).transpose();
+  LandmarkOptions in_head = options;
+  in_head.mid_sagittal_plane = turn.to_head(*options.mid_sagittal_plane);
+  FaceLandmarks l = find_in_head_frame(head, side_mask, in_head);
+  for (auto& [name, p] : l.points) p = turn.to_model(p);
+  l.plane = *options.mid_sagittal_plane;
   return l;
 }
 
@@ -465,8 +488,8 @@ ConstraintSet feature_constraints(const FaceLandmarks& landmarks, const std::map
            << at.z() << ") mm, " << (landmarks.given ? "given" : "found on the model");
     c.origin = origin.str();
     if (spec.field == 0) {
-      p.point = Eigen::Vector3d(landmarks.plane.x, 0, landmarks.plane.z);
-      p.normal = Eigen::Vector3d(1, 0, -landmarks.plane.slope).normalized();
+      p.point = Eigen::Vector3d(landmarks.plane.x, landmarks.plane.y, landmarks.plane.z);
+      p.normal = landmarks.plane.normal();
       p.region = "volume";
     } else {
       p.point = at;

@@ -24,6 +24,8 @@ constexpr double kChinSoftTissue = 25.0;       // mm: bone this close behind the
 constexpr double kChinGap = 8.0;               // mm of levels without such bone within the chin's run (lips apart)
 constexpr double kChinDepth = 30.0;            // mm the mandible's lower border reaches back from the chin's front
 constexpr double kMaxRoll = 20.0;              // degrees a head tilts towards a shoulder in a scanner, at most
+constexpr double kMaxTurn = 40.0;              // degrees a head is looked for turned about the vertical axis
+constexpr double kTurnSampling = 2.0;          // mm between the head voxels compared for the turn
 constexpr double kEarReachTolerance = 3.0;     // mm: rows whose side reaches this close to the widest are the ear
 constexpr double kBrowReach[2] = {3.0, 30.0};  // mm above the nasion where the brow is looked for
 // A head, an infant's included, is wider and deeper than this, and its nose tip stands at least this far in front of
@@ -319,6 +321,63 @@ double find_ear_front(const Mask& head, const FaceAnatomy& anatomy) {
 }
 
 }  // namespace
+
+HeadTurn find_head_turn(const Mask& head) {
+  const GridGeometry& g = head.geometry;
+  const Sections sections(head);
+  const auto [lowest, top, bottom] = head_levels(sections);
+  // Head voxels every kTurnSampling mm of each level, with the level's centroid.
+  struct Level {
+    int k = 0;
+    Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+    std::vector<Eigen::Vector2d> points;
+  };
+  const auto every = [&](int axis) {
+    return std::max(1, static_cast<int>(std::lround(kTurnSampling / g.spacing(axis))));
+  };
+  std::vector<Level> levels;
+  Eigen::Vector2d axis = Eigen::Vector2d::Zero();
+  size_t count = 0;
+  for (int k = lowest; k <= top; k += every(2)) {
+    Level level;
+    level.k = k;
+    for (int j = 0; j < g.dims[1]; j += every(1))
+      for (int i = 0; i < g.dims[0]; i += every(0))
+        if (head(i, j, k)) level.points.push_back(g.point(i, j, k).head<2>());
+    if (level.points.empty()) continue;
+    for (const auto& p : level.points) level.centroid += p;
+    axis += level.centroid;
+    count += level.points.size();
+    level.centroid /= static_cast<double>(level.points.size());
+    levels.push_back(std::move(level));
+  }
+  HeadTurn turn;
+  turn.axis = axis / static_cast<double>(count);
+  // The fraction of the samples whose mirror image about the line through their level's centroid along
+  // (sin t, cos t) is in the head too.
+  const auto symmetry = [&](double degrees) {
+    const double a = degrees * 3.14159265358979323846 / 180;
+    const Eigen::Vector2d normal(std::cos(a), -std::sin(a));
+    size_t hits = 0;
+    for (const Level& level : levels)
+      for (const auto& p : level.points) {
+        const Eigen::Vector2d q = p - 2 * (p - level.centroid).dot(normal) * normal;
+        const int i = static_cast<int>(std::lround((q.x() - g.origin.x()) / g.spacing.x()));
+        const int j = static_cast<int>(std::lround((q.y() - g.origin.y()) / g.spacing.y()));
+        hits += g.contains(i, j, level.k) && head(i, j, level.k);
+      }
+    return static_cast<double>(hits) / static_cast<double>(count);
+  };
+  const auto best_of = [&](double from, double to, double step) {
+    double best = from, best_score = -1;
+    for (double t = from; t <= to + 1e-9; t += step)
+      if (const double score = symmetry(t); score > best_score + 1e-12) best = t, best_score = score;
+    return best;
+  };
+  const double coarse = best_of(-kMaxTurn, kMaxTurn, 1.0);
+  turn.degrees = best_of(coarse - 1.0, coarse + 1.0, 0.1);
+  return turn;
+}
 
 double FaceAnatomy::centre_at(double z) const { return centre_x + roll_slope * (z - roll_z); }
 

@@ -39,6 +39,7 @@
 #include <Eigen/Core>
 #include <string>
 
+#include "core/mesh/head_turn.h"
 #include "core/segment/voxel_grid.h"
 
 namespace facehex {
@@ -58,6 +59,13 @@ struct FaceAnatomy {
   double centre_at(double z) const;
   double roll_slope = 0, roll_z = 0;  // c(z) = centre_x + roll_slope (z - roll_z)
 };
+
+// Rule 0, before the others (they read the head in its head frame, core/mesh/head_turn.h): the head's turn about the
+// vertical axis is the angle t within +-kMaxTurn (40 degrees) at which the head's horizontal sections above the
+// shoulders (rule 1) are the most mirror-symmetric about the line through each one's centroid along (sin t, cos t):
+// the largest fraction of head voxels (sampled every 2 mm) whose mirror image is a head voxel too; searched every
+// degree, then every 0.1 degree around the best. The axis is the vertical line through the sections' centroid.
+HeadTurn find_head_turn(const Mask& head);
 
 // Throws facehex::Error("segment", ...) naming what cannot be found and the cut options that place it by hand, or
 // saying that the volume is not a plausible head when no nose stands out of its profile.

@@ -1,7 +1,8 @@
 #pragma once
 // The cut planes that bound the facial soft-tissue model, and where they go when not given.
 //
-// In the segmentation frame (+y anterior, +z superior):
+// In the head frame (core/mesh/head_turn.h: the segmentation frame, +y anterior and +z superior, turned about the
+// vertical axis so that a turned head's face looks to +y; the segmentation frame itself when the head is not turned):
 //   top cut      z = top_z        (side v1): just above the eyebrows, or the top of the CT when that is lower;
 //   bottom cut   z = bottom_z     (side v0): below the chin;
 //   posterior    y = posterior_y  (sides u0 at x < centre_x, u1 at x > centre_x): in front of the ears;
@@ -34,8 +35,11 @@
 namespace facehex {
 
 struct FaceCutOptions {
-  std::optional<double> top_z, bottom_z, posterior_y, centre_x;  // mm, segmentation frame
-  double brow_clearance = 15.0;                                  // mm above the glabella (the eyebrows lie within it)
+  std::optional<double> top_z, bottom_z, posterior_y, centre_x;  // mm, head frame
+  // Degrees the head is turned about the vertical axis (core/mesh/head_turn.h; 0: the CT's own frame); found from the
+  // head's symmetry when unset (find_head_turn), and a turn under kMinHeadTurn is taken as none.
+  std::optional<double> head_turn;
+  double brow_clearance = 15.0;  // mm above the glabella (the eyebrows lie within it)
   double chin_clearance = 15.0;  // mm below the menton (the chin's soft tissue is about 10 mm thick there)
   double ear_clearance = 10.0;   // mm in front of the front of the ears
   double border_margin = 3.0;    // mm: top and bottom cuts stay this far inside the CT and inside the body
@@ -49,7 +53,12 @@ struct CutPlane {
   double distance(const Eigen::Vector3d& p) const { return normal.dot(p) - offset; }
 };
 
+// A head turned less than this is segmented in the CT's own frame: its face's profile on the CT's sagittal plane is
+// as good, and the turn found on an upright head is within it.
+constexpr double kMinHeadTurn = 2.0;  // degrees
+
 struct FaceCuts {
+  HeadTurn turn;  // the head frame the cuts are planes of
   double top_z = 0, bottom_z = 0, posterior_y = 0, centre_x = 0;
   double jaw_z = -std::numeric_limits<double>::infinity();  // -infinity: no jaw cut
   std::optional<FaceAnatomy> anatomy;  // what the automatic cuts were placed by; empty if all given

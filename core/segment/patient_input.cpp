@@ -37,8 +37,14 @@ std::string segmentation_summary(const CtSegmentation& segmentation) {
   const FaceCuts& cuts = segmentation.cuts;
   std::ostringstream text;
   text << std::fixed << std::setprecision(1) << "skin threshold " << thresholds.skin << ", bone threshold "
-       << thresholds.bone << " (file units); cuts (mm, segmentation frame): top z " << cuts.top_z << ", bottom z "
-       << cuts.bottom_z << ", posterior y " << cuts.posterior_y << ", mid-plane x " << cuts.centre_x;
+       << thresholds.bone << " (file units); ";
+  if (cuts.turn.degrees != 0)
+    text << "head turned " << cuts.turn.degrees << " deg about the vertical axis through x " << cuts.turn.axis.x()
+         << ", y " << cuts.turn.axis.y() << "; cuts (mm, head frame, --head-turn 0 for the CT's): ";
+  else
+    text << "cuts (mm, segmentation frame): ";
+  text << "top z " << cuts.top_z << ", bottom z " << cuts.bottom_z << ", posterior y " << cuts.posterior_y
+       << ", mid-plane x " << cuts.centre_x;
   if (std::isfinite(cuts.jaw_z)) text << ", jaw cut rising to z " << cuts.jaw_z << " at the posterior cut";
   if (cuts.anatomy) text << "; found: " << face_anatomy_text(*cuts.anatomy);
   text << "; tets of edge length " << segmentation.options.tets.target_edge_length << " mm";

@@ -8,6 +8,7 @@
 #include "core/mesh/mid_sagittal_plane.h"
 #include "core/segment/distance_transform.h"
 #include "core/segment/face_anatomy.h"
+#include "core/segment/head_frame.h"
 #include "core/segment/iso_surface.h"
 #include "core/segment/morphology.h"
 #include "core/segment/remesh.h"
@@ -238,12 +239,31 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   Field intensity;
   Mask raw_body;
   {
-    const Field scan = gaussian_smooth(resample(ct.intensity, options.working_spacing),
-                                       kCtBlur * ct.intensity.geometry.spacing.maxCoeff());
-    const Mask scan_body = largest_component(at_least(scan, model.thresholds.skin));
+    Field scan = gaussian_smooth(resample(ct.intensity, options.working_spacing),
+                                 kCtBlur * ct.intensity.geometry.spacing.maxCoeff());
+    Mask scan_body = largest_component(at_least(scan, model.thresholds.skin));
     if (std::count(scan_body.data.begin(), scan_body.data.end(), 1) == 0)
       throw Error("segment", "no voxel reaches the skin threshold " + number(model.thresholds.skin) +
                                  "; lower the skin threshold");
+    // The cuts are planes of the head frame, where a turned head's face looks to +y.
+    HeadTurn& turn = model.cuts.turn;
+    if (options.cuts.head_turn) {
+      const auto [lo, hi] = occupied_box(scan_body);
+      turn.degrees = *options.cuts.head_turn;
+      turn.axis = 0.5 * (scan.geometry.point(lo[0], lo[1], 0) + scan.geometry.point(hi[0] - 1, hi[1] - 1, 0)).head<2>();
+    } else {
+      turn = find_head_turn(scan_body);
+      if (std::abs(turn.degrees) < kMinHeadTurn) turn.degrees = 0;
+    }
+    if (turn.degrees != 0) {
+      step("resampling the CT in the head frame", 0.03);
+      // From the CT itself: a second interpolation would blur the skin.
+      const std::vector<float>& values = ct.intensity.data;
+      scan = gaussian_smooth(turned_to_head_frame(ct.intensity, turn, options.working_spacing,
+                                                  *std::min_element(values.begin(), values.end())),
+                             kCtBlur * ct.intensity.geometry.spacing.maxCoeff());
+      scan_body = largest_component(at_least(scan, model.thresholds.skin));
+    }
     const auto [box_lo, box_hi] = body_box(scan_body);
     intensity = crop(scan, box_lo, box_hi);
     raw_body = crop(scan_body, box_lo, box_hi);
@@ -261,7 +281,15 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
     throw Error("segment", "not a plausible head: no voxel of the head reaches the bone threshold " +
                                number(model.thresholds.bone) + "; lower it (--bone) if this is a head CT");
   // The ears, thin, do not survive the opening: the cuts look at the body before it.
-  model.cuts = find_face_cuts(raw_body, bone, options.cuts);
+  const HeadTurn turn = model.cuts.turn;
+  try {
+    model.cuts = find_face_cuts(raw_body, bone, options.cuts);
+  } catch (const Error& e) {
+    if (turn.degrees == 0) throw;
+    throw Error(e.subject(), e.problem() + " (the head was looked for turned " + number(turn.degrees) +
+                                 " degrees about the vertical axis; --head-turn sets the turn, 0 for none)");
+  }
+  model.cuts.turn = turn;
 
   step("the soft tissue", 0.2);
   Mask air = head;
@@ -339,7 +367,12 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
     }
   }
   model.mesh = std::move(tets.mesh);
-  set_mid_sagittal_plane(model.mesh, landmark_plane(model.cuts, options.cuts));
+  // Back into the CT's frame, so that the model overlays the CT; its plane says how the head is turned.
+  for (int v = 0; v < model.mesh.V.rows(); ++v)
+    model.mesh.V.row(v) = turn.to_model(model.mesh.V.row(v).transpose()).transpose();
+  MidSagittalPlane plane = landmark_plane(model.cuts, options.cuts);
+  plane.y = turn.axis.y();
+  set_mid_sagittal_plane(model.mesh, turn.to_model(plane));
   model.boundary_faces = std::move(tets.boundary_faces);
   model.boundary_sides = tets.boundary_labels.array() - 1;
   step("checks", 0.95);

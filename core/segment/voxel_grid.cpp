@@ -48,6 +48,23 @@ Field resample(const Field& field, double spacing) {
   return resample(field, out_g);
 }
 
+Field resample_mapped(const Field& field, const GridGeometry& target,
+                      const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& to_field, float outside) {
+  const GridGeometry& g = field.geometry;
+  Field out(target, outside);
+#pragma omp parallel for schedule(dynamic)
+  for (int k = 0; k < target.dims[2]; ++k)
+    for (int j = 0; j < target.dims[1]; ++j)
+      for (int i = 0; i < target.dims[0]; ++i) {
+        const Eigen::Vector3d x = to_field(target.point(i, j, k));
+        bool inside = true;
+        for (int a = 0; a < 3; ++a)
+          inside = inside && x(a) >= g.lower(a) - 0.5 * g.spacing(a) && x(a) <= g.upper(a) + 0.5 * g.spacing(a);
+        if (inside) out(i, j, k) = static_cast<float>(sample(field, x));
+      }
+  return out;
+}
+
 Field resample(const Field& field, const GridGeometry& target) {
   Field out(target, 0.0f);
   // Every voxel is sampled on its own: the slices split over threads with the same result.

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -76,6 +77,12 @@ double sample(const Field& field, const Eigen::Vector3d& p);
 Field resample(const Field& field, double spacing);
 // Sampled trilinearly at the voxel centres of any target grid.
 Field resample(const Field& field, const GridGeometry& target);
+
+// Sampled trilinearly at to_field(p) for each voxel centre p of the target grid, or `outside` where to_field(p) lies
+// beyond the field's box by more than half a voxel: nothing was scanned there, and a border value carried outwards
+// would add tissue. to_field is called from several threads.
+Field resample_mapped(const Field& field, const GridGeometry& target,
+                      const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& to_field, float outside);
 
 // Separable Gaussian blur, sigma in millimetres; the grid border is extended by replication.
 Field gaussian_smooth(const Field& field, double sigma);

@@ -183,6 +183,8 @@ json landmarks_json(const std::optional<FaceLandmarks>& landmarks) {
            {{"x", landmarks->plane.x},
             {"slope", landmarks->plane.slope},
             {"z", landmarks->plane.z},
+            {"turn", landmarks->plane.turn},
+            {"y", landmarks->plane.y},
             {"source", landmarks->plane_source}}}};
 }
 

@@ -319,12 +319,25 @@ TEST_F(Cli, SegmentTakesTheCutsGivenAndRejectsBadOnes) {
   // The mid-sagittal plane given (or found) travels with the model, for the landmark finder.
   r = run("info " + path("cut.vtu"));
   EXPECT_NE(r.output.find("mid_sagittal_plane(field,1x3)"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("mid-sagittal plane x = 100 mm at z = 0 mm, leaning 0 degrees"), std::string::npos)
+  EXPECT_NE(r.output.find("mid-sagittal plane x = 100.0 mm at z = 0.0 mm, leaning 0.0 degrees"), std::string::npos)
       << r.output;
+  // A turn given: the cuts are placed in the head frame turned by it, the model stays in the CT's frame and its plane
+  // says how it is turned.
+  r = run("segment " + ct + " --edge-length 4 --head-turn 5 -o " + path("turned.vtu"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("head turned 5.0 deg about the vertical axis"), std::string::npos) << r.output;
+  r = run("info " + path("turned.vtu"));
+  EXPECT_NE(r.output.find("mid_sagittal_plane(field,1x5)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(", turned 5.0 degrees"), std::string::npos) << r.output;
+  // A turn far from the head's: no face in the head frame, and the error names the turn's option.
+  r = run("segment " + ct + " --edge-length 4 --head-turn 12 -o " + path("wrong.vtu"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("--head-turn sets the turn"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(path("wrong.vtu")));
 
-  for (const char* bad :
-       {"--ear-clearance -1", "--brow-clearance -2", "--top-cut nan", "--chin-clearance x", "--max-depth 0",
-        "--smoothing -1", "--bone-gap x", "--min-thickness -3", "--cavity-closing y"}) {
+  for (const char* bad : {"--ear-clearance -1", "--brow-clearance -2", "--top-cut nan", "--chin-clearance x",
+                          "--max-depth 0", "--smoothing -1", "--bone-gap x", "--min-thickness -3", "--cavity-closing y",
+                          "--head-turn 60", "--head-turn x"}) {
     r = run("segment " + ct + " " + bad + " -o " + path("bad.vtu"));
     EXPECT_EQ(r.status, 2) << bad << ": " << r.output;  // a usage error
     EXPECT_NE(r.output.find(std::string(bad).substr(0, std::string(bad).find(' '))), std::string::npos) << r.output;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/fields/constraint_set.h"
+#include "core/mesh/head_turn.h"
 #include "core/mesh/sides.h"
 #include "core/util/error.h"
 
@@ -160,6 +161,42 @@ TEST(FaceLandmarks, AHeadTiltedTowardsAShoulderIsReadOnItsLeaningPlane) {
       feature_constraints(l, {{"eyebrow line", 0.9}, {"below-nose line", 0.6}, {"middle lip line", 0.5}}, 2.0);
   const PlaneSelection& mid = *set.constraints.front().select.plane;
   EXPECT_NEAR(mid.normal.dot(Eigen::Vector3d(-std::tan(tilt), 0, 1).normalized()), 0, 1e-12);
+}
+
+TEST(FaceLandmarks, AHeadTurnedAboutTheVerticalIsReadInItsHeadFrame) {
+  // The phantom turned about the vertical line x = x0, y = 60 by 20 degrees (its face looks towards (sin, cos, 0) of
+  // 20 degrees): with the plane turned so, every landmark is the upright phantom's turned, the cheilions included,
+  // within a sample (the turned vertices' rounding moves some across the profile band's edge).
+  const PhantomFace upright;
+  const FaceLandmarks straight = find_face_landmarks(upright.V, upright.side_mask);
+  for (const double degrees : {20.0, -12.0}) {
+    HeadTurn turn;
+    turn.degrees = degrees;  // to_model turns the upright phantom's +y towards (sin, cos) of `degrees`
+    turn.axis = Eigen::Vector2d(PhantomFace::x0, 60);
+    PhantomFace face;
+    for (Eigen::Index v = 0; v < face.V.rows(); ++v)
+      face.V.row(v) = turn.to_model(upright.V.row(v).transpose()).transpose();
+    LandmarkOptions options;
+    MidSagittalPlane plane;
+    plane.x = PhantomFace::x0;
+    plane.y = 60;
+    plane.turn = std::tan(degrees * M_PI / 180);
+    options.mid_sagittal_plane = plane;
+    const FaceLandmarks l = find_face_landmarks(face.V, face.side_mask, options);
+    EXPECT_EQ(l.plane.turn, plane.turn);
+    ASSERT_EQ(l.points.size(), straight.points.size()) << degrees;
+    for (const auto& [name, p] : straight.points) {
+      ASSERT_TRUE(l.points.count(name)) << name;
+      EXPECT_LT((l.points.at(name) - turn.to_model(p)).norm(), 0.6) << name << " at " << degrees << " degrees";
+    }
+    // The mid-sagittal feature's plane is the turned plane: the turned nose tip's direction lies in it.
+    const ConstraintSet set =
+        feature_constraints(l, {{"eyebrow line", 0.9}, {"below-nose line", 0.6}, {"middle lip line", 0.5}}, 2.0);
+    const PlaneSelection& mid = *set.constraints.front().select.plane;
+    const Eigen::Vector3d forward(std::sin(degrees * M_PI / 180), std::cos(degrees * M_PI / 180), 0);
+    EXPECT_NEAR(mid.normal.dot(forward), 0, 1e-12);
+    EXPECT_NEAR(mid.normal.dot(l.points.at("pronasale") - mid.point), 0, 1e-9);
+  }
 }
 
 TEST(FaceLandmarks, PhantomLandmarksWithinOneAndAHalfMillimetres) {

@@ -173,7 +173,7 @@ TEST(FaceCuts, ATiltedHeadKeepsItsMidPlaneAndLandmarks) {
   const FaceCuts tilted = find_face_cuts(h.head, h.bone, FaceCutOptions());
   const MidSagittalPlane plane = landmark_plane(tilted, FaceCutOptions());
   EXPECT_EQ(plane.slope, tilted.anatomy->roll_slope);
-  EXPECT_NEAR(plane.x_at(prn.z()), prn.x(), 2.0);
+  EXPECT_NEAR(plane.x_at(prn.y(), prn.z()), prn.x(), 2.0);
   const Head upright(Eigen::Matrix3d::Identity(), false);
   const FaceCuts straight = find_face_cuts(upright.head, upright.bone, FaceCutOptions());
   EXPECT_EQ(landmark_plane(straight, FaceCutOptions()).slope, 0.0);
@@ -310,6 +310,19 @@ TEST(FaceCuts, TheEarsFrontIsTheMostAnteriorRowNearlyAsWideAsTheWidest) {
   fill(h.head, {12, 62, 100}, {108, 64, 110});
   fill(h.head, {14, 66, 100}, {106, 70, 110});
   EXPECT_NEAR(find_face_cuts(h.head, h.bone, FaceCutOptions()).posterior_y, 64 + 10, 1e-9);
+}
+
+TEST(FaceAnatomy, AHeadsTurnIsTheAngleOfItsSectionsMirrorSymmetry) {
+  // The phantom turned about the vertical through its pivot: its face looks towards (-sin d, cos d, 0), a turn of -d;
+  // with its shoulders, and with a block beside one cheek (a head rest's side) breaking the symmetry of some levels.
+  for (const double degrees : {-30.0, -12.0, 0.0, 7.0, 18.0}) {
+    Head h(rotation(degrees, Eigen::Vector3d::UnitZ()), true);
+    EXPECT_NEAR(find_head_turn(h.head).degrees, -degrees, 1.0) << degrees;
+    fill(h.head, {100, 30, 60}, {110, 50, 90});
+    const HeadTurn turn = find_head_turn(h.head);
+    EXPECT_NEAR(turn.degrees, -degrees, 1.5) << degrees << " with a block";
+    EXPECT_LT((turn.axis - Eigen::Vector2d(60, 57)).norm(), 8.0) << degrees;  // near the sections' middle
+  }
 }
 
 TEST(FaceCuts, ATurnedHeadsPosteriorCutIsInFrontOfTheMoreAnteriorEar) {

@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <map>
@@ -13,6 +15,7 @@
 
 #include "core/mesh/mid_sagittal_plane.h"
 #include "core/mesh/sides.h"
+#include "core/segment/head_frame.h"
 #include "core/util/error.h"
 #include "core/util/resources.h"
 #include "tests/core/segment/phantom.h"
@@ -138,6 +141,50 @@ TEST(SoftTissue, RealCtMakesASixSidedModel) {
   EXPECT_EQ(plane->x, m.cuts.centre_x);
   EXPECT_LT(std::abs(m.cuts.anatomy->roll_degrees), 5.0);  // upright: the plane is vertical
   EXPECT_EQ(plane->slope, 0.0);
+}
+
+TEST(SoftTissue, AHeadTurnedInTheScannerIsSegmentedInItsHeadFrame) {
+  // The bundled CT turned about the vertical by a known angle: the turn is found, the anatomy and the cuts are the
+  // upright CT's turned with it (within 3 mm, the clipped nose's plateau 4), the model overlays the turned CT, and its
+  // plane is turned so.
+  SegmentOptions options;
+  options.tets.target_edge_length = 4.0;  // the anatomy does not depend on it; TetGen is quicker
+  const CtVolume ct = read_ct_volume(default_ct());
+  const PatientModel upright = build_patient_model(ct, options);
+  ASSERT_EQ(upright.cuts.turn.degrees, 0);  // this head is upright
+  const FaceAnatomy& a = *upright.cuts.anatomy;
+  for (const double degrees : {-14.0, 9.0}) {
+    HeadTurn scan;  // from the upright CT to the turned one: its face looks towards (sin, cos) of `degrees`
+    scan.degrees = -degrees;
+    scan.axis = Eigen::Vector2d(100, 100);
+    CtVolume turned = ct;
+    turned.intensity = turned_to_head_frame(ct.intensity, scan, 1.5,
+                                            *std::min_element(ct.intensity.data.begin(), ct.intensity.data.end()));
+    const PatientModel m = build_patient_model(turned, options);
+    expect_valid_patient(m);
+    const HeadTurn& found = m.cuts.turn;
+    EXPECT_NEAR(found.degrees, degrees, 1.5);
+    ASSERT_TRUE(m.cuts.anatomy);
+    const FaceAnatomy& b = *m.cuts.anatomy;
+    // Upright CT -> turned CT -> its head frame.
+    const auto moved = [&](const Eigen::Vector3d& p) { return found.to_head(scan.to_head(p)); };
+    EXPECT_LT((moved(a.pronasale) - b.pronasale).norm(), 4.0) << degrees;  // the middle of the nose's clipped front
+    EXPECT_LT((moved(a.nasion) - b.nasion).norm(), 3.0) << degrees;
+    EXPECT_LT((moved(a.menton) - b.menton).norm(), 3.0) << degrees;
+    EXPECT_NEAR(b.pronasale.y() - m.cuts.posterior_y, a.pronasale.y() - upright.cuts.posterior_y, 3.0);
+    EXPECT_NEAR(m.cuts.top_z, upright.cuts.top_z, 3.0);
+    EXPECT_NEAR(m.cuts.bottom_z, upright.cuts.bottom_z, 3.0);
+    // The model lies in the turned CT's frame: its most anterior skin near the turned pronasale.
+    const std::optional<MidSagittalPlane> plane = mid_sagittal_plane(m.mesh, "model");
+    ASSERT_TRUE(plane);
+    EXPECT_NEAR(std::atan(plane->turn) * 180 / M_PI, found.degrees, 1e-9);
+    const Eigen::Vector3d tip = scan.to_head(a.pronasale);
+    EXPECT_NEAR(plane->x_at(tip.y(), tip.z()), tip.x(), 3.0);
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int v = 0; v < m.mesh.num_vertices(); ++v)
+      nearest = std::min(nearest, (m.mesh.V.row(v).transpose() - tip).norm());
+    EXPECT_LT(nearest, 3.0) << degrees;
+  }
 }
 
 TEST(SoftTissue, ALargeModelIsMeshedCoarserUnlessTheEdgeLengthIsGiven) {

@@ -1,0 +1,52 @@
+#include "core/mesh/head_turn.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace facehex {
+namespace {
+
+TEST(HeadTurn, TurnsAboutItsVerticalAxisSoThatTheFaceLooksToPlusY) {
+  HeadTurn turn;
+  turn.degrees = 30;
+  turn.axis = Eigen::Vector2d(10, -5);
+  // A face looking towards (sin 30, cos 30, 0) looks to +y in the head frame.
+  const Eigen::Vector3d axis_point(10, -5, 7);
+  const Eigen::Vector3d forward(std::sin(M_PI / 6), std::cos(M_PI / 6), 0);
+  const Eigen::Vector3d head = turn.to_head(axis_point + 20 * forward);
+  EXPECT_LT((head - Eigen::Vector3d(10, 15, 7)).norm(), 1e-12);
+  const Eigen::Vector3d p(3, 4, -2);
+  EXPECT_LT((turn.to_model(turn.to_head(p)) - p).norm(), 1e-12);
+  EXPECT_EQ(turn.to_head(p).z(), p.z());
+  EXPECT_NEAR((turn.to_head(p) - axis_point).head<2>().norm(), (p - axis_point).head<2>().norm(), 1e-12);
+}
+
+TEST(HeadTurn, APlaneTurnsWithTheFrame) {
+  // A leaning plane in the head frame, turned into the model's frame: its points turn with it and it is the plane
+  // through them; head_turn_of undoes the turn.
+  MidSagittalPlane head;
+  head.x = 12, head.z = 40, head.slope = 0.1, head.y = -5;
+  HeadTurn turn;
+  turn.degrees = -17;
+  turn.axis = Eigen::Vector2d(10, -5);
+  const MidSagittalPlane model = turn.to_model(head);
+  EXPECT_NEAR(model.turn, std::tan(-17 * M_PI / 180), 1e-12);  // the face looks towards (sin, cos) of -17 degrees
+  for (const Eigen::Vector3d& on :
+       {Eigen::Vector3d(head.x_at(30, 0), 30, 0), Eigen::Vector3d(head.x_at(-8, 90), -8, 90)}) {
+    const Eigen::Vector3d p = turn.to_model(on);
+    EXPECT_NEAR(p.x(), model.x_at(p.y(), p.z()), 1e-9);
+    EXPECT_NEAR(model.normal().dot(p - Eigen::Vector3d(model.x, model.y, model.z)), 0, 1e-9);
+  }
+  const HeadTurn back = head_turn_of(model);
+  EXPECT_NEAR(back.degrees, -17, 1e-9);
+  const MidSagittalPlane again = back.to_head(model);
+  EXPECT_NEAR(again.turn, 0, 1e-12);
+  EXPECT_NEAR(again.slope, head.slope, 1e-12);
+  // The same plane as `head`, whose point turned about another axis.
+  const Eigen::Vector3d q = back.to_head(turn.to_model(Eigen::Vector3d(head.x_at(0, 55), 0, 55)));
+  EXPECT_NEAR(q.x(), again.x_at(q.y(), q.z()), 1e-9);
+}
+
+}  // namespace
+}  // namespace facehex
