@@ -115,8 +115,9 @@ void measure_input_shifts(const PatientSetup& original, const PatientSetup& warp
   auto where = points.find("nasion");
   if (where == points.end()) where = points.find("pronasale");
   if (where == points.end()) return;
-  const Eigen::Vector3d at = where->second;
-  // Each cut: the axis it is a plane of constant value along, the original's and the warped CT's values.
+  const Eigen::Vector3d at = a.turn.to_head(where->second);
+  // Each cut: the axis it is a plane of constant value along (in its CT's head frame), the original's and the warped
+  // CT's values.
   const std::vector<std::tuple<std::string, int, double, double>> cuts = {
       {"top", 2, a.top_z, b.top_z},
       {"bottom", 2, a.bottom_z, b.bottom_z},
@@ -125,7 +126,7 @@ void measure_input_shifts(const PatientSetup& original, const PatientSetup& warp
   for (const auto& [name, axis, original_value, warped_value] : cuts) {
     Eigen::Vector3d on_cut = at;
     on_cut(axis) = original_value;
-    r.cut_shift[name] = warped_value - warp.apply(on_cut)(axis);
+    r.cut_shift[name] = warped_value - b.turn.to_head(warp.apply(a.turn.to_model(on_cut)))(axis);
   }
 }
 

@@ -69,7 +69,8 @@ struct CorrespondenceCaseResult {
   // CT cases: how far what the segmentation and the landmark finder found on the warped CT lies from the warp of what
   // they found on the original, the transfer's inputs. Per landmark found on both: the distance (mm). Per cut
   // ("top", "bottom", "posterior", "mid-sagittal"): the warped CT's plane minus the warp of the original's, along its
-  // normal (mm, signed), at the original's nasion (the pronasale when there is none) moved onto that plane.
+  // normal (mm, signed; each plane in its CT's head frame, core/mesh/head_turn.h), at the original's nasion (the
+  // pronasale when there is none) moved onto that plane.
   std::map<std::string, double> landmark_shift, cut_shift;
   bool registered_skin = false;    // the transfer used the registered skin
   std::string registered_failure;  // why it used the feature lines though the registered skin was asked for

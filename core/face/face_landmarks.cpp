@@ -196,6 +196,8 @@ constexpr double kTurnTolerances[] = {1.5, 1.0, 0.5};
 // mm below the nose within which the lips are looked for; the second reach only when the first does not show all four
 // (a slanted field-of-view cut's lowest point, taken for the nose, can be well above the tip).
 constexpr double kLipsReaches[] = {50.0, 65.0};
+// mm from the subnasale's hollow down to the stomion's, at least (an adult's upper lip is 15-25 mm tall).
+constexpr double kMinUpperLipHeight = 10.0;
 // mm: profile points this close to the most or least anterior one are one flat stretch, whose middle is taken (a flat
 // nasion or brow, or a field-of-view cut above the nose).
 constexpr double kFlatTie = 0.5;
@@ -305,6 +307,10 @@ FaceLandmarks find_in_head_frame(const Eigen::MatrixXd& V, const Eigen::VectorXi
     for (const double tolerance : kTurnTolerances) {
       turns = profile.turns_below(nose.z(), reach, tolerance);
       while (!turns.empty() && !turns.front().hollow) turns.erase(turns.begin());  // on the nose's own underside
+      // A ripple under the nose (a coarse scan's, or where a field-of-view cut ends) reads as a hollow and a bump
+      // closer together than any upper lip is tall: the lips lie below it.
+      while (turns.size() >= 4 && turns[0].point.z() - turns[2].point.z() < kMinUpperLipHeight)
+        turns.erase(turns.begin(), turns.begin() + 2);
       if (turns.size() >= 4) break;
     }
     if (turns.size() >= 4) break;

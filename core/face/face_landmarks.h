@@ -15,13 +15,14 @@
 //    behind the chord of its kept neighbours, else a prominence (runs of one kind reduced to the deepest or most
 //    anterior). After any prominence on the nose's own underside: the first hollow (the subnasale's), then labrale
 //    superius (the next prominence), stomion (the next hollow, lip contact or the middle of an open mouth) and labrale
-//    inferius (the next prominence). Turns measured against chords, not windows of fixed height, keep their order on a
-//    longer nose or lip and on a pitched head. labrale superius is then the most anterior point between the hollows
-//    either side of its turn (the front of a flat lip, not the corner of its rise). subnasale, the point between the
-//    upper lip and the nose deepest behind the chord joining them, moved up to the top of the lip's part as deep within
-//    0.75 mm, depths averaged over three bins (where the columella meets the lip); nasion: the least anterior point
-//    10-45 mm above the nose tip; glabella (brow ridge): the middle of the points within 0.5 mm of the most anterior
-//    one 3-30 mm above the nasion (a flat brow's centre); pogonion
+//    inferius (the next prominence); a hollow and prominence pair less than 10 mm above the next hollow is a ripple
+//    under the nose (no upper lip is so short) and the lips are read below it. Turns measured against chords, not
+//    windows of fixed height, keep their order on a longer nose or lip and on a pitched head. labrale superius is then
+//    the most anterior point between the hollows either side of its turn (the front of a flat lip, not the corner of
+//    its rise). subnasale, the point between the upper lip and the nose deepest behind the chord joining them, moved up
+//    to the top of the lip's part as deep within 0.75 mm, depths averaged over three bins (where the columella meets
+//    the lip); nasion: the least anterior point 10-45 mm above the nose tip; glabella (brow ridge): the middle of the
+//    points within 0.5 mm of the most anterior one 3-30 mm above the nasion (a flat brow's centre); pogonion
 //    (soft-tissue chin): the most anterior point up to 30 mm below the labiomental fold (the first local minimum below
 //    the labrale inferius); menton (soft tissue): the lowest skin point within 3 mm of the plane and 20 mm behind the
 //    pogonion (the underside of the chin), moved onto the plane, unless it lies on the model's bottom edge.

@@ -89,6 +89,14 @@ struct ProfilePhantom {
   }
 };
 
+// The landmarks of a ProfilePhantom read on its own plane x = x0.
+FaceLandmarks profile_landmarks(const std::vector<Eigen::Vector2d>& corners, double roughness, unsigned seed) {
+  const ProfilePhantom face(corners, roughness, seed);
+  LandmarkOptions options;
+  options.mid_sagittal_plane = MidSagittalPlane{ProfilePhantom::x0, 0, 0};
+  return find_face_landmarks(face.V, face.side_mask, options);
+}
+
 // A forehead, brow, nasion and a short nose above (tip at z 0, 2 mm in front of the lips: the chord from the upper lip
 // to the tip is nearly vertical, as under a nose clipped by the field of view), the columella running back to the
 // subnasale at z -10, a vertical upper lip below it down to z -20, the lips and the chin.
@@ -100,11 +108,24 @@ TEST(FaceLandmarks, SubnasaleAtTheTopOfARoughVerticalLip) {
   // The lip from the subnasale down is vertical: only its top is where the columella meets it. On a rough profile
   // the walk up it must not stop at the first row that stands out by a few tenths of a millimetre.
   for (unsigned seed = 1; seed <= 12; ++seed) {
-    const ProfilePhantom face(kVerticalLip, 0.4, seed);
-    LandmarkOptions options;
-    options.mid_sagittal_plane = MidSagittalPlane{ProfilePhantom::x0, 0, 0};
-    const FaceLandmarks l = find_face_landmarks(face.V, face.side_mask, options);
+    const FaceLandmarks l = profile_landmarks(kVerticalLip, 0.4, seed);
     EXPECT_NEAR(l.points.at("subnasale").z(), -10, 1.5) << "seed " << seed;
+  }
+}
+
+TEST(FaceLandmarks, ARippleUnderTheNoseIsNotTheLips) {
+  // Under the nose tip (z 0) a ripple, a hollow at z -3 and a bump at z -5.5 standing out by 4 mm (a coarse scan's, or
+  // where a field-of-view cut ends), then the subnasale (z -12), the upper lip (z -22), the stomion (z -28), the
+  // lower lip (z -36) and the chin: the lips are read below the ripple, not one turn too high.
+  const std::vector<Eigen::Vector2d> profile = {{60, 78},   {42, 85},  {30, 80},  {0, 90},     {-3, 85},
+                                                {-5.5, 89}, {-12, 83}, {-22, 88}, {-28, 83.5}, {-36, 87},
+                                                {-44, 80},  {-54, 86}, {-62, 76}, {-70, 70}};
+  for (unsigned seed = 1; seed <= 6; ++seed) {
+    const FaceLandmarks l = profile_landmarks(profile, 0.1, seed);
+    EXPECT_NEAR(l.points.at("subnasale").z(), -12, 1.5) << "seed " << seed;
+    EXPECT_NEAR(l.points.at("labrale superius").z(), -22, 1.5) << "seed " << seed;
+    EXPECT_NEAR(l.points.at("stomion").z(), -28, 1.5) << "seed " << seed;
+    EXPECT_NEAR(l.points.at("labrale inferius").z(), -36, 1.5) << "seed " << seed;
   }
 }
 
