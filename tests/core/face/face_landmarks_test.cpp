@@ -8,6 +8,7 @@
 #include <random>
 #include <vector>
 
+#include "core/face/automatic_constraints.h"
 #include "core/fields/constraint_set.h"
 #include "core/mesh/head_turn.h"
 #include "core/mesh/sides.h"
@@ -217,6 +218,17 @@ TEST(FaceLandmarks, AHeadTurnedAboutTheVerticalIsReadInItsHeadFrame) {
     const Eigen::Vector3d forward(std::sin(degrees * M_PI / 180), std::cos(degrees * M_PI / 180), 0);
     EXPECT_NEAR(mid.normal.dot(forward), 0, 1e-12);
     EXPECT_NEAR(mid.normal.dot(l.points.at("pronasale") - mid.point), 0, 1e-9);
+    // The same landmarks given (a file): their plane is the model's, turned, through the given pronasale.
+    const FaceLandmarks given = landmarks_from(named_landmarks(l), "given.json");
+    FaceLandmarks used;
+    const std::map<std::string, double> values = {
+        {"eyebrow line", 0.9}, {"below-nose line", 0.6}, {"middle lip line", 0.5}};
+    const ConstraintSet from_file =
+        landmark_feature_constraints(face.V, face.side_mask, options, values, 2.0, &used, &given);
+    EXPECT_EQ(used.plane.turn, plane.turn);
+    const PlaneSelection& given_mid = *from_file.constraints.front().select.plane;
+    EXPECT_NEAR(given_mid.normal.dot(forward), 0, 1e-12);
+    EXPECT_NEAR(given_mid.normal.dot(given.points.at("pronasale") - given_mid.point), 0, 1e-9);
   }
 }
 
