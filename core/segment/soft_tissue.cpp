@@ -257,11 +257,17 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
     }
     if (turn.degrees != 0) {
       step("resampling the CT in the head frame", 0.03);
-      // From the CT itself: a second interpolation would blur the skin.
+      // From the CT itself: a second interpolation would blur the skin. Only around the body: the crop below keeps
+      // the body's box and kBodyBoxMargin, and the blur reaches a few sigma further.
       const std::vector<float>& values = ct.intensity.data;
+      const double blur = kCtBlur * ct.intensity.geometry.spacing.maxCoeff();
+      const auto [lo, hi] = occupied_box(scan_body);
+      const Eigen::Vector2d reach = Eigen::Vector2d::Constant(kBodyBoxMargin + 4 * blur + 2 * options.working_spacing);
       scan = gaussian_smooth(turned_to_head_frame(ct.intensity, turn, options.working_spacing,
-                                                  *std::min_element(values.begin(), values.end())),
-                             kCtBlur * ct.intensity.geometry.spacing.maxCoeff());
+                                                  *std::min_element(values.begin(), values.end()),
+                                                  scan.geometry.point(lo[0], lo[1], 0).head<2>() - reach,
+                                                  scan.geometry.point(hi[0] - 1, hi[1] - 1, 0).head<2>() + reach),
+                             blur);
       scan_body = largest_component(at_least(scan, model.thresholds.skin));
     }
     const auto [box_lo, box_hi] = body_box(scan_body);
