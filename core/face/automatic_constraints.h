@@ -22,9 +22,8 @@ std::map<std::string, double> feature_values(const ConstraintSet& standard);
 // set must pass check_plausible. Given landmarks have their mid-sagittal plane through their pronasale, leaning and
 // turned as landmark_options' plane when it has one (a segmented CT's: a turned head's given landmarks lie on a turned
 // plane), else vertical and unturned. `landmarks_out` receives where they were placed. Throws
-// facehex::Error("landmarks",
-// ...) when a landmark is not found or the set is implausible (naming the landmark and --landmarks FILE), and
-// facehex::Error("feature constraints", ...) when a feature has no value.
+// facehex::Error("landmarks", ...) when a landmark is not found or the set is implausible (naming the landmark and
+// --landmarks FILE), and facehex::Error("feature constraints", ...) when a feature has no value.
 ConstraintSet landmark_feature_constraints(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
                                            const LandmarkOptions& landmark_options,
                                            const std::map<std::string, double>& values, double band = kFeatureBand,

@@ -3,7 +3,7 @@
 // (paper 3.4: mid-sagittal line, eyebrow line, below-nose line, middle lip line).
 //
 // Frame: +x lateral, +y anterior (the face looks to +y), +z superior. The skin is the model's w1 side (side_mask).
-//  - mid-sagittal plane x = plane.x_at(z): the model's own when it carries one (a segmented CT's, LandmarkOptions,
+//  - mid-sagittal plane x = plane.x_at(y, z): the model's own when it carries one (a segmented CT's, LandmarkOptions,
 //    leaning with a head tilted towards a shoulder), else the skin's vertical mirror plane (the median over 2 mm rows
 //    of z of the plane that best mirrors the row's front, core/util/mirror_symmetry.h), searched near the most
 //    anterior point within 20 mm of the middle of the skin's x range;
@@ -53,7 +53,7 @@
 namespace facehex {
 
 struct FaceLandmarks {
-  MidSagittalPlane plane;  // the profile's plane, x = plane.x_at(z)
+  MidSagittalPlane plane;  // the profile's plane, x = plane.x_at(y, z)
   // Where the plane came from: "model" (the model's own, LandmarkOptions), "skin" (the skin's mirror plane) or
   // "given" (through the given pronasale).
   std::string plane_source;

@@ -5,23 +5,10 @@
 namespace facehex {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // Counter-clockwise about +z by `degrees`.
 Eigen::Vector2d rotated(const Eigen::Vector2d& v, double degrees) {
-  const double a = degrees * kPi / 180, c = std::cos(a), s = std::sin(a);
+  const double a = degrees * M_PI / 180, c = std::cos(a), s = std::sin(a);
   return {c * v.x() - s * v.y(), s * v.x() + c * v.y()};
-}
-
-// The plane through `point` with the normal (1, -turn, -slope).
-MidSagittalPlane plane_through(const Eigen::Vector3d& point, double slope, double turn) {
-  MidSagittalPlane p;
-  p.x = point.x();
-  p.y = point.y();
-  p.z = point.z();
-  p.slope = slope;
-  p.turn = turn;
-  return p;
 }
 
 }  // namespace
@@ -39,9 +26,10 @@ Eigen::Vector3d HeadTurn::to_model(const Eigen::Vector3d& head) const {
 // A plane's normal (1, -turn, -slope) turned by t about z is (cos t + turn sin t, sin t - turn cos t, -slope); scaled
 // to a first component of 1 it gives the turned plane's turn and slope.
 MidSagittalPlane HeadTurn::to_head(const MidSagittalPlane& plane) const {
-  const double a = degrees * kPi / 180, c = std::cos(a), s = std::sin(a);
+  const double a = degrees * M_PI / 180, c = std::cos(a), s = std::sin(a);
   const double nx = c + plane.turn * s, ny = s - plane.turn * c;
-  return plane_through(to_head(Eigen::Vector3d(plane.x, plane.y, plane.z)), plane.slope / nx, -ny / nx);
+  const Eigen::Vector3d point = to_head(Eigen::Vector3d(plane.x, plane.y, plane.z));
+  return MidSagittalPlane{point.x(), plane.slope / nx, point.z(), -ny / nx, point.y()};
 }
 
 MidSagittalPlane HeadTurn::to_model(const MidSagittalPlane& head) const {
@@ -52,7 +40,7 @@ MidSagittalPlane HeadTurn::to_model(const MidSagittalPlane& head) const {
 
 HeadTurn head_turn_of(const MidSagittalPlane& plane) {
   HeadTurn turn;
-  turn.degrees = std::atan(plane.turn) * 180 / kPi;
+  turn.degrees = std::atan(plane.turn) * 180 / M_PI;
   turn.axis = Eigen::Vector2d(plane.x, plane.y);
   return turn;
 }

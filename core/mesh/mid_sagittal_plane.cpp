@@ -28,7 +28,7 @@ void set_mid_sagittal_plane(VolumeMesh& mesh, const MidSagittalPlane& plane) {
 }
 
 std::string mid_sagittal_plane_text(const MidSagittalPlane& plane) {
-  constexpr double kDegrees = 180 / 3.14159265358979323846;
+  constexpr double kDegrees = 180 / M_PI;
   std::ostringstream s;
   s.precision(1);
   s << std::fixed << "x = " << plane.x << " mm at ";

@@ -2,10 +2,10 @@
 // The mid-sagittal plane a model carries as field data "mid_sagittal_plane" (1 x 5: x, slope, z, turn, y; mm, the
 // model's frame; 1 x 3 when turn is 0): x_at(y', z') = x + slope (z' - z) + turn (y' - y), a plane leaning towards a
 // shoulder by atan(slope) and turned about the vertical axis by atan(turn) (the face looks towards (turn, 1, 0)). A
-// segmented CT's
-// is the plane its cuts were placed by, found from the whole head's mirror symmetry (core/segment/face_anatomy.h). The
-// landmark finder takes it (core/face/face_landmarks.h) rather than reading the plane again from the face's skin
-// alone, so that `facehex run CT` and `facehex segment` + `facehex run MODEL` find the same landmarks.
+// segmented CT's is the plane its cuts were placed by, found from the whole head's mirror symmetry
+// (core/segment/face_anatomy.h). The landmark finder takes it (core/face/face_landmarks.h) rather than reading the
+// plane again from the face's skin alone, so that `facehex run CT` and `facehex segment` + `facehex run MODEL` find
+// the same landmarks.
 #include <optional>
 #include <string>
 

@@ -356,7 +356,7 @@ HeadTurn find_head_turn(const Mask& head) {
   // The fraction of the samples whose mirror image about the line through their level's centroid along
   // (sin t, cos t) is in the head too.
   const auto symmetry = [&](double degrees) {
-    const double a = degrees * 3.14159265358979323846 / 180;
+    const double a = degrees * M_PI / 180;
     const Eigen::Vector2d normal(std::cos(a), -std::sin(a));
     size_t hits = 0;
     for (const Level& level : levels)

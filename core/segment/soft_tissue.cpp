@@ -247,10 +247,12 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
                                  "; lower the skin threshold");
     // The cuts are planes of the head frame, where a turned head's face looks to +y.
     HeadTurn& turn = model.cuts.turn;
+    const auto [body_lo, body_hi] = occupied_box(scan_body);
     if (options.cuts.head_turn) {
-      const auto [lo, hi] = occupied_box(scan_body);
       turn.degrees = *options.cuts.head_turn;
-      turn.axis = 0.5 * (scan.geometry.point(lo[0], lo[1], 0) + scan.geometry.point(hi[0] - 1, hi[1] - 1, 0)).head<2>();
+      turn.axis = 0.5 * (scan.geometry.point(body_lo[0], body_lo[1], 0) +
+                         scan.geometry.point(body_hi[0] - 1, body_hi[1] - 1, 0))
+                            .head<2>();
     } else {
       turn = find_head_turn(scan_body);
       if (std::abs(turn.degrees) < kMinHeadTurn) turn.degrees = 0;
@@ -261,13 +263,13 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
       // the body's box and kBodyBoxMargin, and the blur reaches a few sigma further.
       const std::vector<float>& values = ct.intensity.data;
       const double blur = kCtBlur * ct.intensity.geometry.spacing.maxCoeff();
-      const auto [lo, hi] = occupied_box(scan_body);
       const Eigen::Vector2d reach = Eigen::Vector2d::Constant(kBodyBoxMargin + 4 * blur + 2 * options.working_spacing);
-      scan = gaussian_smooth(turned_to_head_frame(ct.intensity, turn, options.working_spacing,
-                                                  *std::min_element(values.begin(), values.end()),
-                                                  scan.geometry.point(lo[0], lo[1], 0).head<2>() - reach,
-                                                  scan.geometry.point(hi[0] - 1, hi[1] - 1, 0).head<2>() + reach),
-                             blur);
+      scan = gaussian_smooth(
+          turned_to_head_frame(ct.intensity, turn, options.working_spacing,
+                               *std::min_element(values.begin(), values.end()),
+                               scan.geometry.point(body_lo[0], body_lo[1], 0).head<2>() - reach,
+                               scan.geometry.point(body_hi[0] - 1, body_hi[1] - 1, 0).head<2>() + reach),
+          blur);
       scan_body = largest_component(at_least(scan, model.thresholds.skin));
     }
     const auto [box_lo, box_hi] = body_box(scan_body);
