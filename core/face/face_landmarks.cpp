@@ -198,6 +198,8 @@ constexpr double kTurnTolerances[] = {1.5, 1.0, 0.5};
 constexpr double kLipsReaches[] = {50.0, 65.0};
 // mm from the subnasale's hollow down to the stomion's, at least (an adult's upper lip is 15-25 mm tall).
 constexpr double kMinUpperLipHeight = 10.0;
+// mm: an adult's nasion lies this far from the subnasale (check_plausible).
+constexpr double kNasionSubnasale[2] = {35.0, 70.0};
 // mm: profile points this close to the most or least anterior one are one flat stretch, whose middle is taken (a flat
 // nasion or brow, or a field-of-view cut above the nose).
 constexpr double kFlatTie = 0.5;
@@ -324,28 +326,37 @@ FaceLandmarks find_in_head_frame(const Eigen::MatrixXd& V, const Eigen::VectorXi
   const Eigen::Vector3d sn = subnasale(profile, ls, nose);
   // Above the nose: found above a cut that ends below the top of the skin, else placed by typical adult proportions
   // on the cut (nose tip 15 mm above the subnasale, nasion 40 mm above the tip, glabella 12 mm above the nasion).
-  const bool above_cut = cut && cut->second < zmax - 15;
+  // The profile's front at height z, on the plane: where typical proportions place a landmark the scan does not show.
+  auto on_profile = [&](double z) {
+    const std::optional<Eigen::Vector3d> p = profile.extreme(z - 1, z + 1, true);
+    const double y = p ? p->y() : front.y();
+    return Eigen::Vector3d(l.plane.x_at(y, z), y, z);
+  };
   Eigen::Vector3d prn = front, n, g;
+  bool above_cut = cut && cut->second < zmax - 15;
+  if (above_cut) {
+    prn = require(profile.extreme(0.5 * (cut->first + cut->second) - 1, 0.5 * (cut->first + cut->second) + 1, true),
+                  "nose tip");
+    n = require(profile.middle_of_extreme(cut->second, prn.z() + 45, false, kFlatTie), "nasion");
+    // A hollow above the cut further from the subnasale than any adult nasion: the cut reached past the nasion (the
+    // forehead's own front ends it), and the proportions place it.
+    above_cut = (n - sn).norm() <= kNasionSubnasale[1];
+  }
   if (!cut || above_cut) {
-    if (cut)
-      prn = require(profile.extreme(0.5 * (cut->first + cut->second) - 1, 0.5 * (cut->first + cut->second) + 1, true),
-                    "nose tip");
-    n = require(profile.middle_of_extreme((cut ? cut->second : prn.z() + 10), prn.z() + 45, false, kFlatTie), "nasion");
+    if (!cut) n = require(profile.middle_of_extreme(prn.z() + 10, prn.z() + 45, false, kFlatTie), "nasion");
     // Not within a few mm of the model's top: where a model is cut just above the brow (a standard), the cut's edge
-    // is the most anterior point above the nasion, and it is no anatomy.
+    // is the most anterior point above the nasion, and it is no anatomy. A scan that ends that close above the nasion
+    // shows no brow: the glabella is estimated as on a cut face.
     constexpr double kTopCutMargin = 5;
-    g = require(profile.middle_of_extreme(n.z() + 3, std::min(n.z() + 30, zmax - kTopCutMargin), true, kFlatTie),
-                "glabella");
+    const std::optional<Eigen::Vector3d> brow =
+        profile.middle_of_extreme(n.z() + 3, std::min(n.z() + 30, zmax - kTopCutMargin), true, kFlatTie);
+    g = brow ? *brow : on_profile(std::min(n.z() + 12, zmax - 1));
     if (cut) l.estimated = {"pronasale"};
+    if (!brow) l.estimated.push_back("glabella");
   } else {
-    auto on_cut = [&](double z) {
-      const std::optional<Eigen::Vector3d> p = profile.extreme(z - 1, z + 1, true);
-      const double y = p ? p->y() : front.y();
-      return Eigen::Vector3d(l.plane.x_at(y, z), y, z);
-    };
-    prn = on_cut(std::min(sn.z() + 15, zmax - 20));
-    n = on_cut(std::min(prn.z() + 40, zmax - 13));
-    g = on_cut(std::min(n.z() + 12, zmax - 1));
+    prn = on_profile(std::min(sn.z() + 15, zmax - 20));
+    n = on_profile(std::min(prn.z() + 40, zmax - 13));
+    g = on_profile(std::min(n.z() + 12, zmax - 1));
     l.estimated = {"pronasale", "nasion", "glabella"};
   }
   l.points = {{"pronasale", prn},       {"subnasale", sn},        {"nasion", n},  {"glabella", g},
@@ -388,6 +399,8 @@ void check_plausible(const FaceLandmarks& l, const std::string& remedy) {
     s << std::fixed << v << " mm";
     return s.str();
   };
+  for (const auto& [name, p] : l.points)
+    if (!p.allFinite()) fail(name, "its position is not a number");
   const char* order[] = {"glabella", "nasion",           "pronasale", "subnasale", "labrale superius",
                          "stomion",  "labrale inferius", "pogonion",  "menton"};
   const char* above = nullptr;
@@ -405,7 +418,7 @@ void check_plausible(const FaceLandmarks& l, const std::string& remedy) {
       fail(blame, std::string("the distance ") + a + " - " + b + " is " + number(d) + ", outside the adult range " +
                       number(lo) + " to " + number(hi));
   };
-  range("nasion", "subnasale", 35, 70, "subnasale");
+  range("nasion", "subnasale", kNasionSubnasale[0], kNasionSubnasale[1], "subnasale");
   range("subnasale", "menton", 45, 95, "menton");
   range("glabella", "nasion", 3, 35, "glabella");
   range("cheilion left", "cheilion right", 35, 85, "cheilion");

@@ -22,7 +22,8 @@
 //    its rise). subnasale, the point between the upper lip and the nose deepest behind the chord joining them, moved up
 //    to the top of the lip's part as deep within 0.75 mm, depths averaged over three bins (where the columella meets
 //    the lip); nasion: the least anterior point 10-45 mm above the nose tip; glabella (brow ridge): the middle of the
-//    points within 0.5 mm of the most anterior one 3-30 mm above the nasion (a flat brow's centre); pogonion
+//    points within 0.5 mm of the most anterior one 3-30 mm above the nasion (a flat brow's centre), or, where the
+//    skin ends too close above the nasion to show a brow, the profile's front 12 mm above it (estimated); pogonion
 //    (soft-tissue chin): the most anterior point up to 30 mm below the labiomental fold (the first local minimum below
 //    the labrale inferius); menton (soft tissue): the lowest skin point within 3 mm of the plane and 20 mm behind the
 //    pogonion (the underside of the chin), moved onto the plane, unless it lies on the model's bottom edge.
@@ -31,7 +32,8 @@
 // long, the scan cut the face flat there (a nose drops more than that within 25 mm of its
 // tip). The lips and subnasale are found below it as above (the cut's lowest point standing for the nose). When the
 // cut ends well below the top of the skin (the nose alone was cut), the pronasale is estimated at the cut's middle and
-// the nasion and glabella are found above the cut; otherwise the pronasale, nasion and glabella are placed by typical
+// the nasion and glabella are found above the cut, unless the nasion found there lies further from the subnasale than
+// an adult's (70 mm: the cut reached past it); otherwise the pronasale, nasion and glabella are placed by typical
 // adult proportions above the subnasale (15, 55 and 67 mm) on the cut. Placed landmarks are listed in `estimated`.
 // The mouth corners (cheilion right, left): the ends of the mouth line traced out from the plane under the upper lip
 // (core/face/mouth_corners.h); absent where the lips show no such line.

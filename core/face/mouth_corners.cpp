@@ -61,11 +61,12 @@ struct Column {
     for (size_t j = 1; j + 1 < y.size(); ++j) slope[j] = 0.5 * (y[j + 1] - y[j - 1]);  // NaN where a y is
   }
 
-  // The sample of the steepest slope in [lo, hi], or -1 where all are NaN.
+  // The sample of the steepest slope in [lo, hi] whose own depth is known (a coarse mesh's height field can have a
+  // hole between samples that have one), or -1 where there is none.
   int steepest(int lo, int hi) const {
     int best = -1;
     for (int j = std::max(lo, 0); j <= std::min(hi, static_cast<int>(slope.size()) - 1); ++j)
-      if (!std::isnan(slope[j]) && (best < 0 || slope[j] > slope[best])) best = j;
+      if (!std::isnan(slope[j]) && !std::isnan(y[j]) && (best < 0 || slope[j] > slope[best])) best = j;
     return best;
   }
 

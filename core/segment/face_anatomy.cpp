@@ -272,7 +272,7 @@ void find_chin(const Mask& bone, const Profile& profile, int lowest, FaceAnatomy
 }
 
 // Rule 5: the front of the ears.
-double find_ear_front(const Mask& head, const FaceAnatomy& anatomy) {
+void find_ear_front(const Mask& head, FaceAnatomy& anatomy) {
   const GridGeometry& g = head.geometry;
   const double z_lo = anatomy.pronasale.z() - 25, z_hi = anatomy.glabella.z();
   double y_front = -std::numeric_limits<double>::infinity(), y_back = -y_front;
@@ -309,15 +309,17 @@ double find_ear_front(const Mask& head, const FaceAnatomy& anatomy) {
     }
   }
   // Each ear's front, and the more anterior of the two: the posterior cut goes in front of both.
-  double ear_front = -std::numeric_limits<double>::infinity();
-  for (const std::vector<double>& side : reach) {
-    const double widest = *std::max_element(side.begin(), side.end());
+  const double none = -std::numeric_limits<double>::infinity();
+  anatomy.ear_fronts_y = {none, none};
+  for (int s = 0; s < 2; ++s) {
+    const double widest = *std::max_element(reach[s].begin(), reach[s].end());
     if (!(widest > 0)) continue;
     for (int j = 0; j < g.dims[1]; ++j)
-      if (side[j] >= widest - kEarReachTolerance) ear_front = std::max(ear_front, g.point(0, j, 0).y());
+      if (reach[s][j] >= widest - kEarReachTolerance)
+        anatomy.ear_fronts_y[s] = std::max(anatomy.ear_fronts_y[s], g.point(0, j, 0).y());
   }
-  if (!std::isfinite(ear_front)) not_found("the ears", "--posterior-cut");
-  return ear_front;
+  anatomy.ear_front_y = std::max(anatomy.ear_fronts_y[0], anatomy.ear_fronts_y[1]);
+  if (!std::isfinite(anatomy.ear_front_y)) not_found("the ears", "--posterior-cut");
 }
 
 }  // namespace
@@ -464,18 +466,25 @@ FaceAnatomy find_face_anatomy(const Mask& head, const Mask& bone) {
                             : *profile.extreme(prn->z(), z_hi, true, tie);
   anatomy.highest_head_z = z_hi;
   find_chin(bone, profile, bottom, anatomy);
-  anatomy.ear_front_y = find_ear_front(head, anatomy);
+  find_ear_front(head, anatomy);
   return anatomy;
 }
 
 std::string face_anatomy_text(const FaceAnatomy& a) {
+  const auto ear = [&](int side) {
+    std::ostringstream y;
+    y.precision(1);
+    y << std::fixed << a.ear_fronts_y[side];
+    return std::isfinite(a.ear_fronts_y[side]) ? y.str() : std::string("unseen");
+  };
   std::ostringstream s;
   s.precision(1);
   s << std::fixed << "mid-sagittal plane x " << a.centre_x << " (roll " << a.roll_degrees << " deg); pronasale "
     << point_text(a.pronasale) << (a.nose_clipped ? " (nose clipped)" : "")
     << (a.brow_unseen ? "" : ", nasion " + point_text(a.nasion)) << ", glabella " << point_text(a.glabella)
     << (a.brow_unseen ? " (estimated: the profile shows no nasion below a brow, the top cut is the head's top)" : "")
-    << ", menton " << point_text(a.menton) << ", front of the ears y " << a.ear_front_y;
+    << ", menton " << point_text(a.menton) << ", front of the ears y " << a.ear_front_y << " (-x ear " << ear(0)
+    << ", +x ear " << ear(1) << ")";
   if (a.lowest_head_z > -std::numeric_limits<double>::infinity()) s << ", head sections above z " << a.lowest_head_z;
   return s.str();
 }

@@ -37,6 +37,7 @@
 //     anterior coronal row whose reach on that side is within kEarReachTolerance of the furthest (the tragus lies on
 //     that front), and the ears' front is the more anterior of the two (a turned head has one ear further forward).
 #include <Eigen/Core>
+#include <array>
 #include <string>
 
 #include "core/mesh/head_turn.h"
@@ -51,7 +52,8 @@ struct FaceAnatomy {
   bool nose_clipped = false;                    // the front of the nose is a plateau (field-of-view cut)
   bool brow_unseen = false;                     // no nasion below a brow in the profile (rule 3); nasion = pronasale
   Eigen::Vector3d menton;                       // bone: the lowest point of the chin
-  double ear_front_y = 0;                       // y of the front of the ears (tragi)
+  double ear_front_y = 0;                       // y of the front of the ears (tragi), rule 5
+  std::array<double, 2> ear_fronts_y{};         // each ear's front (-x side, +x side); -inf: not seen
   double lowest_head_z = 0;                     // below this the slices are shoulders or a support
   double highest_head_z = 0;                    // the highest level of the head in the scan
 

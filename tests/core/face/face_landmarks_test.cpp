@@ -246,6 +246,43 @@ TEST(FaceLandmarks, PhantomLandmarksWithinOneAndAHalfMillimetres) {
   EXPECT_NEAR(l.points.at("pronasale").y(), 100.0, 0.1);
 }
 
+TEST(FaceLandmarks, AScanEndingJustAboveTheNasionHasItsGlabellaEstimated) {
+  // The phantom cut off at z = 30, 4 mm above its nasion and below its brow (z = 40): no brow to find, so the glabella
+  // is placed 12 mm above the nasion (held below the model's top) and marked estimated; the rest is found as before.
+  const PhantomFace whole;
+  std::vector<int> below;
+  for (int v = 0; v < whole.V.rows(); ++v)
+    if (whole.V(v, 2) <= 30) below.push_back(v);
+  const Eigen::MatrixXd V = whole.V(below, Eigen::all);
+  const Eigen::VectorXi side_mask = whole.side_mask(below);
+  const FaceLandmarks l = find_face_landmarks(V, side_mask);
+  EXPECT_EQ(l.estimated, std::vector<std::string>{"glabella"});
+  EXPECT_NEAR(l.points.at("glabella").z(), 29, 1e-9);
+  EXPECT_NEAR(l.points.at("glabella").x(), PhantomFace::x0, 0.5);
+  for (const auto& [name, z] : kPhantomProfileZ) {
+    if (name == "glabella") continue;
+    EXPECT_NEAR(l.points.at(name).z(), z, 1.5) << name;
+  }
+  EXPECT_NO_THROW(check_plausible(l, "test"));
+}
+
+TEST(FaceLandmarks, ACutPastTheNasionHasTheNasionPlacedByProportions) {
+  // The field of view cuts the face flat from the nose tip (z 0) to z 76, and the forehead above recedes behind the
+  // cut with a hollow at z 80: the cut ends well below the top (z 100), but the hollow lies 90 mm above the
+  // subnasale (z -10), further than any adult nasion. The cut reached past the nasion: the pronasale, nasion and
+  // glabella are placed by proportions on the cut (15, 55 and 67 mm above the subnasale), not at the hollow.
+  std::vector<Eigen::Vector2d> corners = {{100, 80}, {86, 80}, {80, 76}, {76, 90}};
+  corners.insert(corners.end(), kVerticalLip.begin() + 3, kVerticalLip.end());
+  const FaceLandmarks l = profile_landmarks(corners, 0.0, 1);
+  EXPECT_NEAR(l.clipped_to, 76, 1.5);
+  const double sn = l.points.at("subnasale").z();
+  EXPECT_NEAR(sn, -10, 1.5);
+  for (const auto& [name, above] : std::map<std::string, double>{{"pronasale", 15}, {"nasion", 55}, {"glabella", 67}}) {
+    EXPECT_NE(std::find(l.estimated.begin(), l.estimated.end(), name), l.estimated.end()) << name;
+    EXPECT_NEAR(l.points.at(name).z(), sn + above, 1e-9) << name;
+  }
+}
+
 TEST(FaceLandmarks, FlatLipsAreFoundInOrder) {
   // A third of the relief: the lips stand out of the profile's chords by about a millimetre.
   const PhantomFace face(0.33);

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include "core/face/face_landmarks.h"
 #include "core/util/error.h"
@@ -147,6 +148,9 @@ TEST(LandmarkPlausibility, AnAdultFacePassesAndEachBrokenFactNamesItsLandmark) {
   l = adult();
   l.points["endocanthion left"].z() = 50;  // below the mouth corners
   expect_implausible(l, "endocanthion left");
+  l = adult();
+  l.points["cheilion left"].y() = std::numeric_limits<double>::quiet_NaN();  // no distance compares false with it
+  expect_implausible(l, "cheilion left");
 }
 
 TEST(LandmarkPlausibility, NamedLandmarksKeepTheirStatus) {

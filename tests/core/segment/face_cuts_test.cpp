@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -328,11 +329,25 @@ TEST(FaceAnatomy, AHeadsTurnIsTheAngleOfItsSectionsMirrorSymmetry) {
 TEST(FaceCuts, ATurnedHeadsPosteriorCutIsInFrontOfTheMoreAnteriorEar) {
   for (const double degrees : {-15.0, -10.0, 10.0, 15.0}) {
     const Head h(rotation(degrees, Eigen::Vector3d::UnitZ()), false);
-    // The ears' front edge (y = 60 at 50 mm either side of the pivot) turns forward on one side by 50 sin(angle).
+    // The ears' front edge (y = 60 at 50 mm either side of the pivot) turns forward on one side by 50 sin(angle) and
+    // back on the other by as much; each ear's front is found, and the cut goes in front of both.
     const double anterior_ear = 60 + 50 * std::sin(std::abs(degrees) * M_PI / 180);
     const FaceCuts cuts = find_face_cuts(h.head, h.bone, FaceCutOptions());
-    EXPECT_NEAR(cuts.anatomy->ear_front_y, anterior_ear, 2.0) << degrees;  // a 2 mm grid
+    const FaceAnatomy& a = *cuts.anatomy;
+    EXPECT_NEAR(std::max(a.ear_fronts_y[0], a.ear_fronts_y[1]), anterior_ear, 2.0) << degrees;  // a 2 mm grid
+    EXPECT_NEAR(std::min(a.ear_fronts_y[0], a.ear_fronts_y[1]), 120 - anterior_ear, 2.0) << degrees;
+    EXPECT_NEAR(a.ear_front_y, anterior_ear, 2.0) << degrees;
     EXPECT_GE(cuts.posterior_y, anterior_ear + 10 - 2.0) << degrees;
+    EXPECT_NE(face_anatomy_text(a).find("front of the ears y " +
+                                        [&] {
+                                          std::ostringstream y;
+                                          y.precision(1);
+                                          y << std::fixed << a.ear_front_y << " (-x ear " << a.ear_fronts_y[0]
+                                            << ", +x ear " << a.ear_fronts_y[1] << ")";
+                                          return y.str();
+                                        }()),
+              std::string::npos)
+        << face_anatomy_text(a);
   }
 }
 
