@@ -62,6 +62,7 @@ json to_json(const CorrespondenceCaseResult& r) {
             {"seconds", r.seconds}});
   if (!r.landmark_shift.empty()) j["landmark_shift_mm"] = r.landmark_shift;
   if (!r.cut_shift.empty()) j["cut_shift_mm"] = r.cut_shift;
+  if (!r.landmarks_problem.empty()) j["landmarks_problem"] = r.landmarks_problem;
   return j;
 }
 
@@ -95,10 +96,11 @@ std::string region_mean(const CorrespondenceError& e, const std::string& name) {
 
 // The CT cases' input shifts (CorrespondenceCaseResult::landmark_shift, cut_shift); empty without CT cases.
 std::string input_shifts_markdown(const std::vector<CorrespondenceCaseResult>& results) {
-  std::ostringstream md;
+  std::ostringstream md, problems;
   bool any = false;
   for (const CorrespondenceCaseResult& r : results) {
     if (r.landmark_shift.empty() && r.cut_shift.empty()) continue;
+    if (!r.landmarks_problem.empty()) problems << "- " << r.name << ": no landmarks (" << r.landmarks_problem << ")\n";
     if (!any)
       md << "\nWhat the segmentation and the landmark finder found on each warped CT against the warp of what they "
             "found on the original (mm; cuts signed, along the plane's axis):\n\n"
@@ -116,10 +118,13 @@ std::string input_shifts_markdown(const std::vector<CorrespondenceCaseResult>& r
       return it == r.cut_shift.end() ? std::string("–") : fmt("%+.1f", it->second);
     };
     md << "| " << r.name << " | "
-       << (r.landmark_shift.empty() ? "–" : fmt("%.2f", sum / static_cast<double>(r.landmark_shift.size()))) << " | "
-       << (worst < 0 ? "–" : fmt("%.1f", worst) + " (" + worst_name + ")") << " | " << cut("top") << " | "
+       << (!r.landmarks_problem.empty() ? "none (below)"
+           : r.landmark_shift.empty()   ? "–"
+                                        : fmt("%.2f", sum / static_cast<double>(r.landmark_shift.size())))
+       << " | " << (worst < 0 ? "–" : fmt("%.1f", worst) + " (" + worst_name + ")") << " | " << cut("top") << " | "
        << cut("bottom") << " | " << cut("posterior") << " | " << cut("mid-sagittal") << " |\n";
   }
+  if (!problems.str().empty()) md << "\n" << problems.str();
   return md.str();
 }
 

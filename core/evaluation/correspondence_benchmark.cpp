@@ -104,6 +104,7 @@ FaceLandmarks standard_feature_landmarks(const StandardSetup& standard) {
 // The CT case's input shifts (CorrespondenceCaseResult::landmark_shift, cut_shift).
 void measure_input_shifts(const PatientSetup& original, const PatientSetup& warped, const SmoothWarp& warp,
                           CorrespondenceCaseResult& r) {
+  if (!warped.landmarks) r.landmarks_problem = warped.features_problem;
   if (original.landmarks && warped.landmarks)
     for (const auto& [name, point] : original.landmarks->points) {
       const auto found = warped.landmarks->points.find(name);

@@ -72,6 +72,7 @@ struct CorrespondenceCaseResult {
   // normal (mm, signed; each plane in its CT's head frame, core/mesh/head_turn.h), at the original's nasion (the
   // pronasale when there is none) moved onto that plane.
   std::map<std::string, double> landmark_shift, cut_shift;
+  std::string landmarks_problem;   // CT cases: why no landmarks were found on the warped CT (empty when they were)
   bool registered_skin = false;    // the transfer used the registered skin
   std::string registered_failure;  // why it used the feature lines though the registered skin was asked for
 };
