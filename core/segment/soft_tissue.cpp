@@ -67,6 +67,8 @@ Mask at_least(const Field& f, double threshold) {
 // front of the skeleton: the tongue and the floor of the mouth (inside the mandible's arch), the brain, the tissue
 // behind the cheekbones are all behind bone on their ray, and leaving them out keeps bones from passing through the
 // model (tunnels). Then the piece connected to the skin, with enclosed voids filled.
+constexpr double kAxisReach = 2.0;  // mm from the face's axis within which the radial test looks sideways
+
 Mask model_mask(const Mask& head, const Mask& bone, const Field& air_distance, const FaceCuts& cuts,
                 const SegmentOptions& options, double margin) {
   const GridGeometry& g = head.geometry;
@@ -90,8 +92,10 @@ Mask model_mask(const Mask& head, const Mask& bone, const Field& air_distance, c
           continue;
         }
         if (bone.data[v]) continue;
-        const Eigen::Vector3d radial(p.x() - cuts.centre_x, p.y() - cuts.posterior_y, 0);
-        if (radial.norm() < step) continue;
+        Eigen::Vector3d radial(p.x() - cuts.centre_x, p.y() - cuts.posterior_y, 0);
+        // Near the axis the radial direction says nothing (within a voxel it turns from lateral to straight forward,
+        // through the chin, as the cut moves by half a voxel): the ray goes sideways, as on the axis's own row.
+        if (radial.norm() < kAxisReach) radial = Eigen::Vector3d(radial.x() < 0 ? -1 : 1, 0, 0);
         const Eigen::Vector3d d = radial.normalized() * step;
         std::array<int, 3> at;
         bool behind_bone = false;

@@ -12,7 +12,8 @@
 //  3. bone  = head voxels with intensity >= bone;
 //  4. model = head voxels at most max_depth below the skin that are either within min_thickness of it, or soft
 //             tissue not behind bone on the horizontal ray from the face's vertical axis (x = centre_x,
-//             y = posterior_y; bone closed by bone_gap_radius, so the gap between the teeth counts): no tongue or
+//             y = posterior_y; sideways within 2 mm of it, where the radial direction depends on where the cut falls
+//             between two rows; bone closed by bone_gap_radius, so the gap between the teeth counts): no tongue or
 //             floor of the mouth inside the mandible, no brain, nothing behind the cheekbones, so no bone passes
 //             through the model; connected to the skin; enclosed voids filled;
 //  5. cut by the planes of face_cuts.h (top v1, bottom and jaw v0, posterior u0/u1);

@@ -143,6 +143,23 @@ TEST(SoftTissue, RealCtMakesASixSidedModel) {
   EXPECT_EQ(plane->slope, 0.0);
 }
 
+TEST(SoftTissue, TheJawCutDoesNotJumpWhenThePosteriorCutFallsBetweenRows) {
+  // The bundled CT's working grid has its rows on whole millimetres. A posterior cut on a row and one half a row in
+  // front of it meet the same tissue under the chin: the jaw cut, read from the model's rows at the cut near the
+  // mid-plane, stays where it is (the radial test near the face's axis looks sideways whatever the half row).
+  const CtVolume ct = read_ct_volume(default_ct());
+  double jaw[2];
+  for (int half = 0; half < 2; ++half) {
+    SegmentOptions options;
+    options.cuts.posterior_y = 100.0 + 0.5 * half;
+    const PatientModel m = build_patient_model(ct, options);
+    jaw[half] = m.cuts.jaw_z;
+    expect_valid_patient(m);
+  }
+  EXPECT_GT(jaw[0], 15.0);  // the bottom cut is at z 3: a jaw cut well above it
+  EXPECT_NEAR(jaw[1], jaw[0], 1.5);
+}
+
 TEST(SoftTissue, AHeadTurnedInTheScannerIsSegmentedInItsHeadFrame) {
   // The bundled CT turned about the vertical by a known angle: the turn is found, the anatomy and the cuts are the
   // upright CT's turned with it (within 3 mm, the clipped nose's plateau 4), the model overlays the turned CT, and its
