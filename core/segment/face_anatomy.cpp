@@ -309,8 +309,6 @@ void find_ear_front(const Mask& head, FaceAnatomy& anatomy) {
     }
   }
   // Each ear's front, and the more anterior of the two: the posterior cut goes in front of both.
-  const double none = -std::numeric_limits<double>::infinity();
-  anatomy.ear_fronts_y = {none, none};
   for (int s = 0; s < 2; ++s) {
     const double widest = *std::max_element(reach[s].begin(), reach[s].end());
     if (!(widest > 0)) continue;

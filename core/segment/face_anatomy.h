@@ -38,6 +38,7 @@
 //     that front), and the ears' front is the more anterior of the two (a turned head has one ear further forward).
 #include <Eigen/Core>
 #include <array>
+#include <limits>
 #include <string>
 
 #include "core/mesh/head_turn.h"
@@ -53,9 +54,11 @@ struct FaceAnatomy {
   bool brow_unseen = false;                     // no nasion below a brow in the profile (rule 3); nasion = pronasale
   Eigen::Vector3d menton;                       // bone: the lowest point of the chin
   double ear_front_y = 0;                       // y of the front of the ears (tragi), rule 5
-  std::array<double, 2> ear_fronts_y{};         // each ear's front (-x side, +x side); -inf: not seen
-  double lowest_head_z = 0;                     // below this the slices are shoulders or a support
-  double highest_head_z = 0;                    // the highest level of the head in the scan
+  // Each ear's front (-x side, +x side); -inf: not seen.
+  std::array<double, 2> ear_fronts_y = {-std::numeric_limits<double>::infinity(),
+                                        -std::numeric_limits<double>::infinity()};
+  double lowest_head_z = 0;   // below this the slices are shoulders or a support
+  double highest_head_z = 0;  // the highest level of the head in the scan
 
   // The mid-sagittal plane's x at height z.
   double centre_at(double z) const;

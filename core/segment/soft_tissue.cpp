@@ -60,6 +60,8 @@ Mask at_least(const Field& f, double threshold) {
   return m;
 }
 
+constexpr double kAxisReach = 2.0;  // mm from the face's axis within which the radial test looks sideways
+
 // Step 4 of soft_tissue.h. A voxel is in the model if it is in the head, within max_depth of the air, inside the
 // (margin-widened) cut box, and either within min_thickness of the air (bone there is partial-volume skin: the model
 // never has a hole through the skin), or soft tissue that sees the air along the horizontal ray from the face's axis
@@ -67,8 +69,6 @@ Mask at_least(const Field& f, double threshold) {
 // front of the skeleton: the tongue and the floor of the mouth (inside the mandible's arch), the brain, the tissue
 // behind the cheekbones are all behind bone on their ray, and leaving them out keeps bones from passing through the
 // model (tunnels). Then the piece connected to the skin, with enclosed voids filled.
-constexpr double kAxisReach = 2.0;  // mm from the face's axis within which the radial test looks sideways
-
 Mask model_mask(const Mask& head, const Mask& bone, const Field& air_distance, const FaceCuts& cuts,
                 const SegmentOptions& options, double margin) {
   const GridGeometry& g = head.geometry;
