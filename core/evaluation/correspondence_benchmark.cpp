@@ -250,9 +250,9 @@ std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const Standar
         // The scan's first and last slices stay flat: where a field of view ends is no anatomy, and a transfer
         // cannot follow a warp that bends them (the face region found ends at the scan's end slices).
         const GridGeometry& grid = ct.intensity.geometry;
+        const CtWarpFrame frame = ct_warp_frame(ct.intensity);
         const SmoothWarp warp =
-            random_warp(static_cast<std::uint64_t>(p.ct_seed), original.patient_hex.V.colwise().mean().transpose(),
-                        skin_points(original.patient_hex), options.ct_ranges)
+            random_warp(static_cast<std::uint64_t>(p.ct_seed), frame.centre, frame.anchors, options.ct_ranges)
                 .with_flat_levels(grid.lower(2), grid.upper(2), kCtEndRamp);
         // Checked where the head is (the original's face region and the ramp's length around it, within the scan): a
         // wide scan's far corners, all air, may fold in the ramps, where the slices' tilt grows with the distance.

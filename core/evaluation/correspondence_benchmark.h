@@ -4,9 +4,10 @@
 //  - self-map: the standard onto tet models of its own volume (standard_remesh.h); the answer is the identity;
 //  - deformation: the same models under smooth invertible warps (smooth_warp.h) with known seeds, plus a chin moved
 //    forward and a longer nose; the answer is the warped standard;
-//  - CT equivariance: a CT and warped copies of it (warp_volume.h) whose first and last slices stay flat (where a
-//    scan ends is no anatomy); the answer is the warp applied to the original CT's result (segmentation noise
-//    included).
+//  - CT equivariance: a CT and warped copies of it (warp_volume.h), drawn about the CT's own face-on skin
+//    (ct_warp_frame: the same warps whatever the code under test finds), whose first and last slices stay flat
+//    (where a scan ends is no anatomy); the answer is the warp applied to the original CT's result (segmentation
+//    noise included).
 // Each patient is constrained by the workflow's one policy (patient_from_mesh / load_patient: its sides and the
 // facial features at its landmarks).
 #include <cstdint>

@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
+
+#include "core/segment/thresholds.h"
+#include "core/util/error.h"
 
 namespace facehex {
 
@@ -46,6 +50,30 @@ Field warp_volume(const Field& field, const SmoothWarp& warp) {
   const float air = *std::min_element(field.data.begin(), field.data.end());
   return resample_mapped(
       field, target, [&warp](const Eigen::Vector3d& y) { return warp.inverse(y); }, air);
+}
+
+CtWarpFrame ct_warp_frame(const Field& intensity) {
+  const GridGeometry& g = intensity.geometry;
+  const double skin = estimate_thresholds(intensity).skin;
+  std::vector<Eigen::Vector3d> front;  // per column (i, k) with tissue, its most anterior tissue voxel
+  double most_anterior = -std::numeric_limits<double>::infinity();
+  for (int k = 0; k < g.dims[2]; ++k)
+    for (int i = 0; i < g.dims[0]; ++i)
+      for (int j = g.dims[1] - 1; j >= 0; --j)
+        if (intensity(i, j, k) >= skin) {
+          front.push_back(g.point(i, j, k));
+          most_anterior = std::max(most_anterior, front.back().y());
+          break;
+        }
+  if (front.empty()) throw Error("benchmark", "the CT has no voxel above its skin threshold to draw warps about");
+  CtWarpFrame frame;
+  std::vector<Eigen::Vector3d> kept;
+  for (const Eigen::Vector3d& p : front)
+    if (p.y() >= most_anterior - kWarpFrameDepth) kept.push_back(p);
+  frame.anchors.resize(static_cast<Eigen::Index>(kept.size()), 3);
+  for (size_t r = 0; r < kept.size(); ++r) frame.anchors.row(static_cast<Eigen::Index>(r)) = kept[r].transpose();
+  frame.centre = frame.anchors.colwise().mean().transpose();
+  return frame;
 }
 
 }  // namespace facehex

@@ -14,4 +14,19 @@ namespace facehex {
 // tissue that the original does not have.
 Field warp_volume(const Field& field, const SmoothWarp& warp);
 
+// What a CT's random warps are drawn about (smooth_warp.h random_warp), from the volume alone, so that a seed gives
+// the same warp whatever the segmentation and the transfer under test do: the anchors are the face-on skin, the most
+// anterior (+y) voxel above the skin threshold (thresholds.h) of each column along y, within kWarpFrameDepth of the
+// most anterior of them all; the centre is their mean.
+constexpr double kWarpFrameDepth = 80;  // mm
+
+struct CtWarpFrame {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  Eigen::MatrixXd anchors;  // #A x 3, mm
+};
+
+// Throws facehex::Error("thresholds", ...) as estimate_thresholds does, or Error("benchmark", ...) when no voxel is
+// above the skin threshold.
+CtWarpFrame ct_warp_frame(const Field& intensity);
+
 }  // namespace facehex

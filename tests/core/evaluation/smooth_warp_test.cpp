@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "core/evaluation/warp_volume.h"
+#include "core/util/error.h"
 
 namespace facehex {
 namespace {
@@ -225,6 +226,37 @@ TEST(WarpVolume, FlatEndSlicesKeepAllOfTheOriginalsLevels) {
         EXPECT_EQ(warped(i, j, k), 1.0f);
       }
   EXPECT_GT(inside, 200);
+}
+
+// A head-sized ellipsoid of tissue (semi-axes 70, 100, 110 mm about (0, 0, 0)) in air, with a 2 mm noise-free skin
+// edge: the warp frame's anchors are its face-on surface, the most anterior tissue of each column, no deeper than
+// kWarpFrameDepth behind its front; none on the back of the head; the centre is their mean.
+TEST(WarpVolume, ACtsWarpFrameIsItsFaceOnSkinFromTheVolumeAlone) {
+  GridGeometry g;
+  g.dims = {81, 121, 121};
+  g.spacing = Eigen::Vector3d::Constant(2);
+  g.origin = Eigen::Vector3d(-80, -120, -120);
+  Field f(g, -1000.0f);
+  const Eigen::Vector3d axes(70, 100, 110);
+  const auto inside = [&](const Eigen::Vector3d& x) { return x.cwiseQuotient(axes).squaredNorm() <= 1; };
+  for (int k = 0; k < g.dims[2]; ++k)
+    for (int j = 0; j < g.dims[1]; ++j)
+      for (int i = 0; i < g.dims[0]; ++i)
+        if (inside(g.point(i, j, k))) f(i, j, k) = (i + j + k) % 5 == 0 ? 400.0f : 40.0f;  // soft tissue and some bone
+  const CtWarpFrame frame = ct_warp_frame(f);
+  ASSERT_GT(frame.anchors.rows(), 1000);
+  for (Eigen::Index r = 0; r < frame.anchors.rows(); ++r) {
+    const Eigen::Vector3d p = frame.anchors.row(r).transpose();
+    EXPECT_TRUE(inside(p)) << p.transpose();
+    EXPECT_FALSE(inside(p + Eigen::Vector3d(0, 2, 0))) << "not the front of its column: " << p.transpose();
+    EXPECT_GE(p.y(), 100 - kWarpFrameDepth - 2) << p.transpose();
+  }
+  EXPECT_LT((frame.centre - frame.anchors.colwise().mean().transpose()).norm(), 1e-9);
+  EXPECT_NEAR(frame.centre.x(), 0, 1);  // the ellipsoid's front is symmetric in x and z
+  EXPECT_NEAR(frame.centre.z(), 0, 1);
+  EXPECT_GT(frame.centre.y(), 40);
+  // A volume with nothing above its skin threshold (here, no contrast at all) has no frame.
+  EXPECT_THROW(ct_warp_frame(Field(g, 5.0f)), Error);
 }
 
 }  // namespace
