@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <deque>
+#include <cstddef>
+#include <cstdint>
 
 #include "core/segment/distance_transform.h"
 
@@ -83,26 +84,80 @@ Mask open(const Mask& mask, double radius) {
   return out;
 }
 
+namespace {
+
+// A run of mask voxels along x: row (j, k) = row index j + dims[1] k, voxels [begin, end).
+struct Run {
+  int row, begin, end;
+};
+
+int find_root(std::vector<int>& parent, int r) {
+  while (parent[r] != r) r = parent[r] = parent[parent[r]];
+  return r;
+}
+
+// Joins the runs of two rows whose x ranges overlap (face neighbours share x): a merge of two sorted run lists.
+void join_overlapping(const std::vector<Run>& runs, int a, int a_end, int b, int b_end, std::vector<int>& parent) {
+  while (a < a_end && b < b_end) {
+    if (runs[a].end > runs[b].begin && runs[b].end > runs[a].begin) {
+      const int ra = find_root(parent, a), rb = find_root(parent, b);
+      if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);  // the root is a component's first run
+    }
+    if (runs[a].end < runs[b].end)
+      ++a;
+    else
+      ++b;
+  }
+}
+
+}  // namespace
+
+// Union-find over the runs along x, each run joined to the overlapping runs of the row below it in y and in z: a
+// row's voxels are read in memory order, where a voxel-by-voxel flood fill jumps between slices.
 int label_components(const Mask& mask, std::vector<int>& labels, std::vector<size_t>& sizes) {
   const GridGeometry& g = mask.geometry;
+  const int rows = g.dims[1] * g.dims[2];
+  std::vector<Run> runs;
+  std::vector<int> first_run(static_cast<size_t>(rows) + 1, 0);
+  for (int row = 0; row < rows; ++row) {
+    first_run[row] = static_cast<int>(runs.size());
+    const std::uint8_t* line = mask.data.data() + static_cast<size_t>(row) * g.dims[0];
+    for (int i = 0; i < g.dims[0];) {
+      if (!line[i]) {
+        ++i;
+        continue;
+      }
+      const int begin = i;
+      while (i < g.dims[0] && line[i]) ++i;
+      runs.push_back({row, begin, i});
+    }
+  }
+  first_run[rows] = static_cast<int>(runs.size());
+  std::vector<int> parent(runs.size());
+  for (size_t r = 0; r < runs.size(); ++r) parent[r] = static_cast<int>(r);
+  for (int row = 0; row < rows; ++row) {
+    const int j = row % g.dims[1];
+    if (j > 0) join_overlapping(runs, first_run[row], first_run[row + 1], first_run[row - 1], first_run[row], parent);
+    if (row >= g.dims[1])
+      join_overlapping(runs, first_run[row], first_run[row + 1], first_run[row - g.dims[1]],
+                       first_run[row - g.dims[1] + 1], parent);
+  }
+  // Labels in the order of each component's first voxel in memory, as a flood fill from each unlabelled voxel gives.
   labels.assign(g.size(), 0);
   sizes.assign(1, 0);
-  std::deque<size_t> queue;
+  std::vector<int> label_of_root(runs.size(), 0);
   int n = 0;
-  for (size_t seed = 0; seed < g.size(); ++seed) {
-    if (!mask.data[seed] || labels[seed]) continue;
-    labels[seed] = ++n;
-    sizes.push_back(0);
-    queue.push_back(seed);
-    while (!queue.empty()) {
-      const size_t v = queue.front();
-      queue.pop_front();
-      ++sizes[n];
-      const auto [i, j, k] = g.ijk(v);
-      for_face_neighbours(g, i, j, k, [&](size_t w) {
-        if (mask.data[w] && !labels[w]) labels[w] = n, queue.push_back(w);
-      });
+  for (size_t r = 0; r < runs.size(); ++r) {
+    const int root = find_root(parent, static_cast<int>(r));
+    if (!label_of_root[root]) {
+      label_of_root[root] = ++n;
+      sizes.push_back(0);
     }
+    const int label = label_of_root[root];
+    sizes[label] += static_cast<size_t>(runs[r].end - runs[r].begin);
+    const size_t start = static_cast<size_t>(runs[r].row) * g.dims[0];
+    std::fill(labels.begin() + static_cast<std::ptrdiff_t>(start + runs[r].begin),
+              labels.begin() + static_cast<std::ptrdiff_t>(start + runs[r].end), label);
   }
   return n;
 }

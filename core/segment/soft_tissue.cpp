@@ -37,6 +37,36 @@ std::pair<std::array<int, 3>, std::array<int, 3>> body_box(const Mask& body) {
   return {lo, hi};
 }
 
+// The working grid, the CT's box at `spacing` as resample(field, spacing) makes it, restricted in x and y to where the
+// CT reaches the skin threshold, with room for body_box's margin and the blur's kernel (3 sigma) on both: the
+// resampling and the blur then skip the air of a wide field of view, and the voxels of the body's box take the values
+// they take in the whole grid.
+GridGeometry working_grid(const Field& ct, double spacing, double skin, double blur) {
+  const GridGeometry& g = ct.geometry;
+  GridGeometry w;
+  w.origin = g.origin;
+  w.spacing = Eigen::Vector3d::Constant(spacing);
+  for (int a = 0; a < 3; ++a) w.dims[a] = static_cast<int>(std::floor((g.upper(a) - g.lower(a)) / spacing + 1e-9)) + 1;
+  std::array<int, 2> lo = {g.dims[0], g.dims[1]}, hi = {-1, -1};
+  for (int k = 0; k < g.dims[2]; ++k)
+    for (int j = 0; j < g.dims[1]; ++j)
+      for (int i = 0; i < g.dims[0]; ++i)
+        if (ct(i, j, k) >= skin) {
+          lo = {std::min(lo[0], i), std::min(lo[1], j)};
+          hi = {std::max(hi[0], i), std::max(hi[1], j)};
+        }
+  if (hi[0] < 0) return w;  // nothing reaches the threshold: the caller says so
+  const double reach = kBodyBoxMargin + 2 * (std::ceil(3 * blur / spacing) + 2) * spacing;
+  for (int a = 0; a < 2; ++a) {
+    const double from = g.origin(a) + lo[a] * g.spacing(a) - reach, to = g.origin(a) + hi[a] * g.spacing(a) + reach;
+    const int first = std::max(0, static_cast<int>(std::floor((from - w.origin(a)) / spacing)));
+    const int last = std::min(w.dims[a] - 1, static_cast<int>(std::ceil((to - w.origin(a)) / spacing)));
+    w.origin(a) += first * spacing;
+    w.dims[a] = last - first + 1;
+  }
+  return w;
+}
+
 std::string number(double v) {
   std::ostringstream s;
   s << v;
@@ -243,8 +273,9 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   Field intensity;
   Mask raw_body;
   {
-    Field scan = gaussian_smooth(resample(ct.intensity, options.working_spacing),
-                                 kCtBlur * ct.intensity.geometry.spacing.maxCoeff());
+    const double blur = kCtBlur * ct.intensity.geometry.spacing.maxCoeff();
+    Field scan = gaussian_smooth(
+        resample(ct.intensity, working_grid(ct.intensity, options.working_spacing, model.thresholds.skin, blur)), blur);
     Mask scan_body = largest_component(at_least(scan, model.thresholds.skin));
     if (std::count(scan_body.data.begin(), scan_body.data.end(), 1) == 0)
       throw Error("segment", "no voxel reaches the skin threshold " + number(model.thresholds.skin) +
@@ -266,7 +297,6 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
       // From the CT itself: a second interpolation would blur the skin. Only around the body: the crop below keeps
       // the body's box and kBodyBoxMargin, and the blur reaches a few sigma further.
       const std::vector<float>& values = ct.intensity.data;
-      const double blur = kCtBlur * ct.intensity.geometry.spacing.maxCoeff();
       const Eigen::Vector2d reach = Eigen::Vector2d::Constant(kBodyBoxMargin + 4 * blur + 2 * options.working_spacing);
       scan = gaussian_smooth(
           turned_to_head_frame(ct.intensity, turn, options.working_spacing,
