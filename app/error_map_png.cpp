@@ -33,16 +33,18 @@ std::string mm(double x) {
 
 void write_error_map_png(const std::string& path, const std::string& title, const std::vector<ErrorMapPanel>& panels,
                          double scale_top_mm) {
-  const int panel_w = 360, panel_h = 420, top = 50, bar_h = 70;
+  // At least min_w wide, the panels centred: the title and the colour bar need that much even over one panel.
+  const int panel_w = 360, panel_h = 420, top = 50, bar_h = 70, min_w = 640;
   const int n = std::max<int>(1, static_cast<int>(panels.size()));
-  Canvas canvas(panel_w * n, top + panel_h + bar_h);
+  Canvas canvas(std::max(panel_w * n, min_w), top + panel_h + bar_h);
+  const int left = (canvas.width() - panel_w * n) / 2;
   canvas.text(title, canvas.width() / 2, 12, 18, 0.5, 0.0);
   for (int p = 0; p < static_cast<int>(panels.size()); ++p) {
     const ErrorMapPanel& panel = panels[p];
     if (panel.points.rows() != panel.error.size() || panel.points.cols() != 3)
       throw Error(path, "error map panel '" + panel.title + "' has " + std::to_string(panel.points.rows()) +
                             " points and " + std::to_string(panel.error.size()) + " errors");
-    const int x0 = p * panel_w;
+    const int x0 = left + p * panel_w;
     canvas.text(panel.title, x0 + panel_w / 2, top - 4, 13, 0.5, 1.0);
     if (panel.points.rows() == 0) continue;
     const Eigen::Vector3d lo = panel.points.colwise().minCoeff(), hi = panel.points.colwise().maxCoeff();
