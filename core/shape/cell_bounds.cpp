@@ -74,9 +74,10 @@ CornerTargets::CornerTargets(const VolumeMesh& mesh, const UntangleOptions& opti
   }
 }
 
-Eigen::Matrix3d CornerTargets::inverse(const VolumeMesh& mesh, int cell, int slot) const {
+const Eigen::Matrix3d& CornerTargets::inverse(const VolumeMesh& mesh, int cell, int slot) const {
+  static const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();  // an interior sample's ideal Jacobian
   if (!target_inverse_.empty()) return target_inverse_[static_cast<size_t>(cell) * kCellSlots + slot];
-  return slot >= kSampleSlot ? Eigen::Matrix3d::Identity() : ideal_corner_inverse(mesh.types[cell], slot);
+  return slot >= kSampleSlot ? identity : ideal_corner_inverse(mesh.types[cell], slot);
 }
 
 }  // namespace facehex

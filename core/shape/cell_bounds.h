@@ -38,7 +38,7 @@ constexpr int kCellSlots = kSampleSlot + 9;
 class CornerTargets {
  public:
   CornerTargets(const VolumeMesh& mesh, const UntangleOptions& options, const std::vector<char>& needed);
-  Eigen::Matrix3d inverse(const VolumeMesh& mesh, int cell, int slot) const;
+  const Eigen::Matrix3d& inverse(const VolumeMesh& mesh, int cell, int slot) const;
 
  private:
   std::vector<Eigen::Matrix3d> target_inverse_;  // #C x kCellSlots, with a target only

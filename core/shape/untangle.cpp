@@ -174,7 +174,7 @@ class LocalShapeSolver {
   }
 
   // The corner (or sample) matrix A of a cell with nodes X, and its target W^-1.
-  Eigen::Matrix3d corner_matrix(const Corner& corner, const CellNodes& X, Eigen::Matrix3d& A) const {
+  const Eigen::Matrix3d& corner_matrix(const Corner& corner, const CellNodes& X, Eigen::Matrix3d& A) const {
     A = slot_matrix(mesh_.types[corner.cell], X, corner.slot);
     return targets_->inverse(mesh_, corner.cell, corner.slot);
   }
@@ -196,7 +196,7 @@ class LocalShapeSolver {
         gathered = corner.cell;
       }
       Eigen::Matrix3d A;
-      const Eigen::Matrix3d Winv = corner_matrix(corner, X, A);
+      const Eigen::Matrix3d& Winv = corner_matrix(corner, X, A);
       if (!gradient) {
         e += energy_(A, Winv);
         continue;
@@ -233,7 +233,7 @@ class LocalShapeSolver {
 #pragma omp parallel for num_threads(threads_) reduction(min : sigma_min)
     for (int i = 0; i < n; ++i) {
       Eigen::Matrix3d A;
-      const Eigen::Matrix3d Winv = corner_matrix(touched_corners_[i], cell_nodes(mesh_, touched_corners_[i].cell), A);
+      const Eigen::Matrix3d& Winv = corner_matrix(touched_corners_[i], cell_nodes(mesh_, touched_corners_[i].cell), A);
       sigma_[i] = normalized_determinant(A * Winv);
       sigma_min = std::min(sigma_min, sigma_[i]);
     }
