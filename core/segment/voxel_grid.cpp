@@ -75,18 +75,23 @@ Field resample(const Field& field, const GridGeometry& target) {
   return out;
 }
 
+std::vector<double> gaussian_kernel(double sigma) {
+  const int r = static_cast<int>(std::ceil(3 * sigma));
+  std::vector<double> kernel(2 * r + 1);
+  double total = 0;
+  for (int d = -r; d <= r; ++d) total += kernel[d + r] = std::exp(-0.5 * d * d / (sigma * sigma));
+  for (double& w : kernel) w /= total;
+  return kernel;
+}
+
 Field gaussian_smooth(const Field& field, double sigma) {
   Field out = field;
   if (sigma <= 0) return out;
   const GridGeometry& g = field.geometry;
   const size_t nx = static_cast<size_t>(g.dims[0]);
   for (int axis = 0; axis < 3; ++axis) {
-    const double s = sigma / g.spacing(axis);
-    const int r = static_cast<int>(std::ceil(3 * s));
-    std::vector<double> kernel(2 * r + 1);
-    double total = 0;
-    for (int d = -r; d <= r; ++d) total += kernel[d + r] = std::exp(-0.5 * d * d / (s * s));
-    for (double& w : kernel) w /= total;
+    const std::vector<double> kernel = gaussian_kernel(sigma / g.spacing(axis));
+    const int r = static_cast<int>(kernel.size() / 2);
     const Field in = out;
     const int len = g.dims[axis];
     // Each output voxel sums its taps in the kernel's order, beyond the grid the border value: along x within a

@@ -84,7 +84,11 @@ Field resample(const Field& field, const GridGeometry& target);
 Field resample_mapped(const Field& field, const GridGeometry& target,
                       const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& to_field, float outside);
 
-// Separable Gaussian blur, sigma in millimetres; the grid border is extended by replication.
+// The normalized weights of a Gaussian of `sigma` voxels at offsets -r .. r, r = ceil(3 sigma): the blur's kernel.
+std::vector<double> gaussian_kernel(double sigma);
+
+// Separable Gaussian blur, sigma in millimetres (gaussian_kernel along each axis in turn, each voxel's taps summed in
+// the kernel's order); the grid border is extended by replication.
 Field gaussian_smooth(const Field& field, double sigma);
 
 }  // namespace facehex

@@ -1,6 +1,7 @@
 // The Gaussian blur of a voxel field against a direct evaluation of its definition (each voxel the kernel-weighted sum
 // of its neighbours along one axis after the other, the border value beyond the grid): the same floats, bit for bit,
-// on a random field with a different spacing per axis; a constant field stays constant.
+// on a random field with a different spacing per axis; a constant field stays constant; the kernel is a normalized
+// Gaussian reaching 3 sigma.
 #include "core/segment/voxel_grid.h"
 
 #include <gtest/gtest.h>
@@ -17,12 +18,8 @@ Field direct_gaussian(const Field& field, double sigma) {
   Field out = field;
   const GridGeometry& g = field.geometry;
   for (int axis = 0; axis < 3; ++axis) {
-    const double s = sigma / g.spacing(axis);
-    const int r = static_cast<int>(std::ceil(3 * s));
-    std::vector<double> kernel(2 * r + 1);
-    double total = 0;
-    for (int d = -r; d <= r; ++d) total += kernel[d + r] = std::exp(-0.5 * d * d / (s * s));
-    for (double& w : kernel) w /= total;
+    const std::vector<double> kernel = gaussian_kernel(sigma / g.spacing(axis));
+    const int r = static_cast<int>(kernel.size() / 2);
     const Field in = out;
     for (int k = 0; k < g.dims[2]; ++k)
       for (int j = 0; j < g.dims[1]; ++j)
@@ -53,6 +50,13 @@ TEST(VoxelGrid, GaussianSmoothIsItsDefinitionBitForBit) {
     EXPECT_TRUE(blurred.data == expected.data) << "sigma " << sigma;
   }
   const Field flat = gaussian_smooth(Field(g, 42.0f), 1.3);
+  const std::vector<double> kernel = gaussian_kernel(1.5);  // 1.5 voxels: taps -5 .. 5
+  ASSERT_EQ(kernel.size(), 11u);
+  double total = 0;
+  for (const double w : kernel) total += w;
+  EXPECT_NEAR(total, 1.0, 1e-15);
+  EXPECT_NEAR(kernel[6] / kernel[5], std::exp(-0.5 / (1.5 * 1.5)), 1e-15);
+  EXPECT_EQ(kernel[4], kernel[6]);
   for (const float v : flat.data) EXPECT_NEAR(v, 42.0f, 1e-4f);
 }
 
