@@ -18,15 +18,18 @@ std::pair<std::array<int, 3>, std::array<int, 3>> occupied_box(const Mask& mask)
   return {lo, hi};
 }
 
-double sample(const Field& field, const Eigen::Vector3d& p) {
+namespace {
+
+// The cell of the grid along axis a that holds coordinate x (clamped to the voxel centres), and x's fraction in it.
+void cell_along(const GridGeometry& g, int a, double x, int& base, double& frac) {
+  const double t = std::clamp((x - g.origin(a)) / g.spacing(a), 0.0, static_cast<double>(g.dims[a] - 1));
+  base = std::min(static_cast<int>(std::floor(t)), std::max(g.dims[a] - 2, 0));
+  frac = t - base;
+}
+
+// Trilinear interpolation in the cell at `base` with fractions `frac`.
+double trilinear(const Field& field, const int base[3], const double frac[3]) {
   const GridGeometry& g = field.geometry;
-  int base[3];
-  double frac[3];
-  for (int a = 0; a < 3; ++a) {
-    const double t = std::clamp((p(a) - g.origin(a)) / g.spacing(a), 0.0, static_cast<double>(g.dims[a] - 1));
-    base[a] = std::min(static_cast<int>(std::floor(t)), std::max(g.dims[a] - 2, 0));
-    frac[a] = t - base[a];
-  }
   double value = 0;
   for (int c = 0; c < 8; ++c) {
     const int di = c & 1, dj = (c >> 1) & 1, dk = (c >> 2) & 1;
@@ -36,6 +39,15 @@ double sample(const Field& field, const Eigen::Vector3d& p) {
                        std::min(base[2] + dk, g.dims[2] - 1));
   }
   return value;
+}
+
+}  // namespace
+
+double sample(const Field& field, const Eigen::Vector3d& p) {
+  int base[3];
+  double frac[3];
+  for (int a = 0; a < 3; ++a) cell_along(field.geometry, a, p(a), base[a], frac[a]);
+  return trilinear(field, base, frac);
 }
 
 Field resample(const Field& field, double spacing) {
@@ -66,12 +78,26 @@ Field resample_mapped(const Field& field, const GridGeometry& target,
 }
 
 Field resample(const Field& field, const GridGeometry& target) {
+  // sample() at each voxel centre, with each axis's cell and fraction found once per index along it (a centre's
+  // coordinate along an axis depends on that index only).
+  std::array<std::vector<int>, 3> base;
+  std::array<std::vector<double>, 3> frac;
+  for (int a = 0; a < 3; ++a) {
+    base[a].resize(target.dims[a]);
+    frac[a].resize(target.dims[a]);
+    for (int n = 0; n < target.dims[a]; ++n)
+      cell_along(field.geometry, a, target.origin(a) + n * target.spacing(a), base[a][n], frac[a][n]);
+  }
   Field out(target, 0.0f);
   // Every voxel is sampled on its own: the slices split over threads with the same result.
 #pragma omp parallel for schedule(static)
   for (int k = 0; k < target.dims[2]; ++k)
     for (int j = 0; j < target.dims[1]; ++j)
-      for (int i = 0; i < target.dims[0]; ++i) out(i, j, k) = static_cast<float>(sample(field, target.point(i, j, k)));
+      for (int i = 0; i < target.dims[0]; ++i) {
+        const int at[3] = {base[0][i], base[1][j], base[2][k]};
+        const double f[3] = {frac[0][i], frac[1][j], frac[2][k]};
+        out(i, j, k) = static_cast<float>(trilinear(field, at, f));
+      }
   return out;
 }
 
