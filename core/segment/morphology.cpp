@@ -16,16 +16,6 @@ Mask invert(const Mask& mask) {
   return out;
 }
 
-// Calls visit(neighbour_index) for the face neighbours of voxel (i, j, k) inside the grid.
-template <class Visit>
-void for_face_neighbours(const GridGeometry& g, int i, int j, int k, Visit visit) {
-  static const int kOffsets[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  for (const auto& o : kOffsets) {
-    const int a = i + o[0], b = j + o[1], c = k + o[2];
-    if (g.contains(a, b, c)) visit(g.index(a, b, c));
-  }
-}
-
 }  // namespace
 
 Mask dilate(const Mask& mask, double radius) {

@@ -37,28 +37,25 @@ std::pair<std::array<int, 3>, std::array<int, 3>> body_box(const Mask& body) {
   return {lo, hi};
 }
 
-// The working grid, the CT's box at `spacing` as resample(field, spacing) makes it, restricted in x and y to where the
-// CT reaches the skin threshold, with room for body_box's margin and the blur's kernel (3 sigma) on both: the
-// resampling and the blur then skip the air of a wide field of view, and the voxels of the body's box take the values
-// they take in the whole grid.
+Mask at_least(const Field& f, double threshold) {
+  Mask m(f.geometry, 0);
+  for (size_t i = 0; i < f.data.size(); ++i) m.data[i] = f.data[i] >= threshold;
+  return m;
+}
+
+// The working grid, the CT's box at `spacing` (resampled_geometry), restricted in x and y to where the CT reaches the
+// skin threshold, with room for body_box's margin and the blur's kernel (3 sigma) on both: the resampling and the blur
+// then skip the air of a wide field of view, and the voxels of the body's box take the values they take in the whole
+// grid.
 GridGeometry working_grid(const Field& ct, double spacing, double skin, double blur) {
   const GridGeometry& g = ct.geometry;
-  GridGeometry w;
-  w.origin = g.origin;
-  w.spacing = Eigen::Vector3d::Constant(spacing);
-  for (int a = 0; a < 3; ++a) w.dims[a] = static_cast<int>(std::floor((g.upper(a) - g.lower(a)) / spacing + 1e-9)) + 1;
-  std::array<int, 2> lo = {g.dims[0], g.dims[1]}, hi = {-1, -1};
-  for (int k = 0; k < g.dims[2]; ++k)
-    for (int j = 0; j < g.dims[1]; ++j)
-      for (int i = 0; i < g.dims[0]; ++i)
-        if (ct(i, j, k) >= skin) {
-          lo = {std::min(lo[0], i), std::min(lo[1], j)};
-          hi = {std::max(hi[0], i), std::max(hi[1], j)};
-        }
-  if (hi[0] < 0) return w;  // nothing reaches the threshold: the caller says so
+  GridGeometry w = resampled_geometry(g, spacing);
+  const auto [lo, hi] = occupied_box(at_least(ct, skin));
+  if (hi[0] == 0) return w;  // nothing reaches the threshold: the caller says so
   const double reach = kBodyBoxMargin + 2 * (std::ceil(3 * blur / spacing) + 2) * spacing;
   for (int a = 0; a < 2; ++a) {
-    const double from = g.origin(a) + lo[a] * g.spacing(a) - reach, to = g.origin(a) + hi[a] * g.spacing(a) + reach;
+    const double from = g.origin(a) + lo[a] * g.spacing(a) - reach,
+                 to = g.origin(a) + (hi[a] - 1) * g.spacing(a) + reach;
     const int first = std::max(0, static_cast<int>(std::floor((from - w.origin(a)) / spacing)));
     const int last = std::min(w.dims[a] - 1, static_cast<int>(std::ceil((to - w.origin(a)) / spacing)));
     w.origin(a) += first * spacing;
@@ -82,12 +79,6 @@ TissueThresholds choose_thresholds(const CtVolume& ct, const SegmentOptions& opt
     throw Error("thresholds", "the skin threshold (" + number(t.skin) + ") must be below the bone threshold (" +
                                   number(t.bone) + ")");
   return t;
-}
-
-Mask at_least(const Field& f, double threshold) {
-  Mask m(f.geometry, 0);
-  for (size_t i = 0; i < f.data.size(); ++i) m.data[i] = f.data[i] >= threshold;
-  return m;
 }
 
 constexpr double kAxisReach = 2.0;  // mm from the face's axis within which the radial test looks sideways

@@ -50,14 +50,13 @@ double sample(const Field& field, const Eigen::Vector3d& p) {
   return trilinear(field, base, frac);
 }
 
-Field resample(const Field& field, double spacing) {
-  const GridGeometry& g = field.geometry;
-  GridGeometry out_g;
-  out_g.origin = g.origin;
-  out_g.spacing = Eigen::Vector3d::Constant(spacing);
+GridGeometry resampled_geometry(const GridGeometry& g, double spacing) {
+  GridGeometry out;
+  out.origin = g.origin;
+  out.spacing = Eigen::Vector3d::Constant(spacing);
   for (int a = 0; a < 3; ++a)
-    out_g.dims[a] = static_cast<int>(std::floor((g.upper(a) - g.lower(a)) / spacing + 1e-9)) + 1;
-  return resample(field, out_g);
+    out.dims[a] = static_cast<int>(std::floor((g.upper(a) - g.lower(a)) / spacing + 1e-9)) + 1;
+  return out;
 }
 
 Field resample_mapped(const Field& field, const GridGeometry& target,

@@ -73,8 +73,9 @@ VoxelGrid<T> crop(const VoxelGrid<T>& grid, const std::array<int, 3>& lo, const 
 // Trilinear interpolation at a physical point; points beyond the voxel centres take the nearest border value.
 double sample(const Field& field, const Eigen::Vector3d& p);
 
-// The same physical box (from the first voxel centre) sampled trilinearly on an isotropic grid of the given spacing.
-Field resample(const Field& field, double spacing);
+// The isotropic grid of the given spacing over the same physical box (from the first voxel centre).
+GridGeometry resampled_geometry(const GridGeometry& g, double spacing);
+
 // Sampled trilinearly at the voxel centres of any target grid.
 Field resample(const Field& field, const GridGeometry& target);
 
