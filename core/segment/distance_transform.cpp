@@ -1,17 +1,20 @@
 #include "core/segment/distance_transform.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 
 namespace facehex {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr int kBlock = 16;  // lines along y or z taken together (consecutive in x)
 
 // One pass along a line of n samples spaced h apart: d[x] = min_q (h (x - q))^2 + f[q], arg[x] = the minimizing q.
 // Buffers v (parabola apexes) and z (envelope breakpoints) are the caller's to avoid reallocating per line.
-void lower_envelope(const std::vector<double>& f, int n, double h, std::vector<double>& d, std::vector<int>& arg,
-                    std::vector<int>& v, std::vector<double>& z) {
+void lower_envelope(const double* f, int n, double h, double* d, int* arg, std::vector<int>& v,
+                    std::vector<double>& z) {
   int k = -1;
   for (int q = 0; q < n; ++q) {
     if (f[q] == kInf) continue;
@@ -43,14 +46,14 @@ void lower_envelope(const std::vector<double>& f, int n, double h, std::vector<d
   }
 }
 
-}  // namespace
-
-Field distance_to(const Mask& features, std::vector<std::int64_t>* nearest) {
+// The squared distances (mm^2) of distance_to.
+std::vector<double> squared_distance_to(const Mask& features, std::vector<std::int64_t>* nearest) {
   const GridGeometry& g = features.geometry;
   const size_t n = g.size();
   std::vector<double> sq(n);
   std::vector<std::int64_t> near;
   if (nearest) near.resize(n);
+#pragma omp parallel for schedule(static)
   for (size_t i = 0; i < n; ++i) {
     sq[i] = features.data[i] ? 0.0 : kInf;
     if (nearest) near[i] = features.data[i] ? static_cast<std::int64_t>(i) : -1;
@@ -58,32 +61,67 @@ Field distance_to(const Mask& features, std::vector<std::int64_t>* nearest) {
   const size_t stride[3] = {1, static_cast<size_t>(g.dims[0]), static_cast<size_t>(g.dims[0]) * g.dims[1]};
   for (int axis = 0; axis < 3; ++axis) {
     const int len = g.dims[axis];
-    const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+    // Lines along y and z are strided in memory: they are taken kBlock neighbours in x at a time, so that each cache
+    // line read serves kBlock lines rather than one. Along x a line is contiguous already.
+    const int block = axis == 0 ? 1 : kBlock;
+    const int a_outer = axis == 2 ? 1 : 2;  // the axis other than x and this one (for x: z)
+    const int inner_lines = axis == 0 ? g.dims[1] : g.dims[0];
+    const size_t inner_stride = axis == 0 ? stride[1] : 1;
     // The lines of one pass are independent: split over threads, each with its own line buffers.
 #pragma omp parallel
     {
-      std::vector<double> f(len), d(len), z(len + 1);
-      std::vector<int> arg(len), v(len);
-      std::vector<std::int64_t> line_near(nearest ? len : 0);
+      const size_t block_size = static_cast<size_t>(len) * block;
+      std::vector<double> f(block_size), d(block_size), z(len + 1);
+      std::vector<int> arg(block_size), v(len);
+      std::vector<std::int64_t> line_near(nearest ? block_size : 0);
 #pragma omp for schedule(static)
-      for (int u = 0; u < g.dims[a2]; ++u)
-        for (int w = 0; w < g.dims[a1]; ++w) {
-          const size_t start = static_cast<size_t>(u) * stride[a2] + static_cast<size_t>(w) * stride[a1];
-          for (int x = 0; x < len; ++x) {
-            f[x] = sq[start + x * stride[axis]];
-            if (nearest) line_near[x] = near[start + x * stride[axis]];
+      for (int o = 0; o < g.dims[a_outer]; ++o)
+        for (int w0 = 0; w0 < inner_lines; w0 += block) {
+          const int lines = std::min(block, inner_lines - w0);
+          const size_t start = static_cast<size_t>(o) * stride[a_outer] + static_cast<size_t>(w0) * inner_stride;
+          for (int x = 0; x < len; ++x)
+            for (int b = 0; b < lines; ++b) {
+              const size_t at = start + b * inner_stride + x * stride[axis];
+              f[static_cast<size_t>(b) * len + x] = sq[at];
+              if (nearest) line_near[static_cast<size_t>(b) * len + x] = near[at];
+            }
+          for (int b = 0; b < lines; ++b) {
+            const size_t line = static_cast<size_t>(b) * len;
+            lower_envelope(f.data() + line, len, g.spacing(axis), d.data() + line, arg.data() + line, v, z);
           }
-          lower_envelope(f, len, g.spacing(axis), d, arg, v, z);
-          for (int x = 0; x < len; ++x) {
-            sq[start + x * stride[axis]] = d[x];
-            if (nearest) near[start + x * stride[axis]] = arg[x] < 0 ? -1 : line_near[arg[x]];
-          }
+          for (int x = 0; x < len; ++x)
+            for (int b = 0; b < lines; ++b) {
+              const size_t at = start + b * inner_stride + x * stride[axis], line = static_cast<size_t>(b) * len;
+              sq[at] = d[line + x];
+              if (nearest) near[at] = arg[line + x] < 0 ? -1 : line_near[line + arg[line + x]];
+            }
         }
     }
   }
-  Field out(g, 0.0f);
-  for (size_t i = 0; i < n; ++i) out.data[i] = static_cast<float>(std::sqrt(sq[i]));
   if (nearest) *nearest = std::move(near);
+  return sq;
+}
+
+}  // namespace
+
+Field distance_to(const Mask& features, std::vector<std::int64_t>* nearest) {
+  const std::vector<double> sq = squared_distance_to(features, nearest);
+  Field out(features.geometry, 0.0f);
+#pragma omp parallel for schedule(static)
+  for (size_t i = 0; i < sq.size(); ++i) out.data[i] = static_cast<float>(std::sqrt(sq[i]));
+  return out;
+}
+
+Mask within_distance(const Mask& features, double radius) {
+  const std::vector<double> sq = squared_distance_to(features, nullptr);
+  Mask out(features.geometry, 0);
+  if (radius < 0) return out;
+  // Squared distances clearly below or above radius^2 decide without the square root; the few near it are decided
+  // as distance_to's rounded value would be (the float's relative rounding is far below the bracket's 1e-6).
+  const double below = radius * (1 - 1e-6) * radius * (1 - 1e-6), above = radius * (1 + 1e-6) * radius * (1 + 1e-6);
+#pragma omp parallel for schedule(static)
+  for (size_t i = 0; i < sq.size(); ++i)
+    out.data[i] = sq[i] <= below || (sq[i] <= above && static_cast<float>(std::sqrt(sq[i])) <= radius);
   return out;
 }
 

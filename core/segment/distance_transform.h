@@ -13,4 +13,7 @@ namespace facehex {
 // the grid index of that nearest feature voxel (-1 where there is none).
 Field distance_to(const Mask& features, std::vector<std::int64_t>* nearest = nullptr);
 
+// The voxels where distance_to(features) <= radius (mm), the same ones, without its Field.
+Mask within_distance(const Mask& features, double radius);
+
 }  // namespace facehex

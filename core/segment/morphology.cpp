@@ -18,12 +18,7 @@ Mask invert(const Mask& mask) {
 
 }  // namespace
 
-Mask dilate(const Mask& mask, double radius) {
-  const Field d = distance_to(mask);
-  Mask out(mask.geometry, 0);
-  for (size_t i = 0; i < d.data.size(); ++i) out.data[i] = d.data[i] <= radius;
-  return out;
-}
+Mask dilate(const Mask& mask, double radius) { return within_distance(mask, radius); }
 
 Mask erode(const Mask& mask, double radius) {
   // Outside the grid is background: pad by one layer so the distance sees it.
@@ -34,11 +29,11 @@ Mask erode(const Mask& mask, double radius) {
   for (int k = 0; k < g.dims[2]; ++k)
     for (int j = 0; j < g.dims[1]; ++j)
       for (int i = 0; i < g.dims[0]; ++i) background(i + 1, j + 1, k + 1) = !mask(i, j, k);
-  const Field d = distance_to(background);
+  const Mask near_background = within_distance(background, radius);
   Mask out(g, 0);
   for (int k = 0; k < g.dims[2]; ++k)
     for (int j = 0; j < g.dims[1]; ++j)
-      for (int i = 0; i < g.dims[0]; ++i) out(i, j, k) = d(i + 1, j + 1, k + 1) > radius;
+      for (int i = 0; i < g.dims[0]; ++i) out(i, j, k) = !near_background(i + 1, j + 1, k + 1);
   return out;
 }
 

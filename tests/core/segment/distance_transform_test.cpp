@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
 
 #include "core/segment/morphology.h"
 
@@ -33,11 +34,49 @@ TEST(DistanceTransform, MatchesBruteForceOnAnAnisotropicGrid) {
       }
 }
 
+// Lines along y and z are transformed several neighbours in x at a time: a grid wider than one such block, with a
+// partial block at its end, and features scattered by a fixed seed.
+TEST(DistanceTransform, MatchesBruteForceAcrossBlocksOfLines) {
+  GridGeometry g;
+  g.dims = {37, 11, 9};
+  g.spacing = Eigen::Vector3d(1.0, 0.8, 1.7);
+  Mask features(g, 0);
+  std::mt19937 random(7);
+  for (int n = 0; n < 12; ++n) features.data[random() % g.size()] = 1;
+  const Field d = distance_to(features);
+  for (size_t v = 0; v < g.size(); ++v) {
+    const auto [i, j, k] = g.ijk(v);
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t f = 0; f < g.size(); ++f)
+      if (features.data[f]) {
+        const auto [a, b, c] = g.ijk(f);
+        best = std::min(best, (g.point(i, j, k) - g.point(a, b, c)).norm());
+      }
+    ASSERT_NEAR(d.data[v], best, 1e-5) << i << " " << j << " " << k;
+  }
+}
+
+// within_distance is the threshold of distance_to, voxel for voxel, also at radii that voxel distances meet exactly.
+TEST(DistanceTransform, WithinDistanceIsTheThresholdedDistance) {
+  GridGeometry g;
+  g.dims = {23, 19, 17};
+  g.spacing = Eigen::Vector3d(1.0, 1.0, 0.7);
+  Mask features(g, 0);
+  features(11, 9, 8) = features(2, 3, 4) = features(20, 17, 1) = 1;
+  const Field d = distance_to(features);
+  for (const double radius : {0.0, 0.7, 1.0, std::sqrt(2.0), 2.0, 3.5, 5.0, 100.0, -1.0}) {
+    const Mask within = within_distance(features, radius);
+    for (size_t v = 0; v < g.size(); ++v) ASSERT_EQ(within.data[v], d.data[v] <= radius) << radius << " at " << v;
+  }
+}
+
 TEST(DistanceTransform, EmptyMaskIsInfinitelyFar) {
   GridGeometry g;
   g.dims = {3, 3, 3};
   const Field d = distance_to(Mask(g, 0));
   for (float v : d.data) EXPECT_TRUE(std::isinf(v));
+  const Mask within = within_distance(Mask(g, 0), 1e6);
+  for (auto v : within.data) EXPECT_EQ(v, 0);
 }
 
 TEST(Morphology, FillCavitiesKeepsOpenAirAndFillsEnclosedAir) {
