@@ -14,19 +14,24 @@
 namespace facehex {
 namespace {
 
-constexpr double kShoulderWidth = 1.3;         // head sections wider than this times the head's are shoulders
-constexpr double kSymmetryReach = 45.0;        // mm either side of the mid-plane compared for symmetry
-constexpr double kSymmetrySearch = 30.0;       // mm either side of the head's mean x searched for the plane
-constexpr double kProfileBand = 2.0;           // mm either side of the mid-plane for the skin profile
-constexpr double kChinHalfWidth = 6.0;         // mm either side of the mid-plane for the chin's bone
-constexpr double kApertureHeight = 6.0;        // mm: a run of levels this tall without bone near the skin is the nose's
-constexpr double kChinSoftTissue = 25.0;       // mm: bone this close behind the skin is near it (chin, not nose)
-constexpr double kChinGap = 8.0;               // mm of levels without such bone within the chin's run (lips apart)
-constexpr double kChinDepth = 30.0;            // mm the mandible's lower border reaches back from the chin's front
-constexpr double kMaxRoll = 20.0;              // degrees a head tilts towards a shoulder in a scanner, at most
-constexpr double kMaxTurn = 40.0;              // degrees a head is looked for turned about the vertical axis
-constexpr double kTurnSampling = 2.0;          // mm between the head voxels compared for the turn
-constexpr double kEarReachTolerance = 3.0;     // mm: rows whose side reaches this close to the widest are the ear
+constexpr double kShoulderWidth = 1.3;    // head sections wider than this times the head's are shoulders
+constexpr double kSymmetryReach = 45.0;   // mm either side of the mid-plane compared for symmetry
+constexpr double kSymmetrySearch = 30.0;  // mm either side of the head's mean x searched for the plane
+constexpr double kProfileBand = 2.0;      // mm either side of the mid-plane for the skin profile
+constexpr double kChinHalfWidth = 6.0;    // mm either side of the mid-plane for the chin's bone
+constexpr double kApertureHeight = 6.0;   // mm: a run of levels this tall without bone near the skin is the nose's
+constexpr double kChinSoftTissue = 25.0;  // mm: bone this close behind the skin is near it (chin, not nose)
+constexpr double kChinGap = 8.0;          // mm of levels without such bone within the chin's run (lips apart)
+constexpr double kChinDepth = 30.0;       // mm the mandible's lower border reaches back from the chin's front
+constexpr double kMaxRoll = 20.0;         // degrees a head tilts towards a shoulder in a scanner, at most
+constexpr double kMaxTurn = 40.0;         // degrees a head is looked for turned about the vertical axis
+constexpr double kTurnSampling = 2.0;     // mm between the head voxels compared for the turn
+// The auricle is thin: the opening of the body removes it. Where the body stands out of its opening sideways by at
+// least kEarStandOut (more than the opening's rounding of the skin), over levels at least kEarMinHeight tall in one
+// coronal row (the auricle's front edge is taller; a skin fold or a strap's edge is not), the row holds the ear.
+constexpr double kEarStandOut = 3.0;           // mm
+constexpr double kEarMinHeight = 10.0;         // mm
+constexpr double kEarReachTolerance = 3.0;     // mm: without an auricle, rows reaching this close to the widest
 constexpr double kBrowReach[2] = {3.0, 30.0};  // mm above the nasion where the brow is looked for
 // A head, an infant's included, is wider and deeper than this, and its nose tip stands at least this far in front of
 // its nasion or of the mean of its cheeks kCheekOffset to either side (a nose clipped by the field of view still stands
@@ -272,7 +277,7 @@ void find_chin(const Mask& bone, const Profile& profile, int lowest, FaceAnatomy
 }
 
 // Rule 5: the front of the ears.
-void find_ear_front(const Mask& head, FaceAnatomy& anatomy) {
+void find_ear_front(const Mask& head, const Mask& without_ears, FaceAnatomy& anatomy) {
   const GridGeometry& g = head.geometry;
   const double z_lo = anatomy.pronasale.z() - 25, z_hi = anatomy.glabella.z();
   double y_front = -std::numeric_limits<double>::infinity(), y_back = -y_front;
@@ -286,29 +291,48 @@ void find_ear_front(const Mask& head, FaceAnatomy& anatomy) {
   }
   if (!(y_front > y_back)) not_found("the ears", "--posterior-cut");
   const double depth = y_front - y_back;
-  // Per side, each coronal row's reach from the mid-sagittal plane: a head turned about the vertical axis has one ear
-  // further forward than the other, and the row of the head's full width lies between them.
-  std::array<std::vector<double>, 2> reach;
-  reach.fill(std::vector<double>(g.dims[1], -1));
+  // Per side and coronal row: the height of the levels over which the head stands out of the head without its ears
+  // (a head turned about the vertical axis has one ear further forward than the other), and how far the head reaches
+  // from the mid-sagittal plane.
+  std::array<std::vector<double>, 2> ear_height, reach;
+  ear_height.fill(std::vector<double>(g.dims[1], 0.0));
+  reach.fill(std::vector<double>(g.dims[1], -1.0));
+  const auto ends = [&](const Mask& m, int j, int k) {
+    std::pair<int, int> e(-1, -1);
+    for (int i = 0; i < g.dims[0]; ++i)
+      if (m(i, j, k)) {
+        if (e.first < 0) e.first = i;
+        e.second = i;
+      }
+    return e;
+  };
   for (int j = 0; j < g.dims[1]; ++j) {
     const double y = g.point(0, j, 0).y();
     if (y < y_back + 0.25 * depth || y > y_front - 0.25 * depth) continue;
     for (int k = 0; k < g.dims[2]; ++k) {
       const double z = g.point(0, 0, k).z();
       if (z < z_lo || z > z_hi) continue;
-      int first = -1, last = -1;
-      for (int i = 0; i < g.dims[0]; ++i)
-        if (head(i, j, k)) {
-          if (first < 0) first = i;
-          last = i;
-        }
+      const auto [first, last] = ends(head, j, k);
       if (first < 0) continue;
       const double centre = anatomy.centre_at(z);
       reach[0][j] = std::max(reach[0][j], centre - g.point(first, 0, 0).x());
       reach[1][j] = std::max(reach[1][j], g.point(last, 0, 0).x() - centre);
+      const auto [inner_first, inner_last] = ends(without_ears, j, k);
+      if (inner_first < 0) continue;
+      if ((inner_first - first) * g.spacing.x() >= kEarStandOut) ear_height[0][j] += g.spacing.z();
+      if ((last - inner_last) * g.spacing.x() >= kEarStandOut) ear_height[1][j] += g.spacing.z();
     }
   }
   // Each ear's front, and the more anterior of the two: the posterior cut goes in front of both.
+  for (int s = 0; s < 2; ++s)
+    for (int j = 0; j < g.dims[1]; ++j)
+      if (ear_height[s][j] >= kEarMinHeight - 1e-9)
+        anatomy.ear_fronts_y[s] = std::max(anatomy.ear_fronts_y[s], g.point(0, j, 0).y());
+  anatomy.ear_front_y = std::max(anatomy.ear_fronts_y[0], anatomy.ear_fronts_y[1]);
+  if (std::isfinite(anatomy.ear_front_y)) return;
+  // No auricle stands out (outside the field of view, or pressed flat by a support): each side's front of the rows
+  // that reach within kEarReachTolerance of its widest, where the ears would be.
+  anatomy.ears_estimated = true;
   for (int s = 0; s < 2; ++s) {
     const double widest = *std::max_element(reach[s].begin(), reach[s].end());
     if (!(widest > 0)) continue;
@@ -381,7 +405,7 @@ HeadTurn find_head_turn(const Mask& head) {
 
 double FaceAnatomy::centre_at(double z) const { return centre_x + roll_slope * (z - roll_z); }
 
-FaceAnatomy find_face_anatomy(const Mask& head, const Mask& bone) {
+FaceAnatomy find_face_anatomy(const Mask& head, const Mask& without_ears, const Mask& bone) {
   const GridGeometry& g = head.geometry;
   const Sections sections(head);
   const auto [lowest, top, bottom] = head_levels(sections);
@@ -464,7 +488,7 @@ FaceAnatomy find_face_anatomy(const Mask& head, const Mask& bone) {
                             : *profile.extreme(prn->z(), z_hi, true, tie);
   anatomy.highest_head_z = z_hi;
   find_chin(bone, profile, bottom, anatomy);
-  find_ear_front(head, anatomy);
+  find_ear_front(head, without_ears, anatomy);
   return anatomy;
 }
 
@@ -482,7 +506,8 @@ std::string face_anatomy_text(const FaceAnatomy& a) {
     << (a.brow_unseen ? "" : ", nasion " + point_text(a.nasion)) << ", glabella " << point_text(a.glabella)
     << (a.brow_unseen ? " (estimated: the profile shows no nasion below a brow, the top cut is the head's top)" : "")
     << ", menton " << point_text(a.menton) << ", front of the ears y " << a.ear_front_y << " (-x ear " << ear(0)
-    << ", +x ear " << ear(1) << ")";
+    << ", +x ear " << ear(1)
+    << (a.ears_estimated ? "; estimated: no auricle stands out, the front of the widest rows" : "") << ")";
   if (a.lowest_head_z > -std::numeric_limits<double>::infinity()) s << ", head sections above z " << a.lowest_head_z;
   return s.str();
 }

@@ -32,10 +32,16 @@
 //     one above it when the lips are further apart); menton = the lowest bone voxel connected, within the mid-plane
 //     band and going down and at most kChinDepth backwards, to the bone at that run's lowest level (the lower border
 //     of the mandible curves back, under the skin's horizontal reach);
-//  5. the ears: per side, where the head reaches furthest from the mid-sagittal plane over the levels from 25 mm
-//     below the pronasale to the glabella, in the middle half of the head's depth there; an ear's front is the most
-//     anterior coronal row whose reach on that side is within kEarReachTolerance of the furthest (the tragus lies on
-//     that front), and the ears' front is the more anterior of the two (a turned head has one ear further forward).
+//  5. the ears: the auricle is thin, so the opening of the body (soft_tissue.h, opening_radius) removes it; per side,
+//     over the levels from 25 mm below the pronasale to the glabella and in the middle half of the head's depth
+//     there, a coronal row holds the ear where the body reaches at least kEarStandOut further sideways than the body
+//     without its ears, on levels at least kEarMinHeight tall in all; an ear's front is the most anterior such row
+//     (the auricle's front edge, beside the tragus), and the ears' front is the more anterior of the two (a turned
+//     head has one ear further forward). The front of the auricle, rather than where the head is widest, since how
+//     far back the helix flares out varies from head to head and moves the widest row by centimetres. Where no
+//     auricle stands out (the field of view cuts the ears off, or a support presses them flat), ears_estimated: an
+//     ear's front is the most anterior row whose reach from the plane on that side is within kEarReachTolerance of
+//     the furthest.
 #include <Eigen/Core>
 #include <array>
 #include <limits>
@@ -53,7 +59,8 @@ struct FaceAnatomy {
   bool nose_clipped = false;                    // the front of the nose is a plateau (field-of-view cut)
   bool brow_unseen = false;                     // no nasion below a brow in the profile (rule 3); nasion = pronasale
   Eigen::Vector3d menton;                       // bone: the lowest point of the chin
-  double ear_front_y = 0;                       // y of the front of the ears (tragi), rule 5
+  double ear_front_y = 0;                       // y of the front of the ears (the auricles' front edges), rule 5
+  bool ears_estimated = false;                  // no auricle stands out: the front of the widest rows (rule 5)
   // Each ear's front (-x side, +x side); -inf: not seen.
   std::array<double, 2> ear_fronts_y = {-std::numeric_limits<double>::infinity(),
                                         -std::numeric_limits<double>::infinity()};
@@ -72,9 +79,10 @@ struct FaceAnatomy {
 // degree, then every 0.1 degree around the best. The axis is the vertical line through the sections' centroid.
 HeadTurn find_head_turn(const Mask& head);
 
-// Throws facehex::Error("segment", ...) naming what cannot be found and the cut options that place it by hand, or
-// saying that the volume is not a plausible head when no nose stands out of its profile.
-FaceAnatomy find_face_anatomy(const Mask& head, const Mask& bone);
+// `head` is the body with its ears, `without_ears` the same opened (the ears removed), `bone` the bone voxels, on one
+// grid. Throws facehex::Error("segment", ...) naming what cannot be found and the cut options that place it by hand,
+// or saying that the volume is not a plausible head when no nose stands out of its profile.
+FaceAnatomy find_face_anatomy(const Mask& head, const Mask& without_ears, const Mask& bone);
 
 // Throws facehex::Error("segment", "not a plausible head: ...") unless the head (or body) is wide and deep enough for
 // one (a small phantom or a CT of a few voxels is not).

@@ -29,7 +29,7 @@ std::vector<CutPlane> FaceCuts::planes() const {
   return p;
 }
 
-FaceCuts find_face_cuts(const Mask& head, const Mask& bone, const FaceCutOptions& options) {
+FaceCuts find_face_cuts(const Mask& head, const Mask& without_ears, const Mask& bone, const FaceCutOptions& options) {
   const GridGeometry& g = head.geometry;
   // The first body voxel in slice order lies in the lowest slice with any body: below it a scan holds air only (a
   // field of view that starts above its lowest slices, or a volume resampled into a larger box).
@@ -38,7 +38,7 @@ FaceCuts find_face_cuts(const Mask& head, const Mask& bone, const FaceCutOptions
   const double lowest_body_z = g.point(0, 0, g.ijk(static_cast<size_t>(first_body - head.data.begin()))[2]).z();
   FaceCuts cuts;
   if (!options.top_z || !options.bottom_z || !options.posterior_y || !options.centre_x)
-    cuts.anatomy = find_face_anatomy(head, bone);
+    cuts.anatomy = find_face_anatomy(head, without_ears, bone);
   const double z_min = std::max(g.lower(2), lowest_body_z) + options.border_margin;
   const double z_max = g.upper(2) - options.border_margin;
   cuts.centre_x = options.centre_x ? *options.centre_x : cuts.anatomy->centre_x;

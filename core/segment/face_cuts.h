@@ -20,7 +20,7 @@
 //   top_z       = the glabella plus brow_clearance (above the eyebrows), but at least border_margin below the CT's top
 //                 and below the head's highest level (a scan that ends within the forehead); the head's highest
 //                 level less border_margin when the profile shows no brow (FaceAnatomy::brow_unseen);
-//   posterior_y = the front of the ears (the tragi) plus ear_clearance;
+//   posterior_y = the front of the ears (the auricles' front edges, beside the tragi) plus ear_clearance;
 //   jaw_z       = just above the highest model voxel on the posterior cut within one voxel of the mid-plane, in the
 //                 lower half of the face (find_jaw_cut, once the soft tissue is known); none if there is none.
 #include <limits>
@@ -41,8 +41,10 @@ struct FaceCutOptions {
   std::optional<double> head_turn;
   double brow_clearance = 15.0;  // mm above the glabella (the eyebrows lie within it)
   double chin_clearance = 15.0;  // mm below the menton (the chin's soft tissue is about 10 mm thick there)
-  double ear_clearance = 10.0;   // mm in front of the front of the ears
-  double border_margin = 3.0;    // mm: top and bottom cuts stay this far inside the CT and inside the body
+  // mm in front of the front of the ears: the auricle's front edge found can lie a few millimetres behind the tragus
+  // (docs/benchmarks.md, the cuts against the hand-placed tragi), and the cut stays clear of the tragus.
+  double ear_clearance = 12.0;
+  double border_margin = 3.0;  // mm: top and bottom cuts stay this far inside the CT and inside the body
 };
 
 // A cut half-space boundary: points p with normal . p > offset are cut away (normal points out of the model).
@@ -66,10 +68,11 @@ struct FaceCuts {
   std::vector<CutPlane> planes() const;
 };
 
-// `head` is the body (with its ears), `bone` the bone voxels, on the same grid.
+// `head` is the body (with its ears), `without_ears` the body opened (find_face_anatomy), `bone` the bone voxels, on
+// the same grid.
 // The anatomy is looked for unless all four values are given. Throws facehex::Error("segment", ...) if it cannot be
 // found (naming the option that places the cut by hand) or if the cuts leave no face (bottom above top, ...).
-FaceCuts find_face_cuts(const Mask& head, const Mask& bone, const FaceCutOptions& options);
+FaceCuts find_face_cuts(const Mask& head, const Mask& without_ears, const Mask& bone, const FaceCutOptions& options);
 
 // The mid-sagittal plane the landmarks are read on (core/mesh/mid_sagittal_plane.h), stored with the model: the cuts'
 // plane, leaning as the head does when the symmetry's fit leans more than kLandmarkPlaneMinLean, else vertical through

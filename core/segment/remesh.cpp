@@ -131,7 +131,8 @@ class Remesher {
       if (faces_[f][0] == b || faces_[f][1] == b || faces_[f][2] == b) out.push_back(f);
     return out;
   }
-  // Sorted, without repeats (a sorted vector: called for every edge operation, so no per-node allocation of a std::set).
+  // Sorted, without repeats (a sorted vector: called for every edge operation, so no per-node allocation of a
+  // std::set).
   std::vector<int> neighbours(int v) const {
     std::vector<int> out;
     for (int f : vertex_faces_[v])

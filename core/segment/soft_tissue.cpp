@@ -316,7 +316,7 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   // The ears, thin, do not survive the opening: the cuts look at the body before it.
   const HeadTurn turn = model.cuts.turn;
   try {
-    model.cuts = find_face_cuts(raw_body, bone, options.cuts);
+    model.cuts = find_face_cuts(raw_body, body, bone, options.cuts);
   } catch (const Error& e) {
     if (turn.degrees == 0) throw;
     throw Error(e.subject(), e.problem() + " (the head was looked for turned " + number(turn.degrees) +

@@ -107,13 +107,13 @@ TEST(ReferenceLandmarks, VisibleHumanFemaleWithinTwoMillimetres) {
 }
 
 TEST(ReferenceLandmarks, VisibleHumanFemaleDefaultModelWithItsPlane) {
-  // The model `facehex segment` makes of the 1 mm CT by default (2.5 mm edges) with the CT's mid-sagittal plane,
-  // as `facehex run CT` finds its landmarks. This head is turned by a few degrees in the scanner (its left eye and
-  // mouth corners and tragus lie 4-9 mm in front of the right ones), the plane with it; the reference's profile
-  // landmarks lie on one sagittal slice, which crosses the turned plane near the chin. Wider bounds where the
-  // model's surface differs from the CT's skin: it
-  // bridges the closed lips' groove (the stomion lies in front of the CT's by about 2 mm at the same height), and the
-  // mouth line traced on it ends further out and lower than the left corner placed on the CT.
+  // A model `facehex segment` made of the 1 mm CT by default (2.5 mm edges, the cuts of 85af599: the data's README)
+  // with the CT's mid-sagittal plane, as `facehex run CT` finds its landmarks. This head is turned by a few degrees in
+  // the scanner (its left eye and mouth corners and tragus lie 4-9 mm in front of the right ones), the plane with it;
+  // the reference's profile landmarks lie on one sagittal slice, which crosses the turned plane near the chin. Wider
+  // bounds where the model's surface differs from the CT's skin: it bridges the closed lips' groove (the stomion lies
+  // in front of the CT's by about 2 mm at the same height), and the mouth line traced on it ends further out and lower
+  // than the left corner placed on the CT.
   const SkinPoints skin = read_skin_points(kData + "vhfemale-head-default-skin.xyz");
   ASSERT_TRUE(skin.options.mid_sagittal_plane);
   EXPECT_LT(skin.options.mid_sagittal_plane->turn, std::tan(-2 * M_PI / 180));
