@@ -198,8 +198,10 @@ constexpr double kTurnTolerances[] = {1.5, 1.0, 0.5};
 constexpr double kLipsReaches[] = {50.0, 65.0};
 // mm from the subnasale's hollow down to the stomion's, at least (an adult's upper lip is 15-25 mm tall).
 constexpr double kMinUpperLipHeight = 10.0;
-// mm: an adult's nasion lies this far from the subnasale (check_plausible).
-constexpr double kNasionSubnasale[2] = {35.0, 70.0};
+// mm: an adult's nasion lies this far from the subnasale (check_plausible); the lower bound is about three standard
+// deviations below adult women's mean nose height in anthropometric surveys, so that a profile read a nose too short
+// (its landmarks shifted up by a field-of-view cut not recognised) is refused rather than taken.
+constexpr double kNasionSubnasale[2] = {38.0, 70.0};
 // mm: profile points this close to the most or least anterior one are one flat stretch, whose middle is taken (a flat
 // nasion or brow, or a field-of-view cut above the nose).
 constexpr double kFlatTie = 0.5;

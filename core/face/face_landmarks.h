@@ -86,7 +86,7 @@ FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorX
 
 // Adult ranges, each a fact an implausible set breaks: the profile landmarks in order from the top (glabella, nasion,
 // pronasale, subnasale, labrale superius, stomion, labrale inferius, pogonion, menton); nasion-subnasale (nose
-// height) 35-70 mm; subnasale-menton (lower face height) 45-95 mm and 0.45-0.70 of nasion-menton; glabella 3-35 mm
+// height) 38-70 mm; subnasale-menton (lower face height) 45-95 mm and 0.45-0.70 of nasion-menton; glabella 3-35 mm
 // above the nasion; mouth width (cheilion to cheilion) 35-85 mm; eye corners above the mouth corners and below the
 // glabella. Landmarks absent from the set are not checked. Throws facehex::Error("landmarks", ...) naming the
 // landmark and `remedy` (e.g. "give them with --landmarks FILE").
