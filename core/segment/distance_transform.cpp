@@ -113,9 +113,9 @@ Field distance_to(const Mask& features, std::vector<std::int64_t>* nearest) {
 }
 
 Mask within_distance(const Mask& features, double radius) {
-  const std::vector<double> sq = squared_distance_to(features, nullptr);
   Mask out(features.geometry, 0);
   if (radius < 0) return out;
+  const std::vector<double> sq = squared_distance_to(features, nullptr);
   // Squared distances clearly below or above radius^2 decide without the square root; the few near it are decided
   // as distance_to's rounded value would be (the float's relative rounding is far below the bracket's 1e-6).
   const double below = radius * (1 - 1e-6) * radius * (1 - 1e-6), above = radius * (1 + 1e-6) * radius * (1 + 1e-6);

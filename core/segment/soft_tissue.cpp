@@ -313,7 +313,7 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   if (std::count(bone.data.begin(), bone.data.end(), 1) == 0)
     throw Error("segment", "not a plausible head: no voxel of the head reaches the bone threshold " +
                                number(model.thresholds.bone) + "; lower it (--bone) if this is a head CT");
-  // The ears, thin, do not survive the opening: the cuts look at the body before it.
+  // The ears, thin, do not survive the opening: the cuts find them where the body before it stands out of it.
   const HeadTurn turn = model.cuts.turn;
   try {
     model.cuts = find_face_cuts(raw_body, body, bone, options.cuts);

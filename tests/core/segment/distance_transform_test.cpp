@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -10,6 +11,18 @@
 
 namespace facehex {
 namespace {
+
+// The distance from voxel (i, j, k) to the nearest feature voxel, by comparing with every one.
+double brute_force_distance(const Mask& features, int i, int j, int k) {
+  const GridGeometry& g = features.geometry;
+  double best = std::numeric_limits<double>::infinity();
+  for (size_t f = 0; f < g.size(); ++f)
+    if (features.data[f]) {
+      const auto [a, b, c] = g.ijk(f);
+      best = std::min(best, (g.point(i, j, k) - g.point(a, b, c)).norm());
+    }
+  return best;
+}
 
 TEST(DistanceTransform, MatchesBruteForceOnAnAnisotropicGrid) {
   GridGeometry g;
@@ -22,12 +35,7 @@ TEST(DistanceTransform, MatchesBruteForceOnAnAnisotropicGrid) {
   for (int k = 0; k < g.dims[2]; ++k)
     for (int j = 0; j < g.dims[1]; ++j)
       for (int i = 0; i < g.dims[0]; ++i) {
-        double best = std::numeric_limits<double>::infinity();
-        for (size_t f = 0; f < g.size(); ++f)
-          if (features.data[f]) {
-            const auto [a, b, c] = g.ijk(f);
-            best = std::min(best, (g.point(i, j, k) - g.point(a, b, c)).norm());
-          }
+        const double best = brute_force_distance(features, i, j, k);
         ASSERT_NEAR(d(i, j, k), best, 1e-5);
         const auto [a, b, c] = g.ijk(static_cast<size_t>(nearest[g.index(i, j, k)]));
         EXPECT_NEAR((g.point(i, j, k) - g.point(a, b, c)).norm(), best, 1e-5);
@@ -46,13 +54,7 @@ TEST(DistanceTransform, MatchesBruteForceAcrossBlocksOfLines) {
   const Field d = distance_to(features);
   for (size_t v = 0; v < g.size(); ++v) {
     const auto [i, j, k] = g.ijk(v);
-    double best = std::numeric_limits<double>::infinity();
-    for (size_t f = 0; f < g.size(); ++f)
-      if (features.data[f]) {
-        const auto [a, b, c] = g.ijk(f);
-        best = std::min(best, (g.point(i, j, k) - g.point(a, b, c)).norm());
-      }
-    ASSERT_NEAR(d.data[v], best, 1e-5) << i << " " << j << " " << k;
+    ASSERT_NEAR(d.data[v], brute_force_distance(features, i, j, k), 1e-5) << i << " " << j << " " << k;
   }
 }
 
