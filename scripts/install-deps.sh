@@ -6,6 +6,7 @@ set -euo pipefail
 packages=(
   cmake g++ make pkg-config
   libeigen3-dev libsuitesparse-dev libtet1.5-dev nlohmann-json3-dev
+  libblas-dev  # cblas.h; the BLAS linked is the one Debian selects at run time (OpenBLAS, below)
   libopenblas0-pthread  # CHOLMOD's supernodal factorization runs on BLAS; the reference BLAS is several times slower
   libvtk9-dev libvtk9-qt-dev qtbase5-dev libqt5opengl5-dev
   libgdcm-dev  # DICOM series: scanning, any transfer syntax

@@ -13,6 +13,7 @@
 #include "core/fields/constraint_set.h"
 #include "core/mesh/cell_faces.h"
 #include "core/mesh/sides.h"
+#include "core/mesh/tet_topology.h"
 #include "core/quality/surface_distance.h"
 #include "core/util/error.h"
 #include "core/util/stopwatch.h"
@@ -34,20 +35,22 @@ LabelledSurface labelled_surface(const VolumeMesh& mesh, const std::string& sour
   s.mask = side_mask_of(mesh);
   if (s.mask.size() != mesh.num_vertices())
     throw Error(source, "no \"side_mask\" point data: mesh matching pairs the sides of the two models");
-  std::vector<Eigen::Vector3i> tris;
-  const FaceNeighbors neighbors = face_neighbors(mesh);
-  for (int c = 0; c < mesh.num_cells(); ++c)
-    for (int f = 0; f < static_cast<int>(neighbors[c].size()); ++f) {
-      if (neighbors[c][f][0] >= 0) continue;
-      const std::vector<int> v = face_vertices(mesh, c, f);
-      tris.emplace_back(v[0], v[1], v[2]);
-      if (v.size() == 4) tris.emplace_back(v[0], v[2], v[3]);
-    }
-  s.F.resize(static_cast<Eigen::Index>(tris.size()), 3);
-  for (size_t t = 0; t < tris.size(); ++t) s.F.row(static_cast<Eigen::Index>(t)) = tris[t].transpose();
-  std::vector<char> on_boundary(mesh.num_vertices(), 0);
-  for (const auto& t : tris)
-    for (int k = 0; k < 3; ++k) on_boundary[t(k)] = 1;
+  if (mesh.is_tet_mesh()) {
+    s.F = boundary_faces(mesh.tets()).F;  // the tets' own face sort, much faster on a large patient
+  } else {
+    std::vector<Eigen::Vector3i> tris;
+    const FaceNeighbors neighbors = face_neighbors(mesh);
+    for (int c = 0; c < mesh.num_cells(); ++c)
+      for (int f = 0; f < static_cast<int>(neighbors[c].size()); ++f) {
+        if (neighbors[c][f][0] >= 0) continue;
+        const std::vector<int> v = face_vertices(mesh, c, f);
+        tris.emplace_back(v[0], v[1], v[2]);
+        if (v.size() == 4) tris.emplace_back(v[0], v[2], v[3]);
+      }
+    s.F.resize(static_cast<Eigen::Index>(tris.size()), 3);
+    for (size_t t = 0; t < tris.size(); ++t) s.F.row(static_cast<Eigen::Index>(t)) = tris[t].transpose();
+  }
+  const std::vector<char> on_boundary = boundary_vertex_flags(mesh.num_vertices(), s.F);
   for (int v = 0; v < mesh.num_vertices(); ++v)
     if (on_boundary[v] && s.mask(v) != 0) s.labelled.push_back(v);
   for (int side = 0; side < kNumSides; ++side) {

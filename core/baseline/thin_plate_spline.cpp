@@ -1,8 +1,11 @@
 #include "core/baseline/thin_plate_spline.h"
 
+#include <cblas.h>
+
 #include <Eigen/LU>
 #include <cmath>
 
+#include "core/util/blas_threads.h"
 #include "core/util/error.h"
 
 namespace facehex {
@@ -34,7 +37,11 @@ Eigen::MatrixXd ThinPlateSpline::normalized(const Eigen::MatrixXd& X) const { re
 
 Eigen::MatrixXd ThinPlateSpline::kernel(const Eigen::MatrixXd& Xn) const {
   Eigen::MatrixXd K(Xn.rows(), controls_.rows());
-  for (Eigen::Index i = 0; i < controls_.rows(); ++i) K.col(i) = -(Xn.rowwise() - controls_.row(i)).rowwise().norm();
+  // A column per control point, from the coordinates' columns: contiguous, vectorized, no temporaries.
+  const auto x = Xn.col(0).array(), y = Xn.col(1).array(), z = Xn.col(2).array();
+  for (Eigen::Index i = 0; i < controls_.rows(); ++i)
+    K.col(i) =
+        -((x - controls_(i, 0)).square() + (y - controls_(i, 1)).square() + (z - controls_(i, 2)).square()).sqrt();
   return K;
 }
 
@@ -52,7 +59,13 @@ void ThinPlateSpline::fit(const Eigen::MatrixXd& P, const Eigen::MatrixXd& Q, co
   // KKT system of: min |B theta - sqrt(weight) Qn|^2 + stiffness trace(W^T Phi_cc W)  s.t.  [C 1]^T W = 0.
   const Eigen::Index size = n + 8;
   Eigen::MatrixXd H = Eigen::MatrixXd::Zero(size, size);
-  H.topLeftCorner(n + 4, n + 4).selfadjointView<Eigen::Lower>().rankUpdate(B.transpose());
+  {
+    // The lower triangle of B^T B by BLAS: OpenBLAS's kernels use the CPU's vector width, which Eigen's, compiled
+    // for the baseline x86-64, do not. One thread, as for the factorizations (blas_threads.h).
+    const SingleThreadedBlas one_thread;
+    cblas_dsyrk(CblasColMajor, CblasLower, CblasTrans, static_cast<int>(n + 4), static_cast<int>(m), 1.0, B.data(),
+                static_cast<int>(m), 0.0, H.data(), static_cast<int>(size));
+  }
   H.topLeftCorner(n + 4, n + 4) = H.topLeftCorner(n + 4, n + 4).selfadjointView<Eigen::Lower>();
   H.topLeftCorner(n, n) += stiffness * kernel(controls_);
   const Eigen::MatrixXd Pc = homogeneous(controls_);
