@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <iostream>
+#include <optional>
 
 #include "app/cli_args.h"
 #include "app/commands/commands.h"
@@ -35,19 +36,24 @@ int cmd_segment(const Argv& argv) {
     throw Error(args.get("CT"), "not a CT volume (.mhd, .mha, .nii, .nii.gz, .nrrd, or a DICOM folder)");
   const PatientTetModel patient = read_patient_model(args.get("CT"), options);
   const VolumeMesh& model = patient.mesh;
-  write_volume_mesh(args.get("output"), model);
   const Eigen::VectorXi mask = side_mask_of(model);
+  // The landmarks are found and checked before anything is written: a set that fails leaves no output behind.
+  std::optional<FaceLandmarks> landmarks;
+  if (args.has("write-landmarks")) {
+    landmarks = find_face_landmarks(model.V, mask, landmark_options_for(model, args.get("CT")));
+    std::cout << landmarks_text(*landmarks, "  ");
+    check_plausible(*landmarks,
+                    "give them with --landmarks FILE to run or constraints, or segment without --write-landmarks");
+  }
+  write_volume_mesh(args.get("output"), model);
   std::cout << model.num_vertices() << " vertices, " << model.num_cells() << " tets; side vertices:";
   for (int s = 0; s < kNumSides; ++s)
     std::cout << " " << kSideNames[s] << " " << std::count_if(mask.data(), mask.data() + mask.size(), [&](int m) {
       return (m & side_bit(static_cast<Side>(s))) != 0;
     });
   std::cout << "\nwrote " << args.get("output") << "\n";
-  if (args.has("write-landmarks")) {
-    const FaceLandmarks landmarks = find_face_landmarks(model.V, mask, landmark_options_for(model, args.get("CT")));
-    std::cout << landmarks_text(landmarks, "  ");
-    check_plausible(landmarks, "give them with --landmarks FILE to run or constraints");
-    write_landmark_file(args.get("write-landmarks"), named_landmarks(landmarks));
+  if (landmarks) {
+    write_landmark_file(args.get("write-landmarks"), named_landmarks(*landmarks));
     std::cout << "wrote " << args.get("write-landmarks") << "\n";
   }
   return 0;

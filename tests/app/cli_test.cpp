@@ -363,6 +363,20 @@ TEST_F(Cli, SegmentRemeshesASurfaceThatCrossesItself) {
   EXPECT_GT(facehex::read_volume_mesh(path("p.vtu")).num_cells(), 80000);
 }
 
+// segment --write-landmarks checks the landmarks before it writes: a model cut below the nose (top cut at z 62) reads
+// the lips as a nose too short for an adult, and the command fails naming the landmark and the ways out, with neither
+// the model nor the landmark file written.
+TEST_F(Cli, SegmentWritesNothingWhenItsLandmarksAreImplausible) {
+  const Result r = run("segment " + facehex::default_ct() + " --edge-length 4 --top-cut 62 -o " + path("cut.vtu") +
+                       " --write-landmarks " + path("cut.json"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("error: landmarks: implausible subnasale"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--landmarks FILE"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("without --write-landmarks"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(path("cut.vtu")));
+  EXPECT_FALSE(fs::exists(path("cut.json")));
+}
+
 // The bundled CT meshed at 3 mm: the repair's first five last-resort passes left one fold here (the nose, where the
 // coarse model is thin); the later passes and keeping the best state leave none.
 TEST_F(Cli, TheBundledCtMeshedAt3mmEndsWithNoInvertedCell) {
