@@ -8,6 +8,7 @@
 #include "core/mesh/corner_jacobian.h"
 #include "core/mesh/mid_sagittal_plane.h"
 #include "core/mesh/sides.h"
+#include "core/mesh/skin_points.h"
 
 namespace facehex::cli {
 
@@ -46,6 +47,9 @@ int cmd_info(const Argv& argv) {
   if (const std::optional<MidSagittalPlane> plane = mid_sagittal_plane(m, path))
     std::cout << "  mid-sagittal plane " << mid_sagittal_plane_text(*plane)
               << " (from the segmentation; the landmarks are found on it)\n";
+  if (const std::optional<Eigen::MatrixXd> skin = skin_points(m, path))
+    std::cout << "  skin points " << skin->rows()
+              << " (the CT's skin at the segmentation's working spacing; the landmarks are found on them)\n";
   return 0;
 }
 

@@ -6,10 +6,12 @@
 #include <optional>
 #include <sstream>
 
+#include "core/face/millimetre_bins.h"
 #include "core/face/mouth_corners.h"
 #include "core/mesh/head_turn.h"
 #include "core/mesh/mid_sagittal_plane.h"
 #include "core/mesh/sides.h"
+#include "core/mesh/skin_points.h"
 #include "core/util/error.h"
 #include "core/util/mirror_symmetry.h"
 
@@ -146,7 +148,7 @@ Profile skin_profile(const Eigen::MatrixXd& V, const std::vector<int>& skin, con
   for (int v : skin) {
     const double x = plane.x_at(V(v, 1), V(v, 2));
     if (std::abs(V(v, 0) - x) > band) continue;
-    auto& bin = p.bins[static_cast<size_t>(V(v, 2) - p.z0)];
+    auto& bin = p.bins[static_cast<size_t>(millimetre_bin(V(v, 2) - p.z0))];
     if (!bin || V(v, 1) > bin->y()) bin = Eigen::Vector3d(x, V(v, 1), V(v, 2));  // on the plane
   }
   return p;
@@ -262,6 +264,7 @@ void add_chin(const Profile& profile, const std::vector<int>& skin, const Eigen:
 LandmarkOptions landmark_options_for(const VolumeMesh& model, const std::string& source) {
   LandmarkOptions options;
   options.mid_sagittal_plane = mid_sagittal_plane(model, source);
+  options.skin_points = skin_points(model, source);
   return options;
 }
 
@@ -375,6 +378,12 @@ FaceLandmarks find_in_head_frame(const Eigen::MatrixXd& V, const Eigen::VectorXi
 
 FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
                                   const LandmarkOptions& options) {
+  if (options.skin_points) {
+    LandmarkOptions on_points = options;
+    on_points.skin_points.reset();
+    return find_face_landmarks(*options.skin_points,
+                               Eigen::VectorXi::Constant(options.skin_points->rows(), side_bit(W1)), on_points);
+  }
   if (!options.mid_sagittal_plane || options.mid_sagittal_plane->turn == 0)
     return find_in_head_frame(V, side_mask, options);
   // A turned head's profile is read in its head frame, where the face looks to +y.

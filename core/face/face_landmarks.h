@@ -74,13 +74,18 @@ struct LandmarkOptions {
   // The mid-sagittal plane when it is known (the CT's, core/segment/face_anatomy.h: the whole head's symmetry reads it
   // better than the skin of the face alone, and its lean too); else the skin's vertical mirror plane.
   std::optional<MidSagittalPlane> mid_sagittal_plane;
+  // The skin to read the face from instead of the model's skin vertices, #P x 3 in the model's frame: a segmented
+  // CT's, at the segmentation's working spacing (core/mesh/skin_points.h).
+  std::optional<Eigen::MatrixXd> skin_points;
 };
 
-// The options for `model`: its own mid-sagittal plane when it carries one (core/mesh/mid_sagittal_plane.h). Throws
-// facehex::Error(source, ...) when that plane is malformed.
+// The options for `model`: its own mid-sagittal plane and the CT's skin points when it carries them
+// (core/mesh/mid_sagittal_plane.h, core/mesh/skin_points.h). Throws facehex::Error(source, ...) when they are
+// malformed.
 LandmarkOptions landmark_options_for(const VolumeMesh& model, const std::string& source);
 
-// V #V x 3, side_mask #V. Throws facehex::Error("landmarks", ...) naming the landmark that cannot be found.
+// V #V x 3, side_mask #V; with options.skin_points the face is read from those points instead (V and side_mask are
+// then not used). Throws facehex::Error("landmarks", ...) naming the landmark that cannot be found.
 FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
                                   const LandmarkOptions& options = {});
 

@@ -5,6 +5,8 @@
 #include <limits>
 #include <map>
 
+#include "core/face/millimetre_bins.h"
+
 namespace facehex {
 namespace {
 
@@ -23,7 +25,7 @@ class FrontHeightField {
  public:
   FrontHeightField(const Eigen::MatrixXd& V, const std::vector<int>& skin) {
     for (const int v : skin) {
-      const std::pair<int, int> cell{static_cast<int>(std::floor(V(v, 0))), static_cast<int>(std::floor(V(v, 2)))};
+      const std::pair<int, int> cell{millimetre_bin(V(v, 0)), millimetre_bin(V(v, 2))};
       const auto it = front_.find(cell);
       if (it == front_.end() || V(v, 1) > it->second.y()) front_[cell] = V.row(v).transpose();
     }

@@ -17,6 +17,7 @@
 #include "core/fields/constraint_set.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh/hex_to_tets.h"
+#include "core/mesh/skin_points.h"
 #include "core/quality/hex_quality.h"
 #include "core/segment/ct_volume.h"
 #include "core/util/resources.h"
@@ -325,6 +326,7 @@ TEST_F(Cli, SegmentTakesTheCutsGivenAndRejectsBadOnes) {
   EXPECT_NE(r.output.find("mid_sagittal_plane(field,1x3)"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("mid-sagittal plane x = 100.0 mm at z = 0.0 mm, leaning 0.0 degrees"), std::string::npos)
       << r.output;
+  EXPECT_NE(r.output.find("skin points "), std::string::npos) << r.output;
   // A turn given: the cuts are placed in the head frame turned by it, the model stays in the CT's frame and its plane
   // says how it is turned.
   r = run("segment " + ct + " --edge-length 4 --head-turn 5 -o " + path("turned.vtu"));
@@ -361,6 +363,24 @@ TEST_F(Cli, SegmentRemeshesASurfaceThatCrossesItself) {
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("remeshing the surface again"), std::string::npos) << r.output;
   EXPECT_GT(facehex::read_volume_mesh(path("p.vtu")).num_cells(), 80000);
+}
+
+// The landmarks are read from the CT's skin points the model carries (core/mesh/skin_points.h): segmenting the CT
+// and reading the model it wrote find the same landmarks, to the bit.
+TEST_F(Cli, TheModelsStoredSkinGivesTheSameLandmarksAsItsSegmentation) {
+  Result r = run("segment " + facehex::default_ct() + " --edge-length 4 -o " + path("m.vtu") + " --write-landmarks " +
+                 path("segmented.json"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = run("constraints " + path("m.vtu") + " -o " + path("c.json") + " --write-landmarks " + path("read.json"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::vector<facehex::NamedLandmark> segmented = facehex::read_landmark_file(path("segmented.json"));
+  const std::vector<facehex::NamedLandmark> read = facehex::read_landmark_file(path("read.json"));
+  ASSERT_EQ(read.size(), segmented.size());
+  EXPECT_GE(read.size(), 9u);
+  for (std::size_t i = 0; i < read.size(); ++i) {
+    EXPECT_EQ(read[i].name, segmented[i].name);
+    EXPECT_EQ(read[i].position, segmented[i].position) << read[i].name;
+  }
 }
 
 // segment --write-landmarks checks the landmarks before it writes: a model cut below the nose (top cut at z 62) reads
@@ -616,13 +636,19 @@ TEST_F(Cli, ARegistrationThatCannotRunFallsBackToTheFeatureLines) {
 // lips: the registered skin places the face without the feature lines and says so; with the feature lines the run
 // stops naming --landmarks.
 TEST_F(Cli, TheRegisteredSkinNeedsNoLandmarks) {
-  const std::string ct = facehex::default_ct();
-  Result r = run("run " + ct + " --edge-length 6 -o " + path("coarse"));
+  // A model meshed at 6 mm edges without the CT's skin points (a mesh from elsewhere): its own skin is too sparse
+  // for the landmarks.
+  Result r = run("segment " + facehex::default_ct() + " --edge-length 6 -o " + path("coarse.vtu"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  facehex::VolumeMesh model = facehex::read_volume_mesh(path("coarse.vtu"));
+  ASSERT_EQ(model.field_data.erase(facehex::kSkinPointsField), 1u);
+  facehex::write_volume_mesh(path("coarse.vtu"), model);
+  r = run("run " + path("coarse.vtu") + " -o " + path("coarse"));
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("only: no facial features (landmarks: "), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("note: the registered skin places the face without them"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("skin correspondence: registered; "), std::string::npos) << r.output;
-  r = run("run " + ct + " --edge-length 6 --skin-correspondence features -o " + path("features"));
+  r = run("run " + path("coarse.vtu") + " --skin-correspondence features -o " + path("features"));
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("--landmarks FILE"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(path("features")));

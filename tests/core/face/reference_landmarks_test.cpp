@@ -123,5 +123,45 @@ TEST(ReferenceLandmarks, VisibleHumanFemaleDefaultModelWithItsPlane) {
   expect_near_reference(found, kData + "vhfemale-head.json", 2.0, 11, 0, {{"stomion", 2.5}, {"cheilion left", 3.0}});
 }
 
+TEST(ReferenceLandmarks, VisibleHumanFemaleOnTheCtsSkinPoints) {
+  // What `facehex run CT` reads the face from: the skin points the segmentation stores with its model
+  // (core/mesh/skin_points.h), the skin side of its surface at the 1 mm working spacing before the remeshing, here
+  // within 60 mm of the plane and 50 mm of the front. The same landmarks at every edge length, and the remeshed
+  // skin's mouth line no longer ends 4.7 mm from the right corner. Wider bounds as above: the working spacing's
+  // surface too bridges the closed lips' groove in front of the CT's skin at the stomion, and the mouth line traced
+  // on it ends lower than the left corner placed on the CT.
+  const SkinPoints points = read_skin_points(kData + "vhfemale-head-ct-skin.xyz");
+  LandmarkOptions options = points.options;
+  options.skin_points = points.V;
+  // The model's own skin vertices are not read when it carries the skin points.
+  const SkinPoints remeshed = read_skin_points(kData + "vhfemale-head-default-skin.xyz");
+  const FaceLandmarks found = find_face_landmarks(remeshed.V, remeshed.side_mask, options);
+  const FaceLandmarks on_points = find_face_landmarks(points.V, points.side_mask, points.options);
+  for (const auto& [name, p] : on_points.points) EXPECT_EQ(found.points.at(name), p) << name;
+  EXPECT_NO_THROW(check_plausible(found, "test"));
+  expect_near_reference(found, kData + "vhfemale-head.json", 2.0, 11, 0, {{"stomion", 2.5}, {"cheilion left", 2.5}});
+}
+
+TEST(ReferenceLandmarks, PointsOnWholeMillimetresFallInOneBinHoweverTheyAreRounded) {
+  // A third of the skin points lie on whole millimetres of the working grid (iso-surface vertices on its edges). Moved
+  // by a nanometre either way, as a change of frame rounds them, they must find the same landmarks: the 1 mm bins take
+  // a point on their edge to the bin above (core/face/millimetre_bins.h), where it would otherwise flip a whole plane
+  // of points into the bin below and move a landmark by most of a millimetre.
+  const SkinPoints points = read_skin_points(kData + "vhfemale-head-ct-skin.xyz");
+  Eigen::MatrixXd rounded = points.V;
+  int on_whole_millimetres = 0;
+  for (Eigen::Index i = 0; i < rounded.size(); ++i) {
+    const double x = rounded.data()[i];
+    if (x != std::round(x)) continue;
+    ++on_whole_millimetres;
+    rounded.data()[i] = x + (i % 2 ? 1e-9 : -1e-9);
+  }
+  EXPECT_GT(on_whole_millimetres, points.V.rows() / 4);
+  const FaceLandmarks found = find_face_landmarks(points.V, points.side_mask, points.options);
+  const FaceLandmarks again = find_face_landmarks(rounded, points.side_mask, points.options);
+  ASSERT_EQ(again.points.size(), found.points.size());
+  for (const auto& [name, p] : found.points) EXPECT_LT((again.points.at(name) - p).norm(), 1e-6) << name;
+}
+
 }  // namespace
 }  // namespace facehex

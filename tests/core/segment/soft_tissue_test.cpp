@@ -13,8 +13,10 @@
 #include <string>
 #include <vector>
 
+#include "core/fields/constraint_set.h"
 #include "core/mesh/mid_sagittal_plane.h"
 #include "core/mesh/sides.h"
+#include "core/mesh/skin_points.h"
 #include "core/segment/head_frame.h"
 #include "core/util/error.h"
 #include "core/util/resources.h"
@@ -141,6 +143,18 @@ TEST(SoftTissue, RealCtMakesASixSidedModel) {
   EXPECT_EQ(plane->x, m.cuts.centre_x);
   EXPECT_LT(std::abs(m.cuts.anatomy->roll_degrees), 5.0);  // upright: the plane is vertical
   EXPECT_EQ(plane->slope, 0.0);
+  // And the skin at the working spacing (1 mm here, the model's edges 2 mm): several times as many points as the
+  // model has skin vertices, over the same extent.
+  const std::optional<Eigen::MatrixXd> skin = skin_points(m.mesh, "model");
+  ASSERT_TRUE(skin);
+  const Eigen::VectorXi mask = side_mask_of(m.mesh);
+  std::vector<int> rows;
+  for (int v = 0; v < m.mesh.num_vertices(); ++v)
+    if (mask(v) & side_bit(W1)) rows.push_back(v);
+  EXPECT_GT(skin->rows(), 3 * static_cast<Eigen::Index>(rows.size()));
+  const Eigen::MatrixXd model_skin = m.mesh.V(rows, Eigen::all);
+  EXPECT_LT((skin->colwise().minCoeff() - model_skin.colwise().minCoeff()).cwiseAbs().maxCoeff(), 1.0);
+  EXPECT_LT((skin->colwise().maxCoeff() - model_skin.colwise().maxCoeff()).cwiseAbs().maxCoeff(), 1.0);
 }
 
 TEST(SoftTissue, TheJawCutDoesNotJumpWhenThePosteriorCutFallsBetweenRows) {
