@@ -7,8 +7,10 @@
 #include <limits>
 #include <memory>
 
+#include "core/mapping/param_locator.h"
 #include "core/mesh/corner_jacobian.h"
 #include "core/mesh/sides.h"
+#include "core/shape/corner_energy.h"
 #include "core/util/error.h"
 #include "core/util/stopwatch.h"
 
@@ -201,6 +203,15 @@ void check_inside_patient(const TransferRun& run, const std::string& patient_sou
 
 int unusable_after(const UntangleReport& r) { return r.inverted_after + r.degenerate_after; }
 
+// A cell's shape as Verdict measures a hex's: the smallest mean ratio of its corners against the ideal cell's,
+// (sigma)^(2/3) with sigma the corner's normalized determinant (corner_energy.h); 1 for the ideal cell, 0 when flat.
+double cell_shape(CellType type, const CellNodes& X) {
+  double sigma = 1;
+  for (int k = 0; k < node_count(type); ++k)
+    sigma = std::min(sigma, normalized_determinant(corner_jacobian(type, X, k) * ideal_corner_inverse(type, k)));
+  return sigma > 0 ? std::cbrt(sigma * sigma) : 0;
+}
+
 // The repair of the cells the mapping and the relaxation left unusable (inverted or flat) or below their bound, in
 // passes that give the untangler more room each time (Repair::run). Its report accumulates in run.untangle.
 class Repair {
@@ -225,6 +236,7 @@ class Repair {
     run_.untangle = pass(placement, pass_);
     widen_and_release(placement);
     last_resort();
+    return_to_sides();
     polish();
     report_progress(progress_, "", 1.0);
   }
@@ -313,6 +325,7 @@ class Repair {
         for (int v = 0; v < nv; ++v) kept[v] |= on_side(v);
         spread_free_vertices(run_.patient_hex, kept);
       }
+      freed_sides_ |= free_pass;
       VertexPlacement last =
           free_pass ? spatial_placement(run_.patient_hex.V, fixed) : sliding_placement(run_, patient_map_, uvw_, fixed);
       bound_reach(last, run_.patient_hex, standard_);
@@ -326,6 +339,59 @@ class Repair {
     if (remaining() > unusable_after(best)) {
       run_.patient_hex.V = best_V;
       set_state(best);
+    }
+  }
+
+  // Side vertices the last resort's free passes moved off their sides step back towards them: towards the patient's
+  // point with the vertex's own parameters but for those its sides pin (which places it exactly on them), as far of
+  // the way (all, half, a quarter, an eighth) as keeps every cell around it usable and no cell at or above the
+  // relaxation's floor below it. A vertex whose fold is still in the way stays where it is. Three rounds: a vertex
+  // that has stepped back can make room for its neighbour.
+  void return_to_sides() {
+    if (!freed_sides_) return;
+    constexpr int kRounds = 3;
+    constexpr double kOnSide = 1e-6;     // mm
+    constexpr double kShapeFloor = 0.3;  // no cell's shape (cell_shape) drops below this, or below its own if lower
+    const double floor = relaxation_options(pass_).keep_above;
+    const int nv = standard_.num_vertices();
+    VolumeMesh& mesh = run_.patient_hex;
+    std::vector<std::vector<int>> cells_of(nv);
+    for (int c = 0; c < mesh.num_cells(); ++c)
+      for (int i = 0; i < node_count(mesh.types[c]); ++i) cells_of[mesh.C(c, i)].push_back(c);
+    const ParamLocator in_space(run_.patient.V, run_.patient.T);
+    const Eigen::MatrixXd& patient_uvw = run_.patient.fields.uvw;
+    for (int round = 0; round < kRounds; ++round) {
+      int moved = 0;
+      for (int v = 0; v < nv; ++v) {
+        if (!on_side(v)) continue;
+        const Eigen::Vector3d x = mesh.V.row(v).transpose();
+        const ParamLocator::Hit hit = in_space.locate(x);
+        if (hit.tet < 0) continue;
+        Eigen::Vector3d q = Eigen::Vector3d::Zero();
+        for (int k = 0; k < 4; ++k) q += hit.bary(k) * patient_uvw.row(run_.patient.T(hit.tet, k)).transpose();
+        for (int f = 0; f < 3; ++f)
+          if (pinned_to_side(run_, uvw_, v, f)) q(f) = uvw_(v, f);
+        const PatientMap::Placement on = patient_map_.place(q.cwiseMax(0).cwiseMin(1), run_.transfer.tet(v));
+        if (on.violation > 0 || (on.x - x).norm() <= kOnSide) continue;
+        for (const double t : {1.0, 0.5, 0.25, 0.125}) {
+          mesh.V.row(v) = (x + t * (on.x - x)).transpose();
+          const bool kept = std::all_of(cells_of[v].begin(), cells_of[v].end(), [&](int c) {
+            const CellNodes after = cell_nodes(mesh, c);
+            const CellJacobians j = cell_jacobians(mesh.types[c], after);
+            mesh.V.row(v) = x.transpose();
+            const CellNodes before = cell_nodes(mesh, c);
+            mesh.V.row(v) = (x + t * (on.x - x)).transpose();
+            return !is_unusable(j) && j.scaled_jacobian >= std::min(scaled_jacobian(mesh.types[c], before), floor) &&
+                   cell_shape(mesh.types[c], after) >= std::min(cell_shape(mesh.types[c], before), kShapeFloor);
+          });
+          if (kept) {
+            ++moved;
+            break;
+          }
+          mesh.V.row(v) = x.transpose();
+        }
+      }
+      if (moved == 0) break;
     }
   }
 
@@ -353,6 +419,7 @@ class Repair {
   UntangleOptions pass_;
   ProgressCallback progress_;
   int passes_ = 0;
+  bool freed_sides_ = false;  // a last-resort pass moved side vertices in space
 };
 
 }  // namespace

@@ -166,12 +166,13 @@ TEST_F(Cli, DemoRunsTheWholeChainFromTheBundledCt) {
   for (const auto& bin : q["dihedral_distortion"]["bins"]) percent += bin["percent"].get<double>();
   EXPECT_NEAR(percent, 100.0, 1e-6);
   // Side vertices land on the patient's surface (p95, issue 17's bar), except a few the repair's last passes had to
-  // move off it around a fold, by millimetres: they alone make the mean, which moves with the folds the mapping leaves.
-  // Which folds those are changes with the last bits of the registration's sums: the same transfer with the
-  // registration's products in another order put the farthest, on the bone side of the squeezed nose, 10.0 or 10.9 mm
-  // off (docs/benchmarks.md).
+  // move off it around a fold, by millimetres, and could not step back (docs/method.md section 7): they alone make
+  // the mean, which moves with the folds the mapping leaves. Which folds those are changes with the last bits of the
+  // registration's sums: the same transfer with the registration's products in another order put the farthest, on the
+  // bone side of the squeezed nose, 10.0 or 10.9 mm off (docs/benchmarks.md). Without the step back about 150 of
+  // them stay off by more than a millimetre and the mean is above 0.1 mm.
   const auto& distance = report["transfer"]["side_vertex_distance_mm"];
-  EXPECT_LT(distance["mean"].get<double>(), 0.15);
+  EXPECT_LT(distance["mean"].get<double>(), 0.06);
   EXPECT_LT(distance["p95"].get<double>(), 0.05);
   EXPECT_LT(distance["max"].get<double>(), 12.0);
   // The mapping leaves folds (the sample CT squeezes the nose); the shape relaxation opens most of them and brings
