@@ -373,17 +373,23 @@ class Repair {
           if (pinned_to_side(run_, uvw_, v, f)) q(f) = uvw_(v, f);
         const PatientMap::Placement on = patient_map_.place(q.cwiseMax(0).cwiseMin(1), run_.transfer.tet(v));
         if (on.violation > 0 || (on.x - x).norm() <= kOnSide) continue;
+        // What each cell around v may not fall below: its scaled Jacobian and shape where it is, or the floors.
+        std::vector<std::pair<double, double>> least;
+        for (int c : cells_of[v]) {
+          const CellNodes X = cell_nodes(mesh, c);
+          least.emplace_back(std::min(scaled_jacobian(mesh.types[c], X), floor),
+                             std::min(cell_shape(mesh.types[c], X), kShapeFloor));
+        }
         for (const double t : {1.0, 0.5, 0.25, 0.125}) {
           mesh.V.row(v) = (x + t * (on.x - x)).transpose();
-          const bool kept = std::all_of(cells_of[v].begin(), cells_of[v].end(), [&](int c) {
-            const CellNodes after = cell_nodes(mesh, c);
-            const CellJacobians j = cell_jacobians(mesh.types[c], after);
-            mesh.V.row(v) = x.transpose();
-            const CellNodes before = cell_nodes(mesh, c);
-            mesh.V.row(v) = (x + t * (on.x - x)).transpose();
-            return !is_unusable(j) && j.scaled_jacobian >= std::min(scaled_jacobian(mesh.types[c], before), floor) &&
-                   cell_shape(mesh.types[c], after) >= std::min(cell_shape(mesh.types[c], before), kShapeFloor);
-          });
+          bool kept = true;
+          for (size_t i = 0; i < cells_of[v].size() && kept; ++i) {
+            const int c = cells_of[v][i];
+            const CellNodes X = cell_nodes(mesh, c);
+            const CellJacobians j = cell_jacobians(mesh.types[c], X);
+            kept = !is_unusable(j) && j.scaled_jacobian >= least[i].first &&
+                   cell_shape(mesh.types[c], X) >= least[i].second;
+          }
           if (kept) {
             ++moved;
             break;

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/mesh/mid_sagittal_plane.h"
+#include "core/mesh/side_mask.h"
 #include "core/mesh/skin_points.h"
 #include "core/segment/distance_transform.h"
 #include "core/segment/face_anatomy.h"
@@ -408,13 +409,14 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   plane.y = turn.axis.y();
   set_mid_sagittal_plane(model.mesh, turn.to_model(plane));
   // The skin at the working spacing, for the landmarks (core/mesh/skin_points.h).
-  std::vector<char> on_skin(surface.V.rows(), 0);
-  for (Eigen::Index t = 0; t < surface.F.rows(); ++t)
-    if (surface.labels(t) - 1 == W1)
-      for (int k = 0; k < 3; ++k) on_skin[surface.F(t, k)] = 1;
-  Eigen::MatrixXd skin(std::count(on_skin.begin(), on_skin.end(), 1), 3);
-  for (Eigen::Index v = 0, row = 0; v < surface.V.rows(); ++v)
-    if (on_skin[v]) skin.row(row++) = turn.to_model(surface.V.row(v).transpose()).transpose();
+  const Eigen::VectorXi surface_mask =
+      side_mask_from_faces(static_cast<int>(surface.V.rows()), surface.F, surface.labels.array() - 1);
+  std::vector<int> on_skin;
+  for (Eigen::Index v = 0; v < surface_mask.size(); ++v)
+    if (surface_mask(v) & side_bit(W1)) on_skin.push_back(static_cast<int>(v));
+  Eigen::MatrixXd skin(static_cast<Eigen::Index>(on_skin.size()), 3);
+  for (size_t i = 0; i < on_skin.size(); ++i)
+    skin.row(static_cast<Eigen::Index>(i)) = turn.to_model(surface.V.row(on_skin[i]).transpose()).transpose();
   set_skin_points(model.mesh, skin);
   model.boundary_faces = std::move(tets.boundary_faces);
   model.boundary_sides = tets.boundary_labels.array() - 1;
