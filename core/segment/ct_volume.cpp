@@ -3,7 +3,6 @@
 #include <vtkAlgorithm.h>
 #include <vtkDataArray.h>
 #include <vtkFloatArray.h>
-#include <vtkImageCast.h>
 #include <vtkImageData.h>
 #include <vtkMatrix4x4.h>
 #include <vtkMetaImageReader.h>
@@ -78,11 +77,23 @@ CtOrientation nifti_axes(const std::string& path, vtkMatrix4x4* m) {
   return axes;
 }
 
-// A volume file through VTK's readers (in the file's voxel axes); `given` axes make the file's own unneeded.
-FileVolume read_volume_file_here(const std::string& path, const CtOrientation& given) {
+// The axes as 2 characters each ("+y", or blanks when not stated).
+constexpr size_t kAxesBytes = 4;
+constexpr size_t kVolumeHeaderBytes = kAxesBytes + 3 * sizeof(int) + 6 * sizeof(double);
+
+// Voxel values as floats, rescaled by slope * v + intercept; from the first component of each tuple.
+template <typename T>
+void rescaled_to_float(const T* values, int components, size_t count, double slope, double intercept, float* out) {
+  for (size_t i = 0; i < count; ++i)
+    out[i] = static_cast<float>(slope * static_cast<double>(values[i * components]) + intercept);
+}
+
+// A volume file through VTK's readers (in the file's voxel axes), as the bytes the reading child sends its parent:
+// the axes, the geometry, then the voxels as floats, converted straight from the file's type (a volume is hundreds of
+// MB: each copy on the way costs). `given` axes make the file's own unneeded.
+std::vector<char> read_volume_bytes_here(const std::string& path, const CtOrientation& given) {
   const std::string name = lower(path);
   vtkSmartPointer<vtkAlgorithm> reader;
-  std::function<double(double)> rescale = [](double v) { return v; };
   if (ends_with(name, ".mhd") || ends_with(name, ".mha")) {
     auto meta = vtkSmartPointer<vtkMetaImageReader>::New();
     meta->SetFileName(path.c_str());
@@ -102,59 +113,44 @@ FileVolume read_volume_file_here(const std::string& path, const CtOrientation& g
   } else {
     throw Error(path, "unknown CT format (expected .mhd, .mha, .nii, .nii.gz, .nrrd, .nhdr, .vti or a DICOM folder)");
   }
+  io::run_vtk(path, "reading the CT", reader);  // VTK's messages become one line of the exception
 
-  vtkNew<vtkImageCast> cast;
-  cast->SetInputConnection(reader->GetOutputPort());
-  cast->SetOutputScalarTypeToFloat();
-  io::run_vtk(path, "reading the CT", cast);  // VTK's messages become one line of the exception
-
-  FileVolume out;
+  CtOrientation axes;
+  double slope = 1, intercept = 0;
   if (auto* nifti = vtkNIFTIImageReader::SafeDownCast(reader)) {
-    const double slope = nifti->GetRescaleSlope(), intercept = nifti->GetRescaleIntercept();
-    if (slope != 0) rescale = [slope, intercept](double v) { return slope * v + intercept; };
+    if (nifti->GetRescaleSlope() != 0) slope = nifti->GetRescaleSlope(), intercept = nifti->GetRescaleIntercept();
     vtkMatrix4x4* orientation = nifti->GetSFormMatrix() ? nifti->GetSFormMatrix() : nifti->GetQFormMatrix();
-    if (orientation && (given.anterior.empty() || given.superior.empty())) out.axes = nifti_axes(path, orientation);
+    if (orientation && (given.anterior.empty() || given.superior.empty())) axes = nifti_axes(path, orientation);
   }
 
-  vtkImageData* image = cast->GetOutput();
+  vtkImageData* image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
   vtkDataArray* scalars = image ? image->GetPointData()->GetScalars() : nullptr;
   int dims[3] = {0, 0, 0};
   if (image) image->GetDimensions(dims);
   if (!scalars || scalars->GetNumberOfTuples() == 0) throw Error(path, "could not read a volume");
-
-  CtVolume& ct = out.ct;
-  ct.source = path;
-  GridGeometry& g = ct.intensity.geometry;
-  g.dims = {dims[0], dims[1], dims[2]};
+  const size_t count = static_cast<size_t>(dims[0]) * dims[1] * dims[2];
+  if (static_cast<size_t>(scalars->GetNumberOfTuples()) != count)
+    throw Error(path, "its voxel values do not fill its grid");
   double spacing[3], origin[3];
   image->GetSpacing(spacing);
   image->GetOrigin(origin);
-  for (int a = 0; a < 3; ++a) {
-    g.spacing(a) = std::abs(spacing[a]);
-    g.origin(a) = origin[a];
-  }
-  ct.intensity.data.resize(g.size());
-  const int components = scalars->GetNumberOfComponents();
-  const auto* values = static_cast<const float*>(scalars->GetVoidPointer(0));
-  for (size_t i = 0; i < g.size(); ++i) ct.intensity.data[i] = static_cast<float>(rescale(values[i * components]));
-  return out;
-}
+  for (double& h : spacing) h = std::abs(h);
 
-// The axes as 2 characters each ("+y", or blanks when not stated).
-constexpr size_t kAxesBytes = 4;
-
-// The volume as bytes (its axes, geometry, then the voxels) between the reading child process and its parent.
-std::vector<char> volume_bytes(const FileVolume& volume) {
-  const CtVolume& ct = volume.ct;
-  const GridGeometry& g = ct.intensity.geometry;
-  std::vector<char> bytes(kAxesBytes + sizeof g.dims + 6 * sizeof(double) + ct.intensity.data.size() * sizeof(float));
+  std::vector<char> bytes(kVolumeHeaderBytes + count * sizeof(float));
   char* p = bytes.data();
-  for (const std::string& axis : {volume.axes.anterior, volume.axes.superior})
+  for (const std::string& axis : {axes.anterior, axes.superior})
     p[0] = axis.empty() ? ' ' : axis[0], p[1] = axis.empty() ? ' ' : axis[1], p += 2;
-  std::memcpy(p, g.dims.data(), sizeof g.dims), p += sizeof g.dims;
-  std::memcpy(p, g.spacing.data(), 3 * sizeof(double)), p += 3 * sizeof(double);
-  std::memcpy(p, g.origin.data(), 3 * sizeof(double)), p += 3 * sizeof(double);
-  std::memcpy(p, ct.intensity.data.data(), ct.intensity.data.size() * sizeof(float));
+  std::memcpy(p, dims, sizeof dims), p += sizeof dims;
+  std::memcpy(p, spacing, sizeof spacing), p += sizeof spacing;
+  std::memcpy(p, origin, sizeof origin), p += sizeof origin;
+  float* voxels = reinterpret_cast<float*>(p);
+  const int components = scalars->GetNumberOfComponents();
+  switch (scalars->GetDataType()) {
+    vtkTemplateMacro(rescaled_to_float(static_cast<const VTK_TT*>(scalars->GetVoidPointer(0)), components, count, slope,
+                                       intercept, voxels));
+    default:
+      throw Error(path, std::string("voxels of type ") + scalars->GetDataTypeAsString() + " are not a CT's");
+  }
   return bytes;
 }
 
@@ -163,7 +159,7 @@ FileVolume volume_from_bytes(const std::vector<char>& bytes, const std::string& 
   CtVolume& ct = out.ct;
   ct.source = path;
   GridGeometry& g = ct.intensity.geometry;
-  const size_t header = kAxesBytes + sizeof g.dims + 6 * sizeof(double);
+  const size_t header = kVolumeHeaderBytes;
   if (bytes.size() < header) throw Error(path, "incomplete volume from the reading process");
   const char* p = bytes.data();
   for (std::string* axis : {&out.axes.anterior, &out.axes.superior})
@@ -185,11 +181,10 @@ FileVolume read_volume_file(const std::string& path, const CtOrientation& given)
   if (ends_with(name, ".mhd") || ends_with(name, ".mha")) check_metaimage_header(path);
   if (ends_with(name, ".nii") || ends_with(name, ".nii.gz")) check_nifti_header(path);
   if (ends_with(name, ".nrrd") || ends_with(name, ".nhdr")) check_nrrd_header(path);
-  const ChildLimits limits = limits_for_reading(path, size_t{4} << 30);  // the voxels, cast to float, and a copy
-  return volume_from_bytes(
-      compute_in_child(
-          path, "reading the CT", [&] { return volume_bytes(read_volume_file_here(path, given)); }, limits),
-      path);
+  const ChildLimits limits = limits_for_reading(path, size_t{4} << 30);  // the voxels in the file's type and as floats
+  return volume_from_bytes(compute_in_child(
+                               path, "reading the CT", [&] { return read_volume_bytes_here(path, given); }, limits),
+                           path);
 }
 
 }  // namespace
@@ -220,7 +215,7 @@ CtVolume read_ct_volume(const std::string& path, const CtOrientation& orientatio
   // A blank volume has no tissue to find: say so here, naming the file, rather than at the thresholds.
   const auto [lo, hi] = std::minmax_element(ct.intensity.data.begin(), ct.intensity.data.end());
   if (*lo == *hi) throw Error(path, "every voxel has the same intensity: a blank volume, not a CT");
-  return reorient(ct, axes);
+  return reorient(std::move(ct), axes);
 }
 
 void write_ct_volume(const std::string& path, const CtVolume& ct) {
@@ -259,7 +254,7 @@ const std::vector<std::string>& ct_volume_extensions() {
   return extensions;
 }
 
-CtVolume reorient(const CtVolume& ct, const CtOrientation& orientation) {
+CtVolume reorient(CtVolume ct, const CtOrientation& orientation) {
   const auto [anterior_axis, anterior_sign] = parse_axis(orientation.anterior, "anterior");
   const auto [superior_axis, superior_sign] = parse_axis(orientation.superior, "superior");
   if (anterior_axis == superior_axis)

@@ -39,6 +39,6 @@ bool is_ct_input(const std::string& path);
 const std::vector<std::string>& ct_volume_extensions();  // ".mhd", ".mha", ".nii", ".nii.gz", ".nrrd", ".nhdr"
 
 // Permutes/flips the voxel grid so that `orientation.anterior` becomes +y and `orientation.superior` becomes +z.
-CtVolume reorient(const CtVolume& ct, const CtOrientation& orientation);
+CtVolume reorient(CtVolume ct, const CtOrientation& orientation);
 
 }  // namespace facehex

@@ -3,8 +3,10 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/mman.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -55,11 +57,23 @@ std::size_t address_space_bytes() {
 // compute_in_child's message: a kind, then the result or the error's subject and problem.
 enum Kind : std::uint8_t { kResult = 0, kError = 1, kOutOfMemory = 2 };
 
-void send(int fd, Kind kind, const std::vector<char>& payload) {
-  const std::uint64_t size = payload.size();
+// The kind and a size, then the payload (an error's text); a result's size is that of the memory file holding it.
+void send(int fd, Kind kind, const std::vector<char>& payload, std::uint64_t size) {
   write_to_parent(fd, &kind, sizeof kind);
   write_to_parent(fd, &size, sizeof size);
-  if (size > 0) write_to_parent(fd, payload.data(), payload.size());
+  if (!payload.empty()) write_to_parent(fd, payload.data(), payload.size());
+}
+
+void send(int fd, Kind kind, const std::vector<char>& payload) { send(fd, kind, payload, payload.size()); }
+
+// Writes all bytes to a file, or ends the child (the parent then reports it ended without a result).
+void write_all(int fd, const char* data, std::size_t bytes) {
+  while (bytes > 0) {
+    const ssize_t n = ::write(fd, data, bytes);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) ::_exit(3);
+    data += n, bytes -= static_cast<std::size_t>(n);
+  }
 }
 
 std::vector<char> error_payload(const std::string& subject, const std::string& problem) {
@@ -198,6 +212,14 @@ void write_to_parent(int fd, const void* data, std::size_t bytes) {
 
 std::vector<char> compute_in_child(const std::string& subject, const std::string& what,
                                    const std::function<std::vector<char>()>& work, const ChildLimits& limits) {
+  // The result goes through a memory file rather than the pipe: a CT volume is hundreds of MB, which a pipe would
+  // carry 64 KB at a time, switching between the two processes for each piece.
+  const int result_file = ::memfd_create("facehex-child-result", MFD_CLOEXEC);
+  if (result_file < 0) throw Error(subject, std::string("cannot create a memory file: ") + std::strerror(errno));
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{result_file};
   ChildProcess child = ChildProcess::spawn(
       subject,
       [&](int fd) {
@@ -206,7 +228,9 @@ std::vector<char> compute_in_child(const std::string& subject, const std::string
         const int devnull = ::open("/dev/null", O_WRONLY);
         if (devnull >= 0) ::dup2(devnull, STDOUT_FILENO), ::dup2(devnull, STDERR_FILENO);
         try {
-          send(fd, kResult, work());
+          const std::vector<char> result = work();
+          write_all(result_file, result.data(), result.size());
+          send(fd, kResult, {}, result.size());
         } catch (const Error& e) {
           const std::string message = e.what();
           const std::string prefix = e.subject().empty() ? "" : e.subject() + ": ";
@@ -220,16 +244,6 @@ std::vector<char> compute_in_child(const std::string& subject, const std::string
         }
       },
       limits);
-  // The result's kind and size come first: room for all of it at once, rather than a buffer grown (and its fresh
-  // pages faulted in) again and again as a large volume arrives.
-  std::uint8_t kind = 0;
-  std::uint64_t size = 0;
-  const std::size_t header = sizeof kind + sizeof size;
-  child.read_all(header);
-  if (child.output().size() >= header) {
-    std::memcpy(&size, child.output().data() + sizeof kind, sizeof size);
-    if (limits.memory_bytes == 0 || size <= limits.memory_bytes) child.reserve_output(header + size);
-  }
   child.read_all();
   child.reap();
   if (child.timed_out())
@@ -237,23 +251,35 @@ std::vector<char> compute_in_child(const std::string& subject, const std::string
                              " s (a damaged file?); stopped");
   if (child.crashed())
     throw Error(subject, what + " crashed (" + child.signal_name() + "): the file is damaged or not what it claims");
-  std::vector<char> payload = child.take_output();
-  if (child.exit_code() != 0 || payload.size() < header)
+  std::vector<char> message = child.take_output();
+  std::uint8_t kind = 0;
+  std::uint64_t size = 0;
+  const std::size_t header = sizeof kind + sizeof size;
+  if (child.exit_code() != 0 || message.size() < header)
     throw Error(subject, what + " ended without a result (exit code " + std::to_string(child.exit_code()) + ")");
-  std::memcpy(&kind, payload.data(), sizeof kind);
-  std::memcpy(&size, payload.data() + sizeof kind, sizeof size);
-  if (payload.size() != header + size) throw Error(subject, what + " sent an incomplete result");
-  payload.erase(payload.begin(), payload.begin() + static_cast<std::ptrdiff_t>(header));  // in place: no new pages
+  std::memcpy(&kind, message.data(), sizeof kind);
+  std::memcpy(&size, message.data() + sizeof kind, sizeof size);
   if (kind == kOutOfMemory)
     throw Error(subject, what + " needs more than " + gigabytes(limits.memory_bytes) +
                              " of memory (a damaged file, or sizes it does not hold?)");
   if (kind == kError) {
-    const auto nul = std::find(payload.begin(), payload.end(), '\0');
-    const std::string error_subject(payload.begin(), nul);
-    const std::string problem(nul == payload.end() ? nul : nul + 1, payload.end());
+    if (message.size() != header + size) throw Error(subject, what + " sent an incomplete result");
+    const auto nul = std::find(message.begin() + header, message.end(), '\0');
+    const std::string error_subject(message.begin() + header, nul);
+    const std::string problem(nul == message.end() ? nul : nul + 1, message.end());
     throw Error(error_subject, problem);
   }
-  return payload;
+  struct stat file {};
+  if (message.size() != header || ::fstat(result_file, &file) != 0 || static_cast<std::uint64_t>(file.st_size) != size)
+    throw Error(subject, what + " sent an incomplete result");
+  std::vector<char> result(size);
+  for (std::size_t at = 0; at < size;) {
+    const ssize_t n = ::pread(result_file, result.data() + at, size - at, static_cast<off_t>(at));
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) throw Error(subject, what + " sent an incomplete result");
+    at += static_cast<std::size_t>(n);
+  }
+  return result;
 }
 
 }  // namespace facehex

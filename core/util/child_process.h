@@ -1,10 +1,10 @@
 #pragma once
 // Work in a forked child process, for third-party code that can crash, hang or exhaust memory on bad input (TetGen,
-// VTK's readers): whatever it does, the parent gets an answer or a facehex::Error. The child writes its result to a
-// pipe that the parent reads while it runs; it dies with its parent (PR_SET_PDEATHSIG), may get an address-space budget
-// on top of what it inherited (RLIMIT_AS) and a wall-time limit after which the parent kills it. Linux only, like the
-// rest of the Debian toolchain this builds on. The child must not start OpenMP work: GNU OpenMP's threads do not
-// survive a fork.
+// VTK's readers): whatever it does, the parent gets an answer or a facehex::Error. The child reports through a pipe
+// that the parent reads while it runs (compute_in_child's result itself goes through a memory file); it dies with its
+// parent (PR_SET_PDEATHSIG), may get an address-space budget on top of what it inherited (RLIMIT_AS) and a wall-time
+// limit after which the parent kills it. Linux only, like the rest of the Debian toolchain this builds on. The child
+// must not start OpenMP work: GNU OpenMP's threads do not survive a fork.
 #include <sys/types.h>
 
 #include <cstddef>

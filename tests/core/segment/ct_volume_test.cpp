@@ -47,6 +47,31 @@ TEST(CtVolume, ReadsMetaImageWithSpacingAndOrigin) {
   EXPECT_EQ(ct.intensity(2, 3, 4), 432.0f);
 }
 
+// The file's own voxel type is converted to the volume's floats value for value, whatever it is.
+TEST(CtVolume, ReadsEveryVoxelTypeAsItsValues) {
+  const std::filesystem::path dir = scratch();
+  std::filesystem::create_directories(dir);
+  const auto write = [&](const std::string& type, auto sample) {
+    std::ofstream header(dir / (type + ".mhd"));
+    header << "ObjectType = Image\nNDims = 3\nBinaryData = True\nBinaryDataByteOrderMSB = False\n"
+              "ElementSpacing = 1 1 1\nDimSize = 2 3 4\nElementType = "
+           << type << "\nElementDataFile = " << type << ".raw\n";
+    std::ofstream raw(dir / (type + ".raw"), std::ios::binary);
+    for (int n = 0; n < 24; ++n) {
+      const auto v = static_cast<decltype(sample)>(n * 10 + 3);
+      raw.write(reinterpret_cast<const char*>(&v), sizeof v);
+    }
+    return (dir / (type + ".mhd")).string();
+  };
+  for (const std::string& path :
+       {write("MET_UCHAR", std::uint8_t{}), write("MET_USHORT", std::uint16_t{}), write("MET_INT", std::int32_t{}),
+        write("MET_FLOAT", float{}), write("MET_DOUBLE", double{})}) {
+    const CtVolume ct = read_ct_volume(path);
+    ASSERT_EQ(ct.intensity.data.size(), 24u) << path;
+    for (int n = 0; n < 24; ++n) EXPECT_EQ(ct.intensity.data[n], static_cast<float>(n * 10 + 3)) << path;
+  }
+}
+
 TEST(CtVolume, ReorientsSoThatAnteriorIsPlusYAndSuperiorPlusZ) {
   // The file's -z is anterior and its +y superior: new y = old -z, new z = old y, new x = y cross z = old x.
   const CtVolume ct = read_ct_volume(write_small_mhd(scratch()), {"-z", "+y"});
