@@ -327,12 +327,27 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   model.cuts.turn = turn;
 
   step("the soft tissue", 0.2);
-  Mask air = head;
+  // From here on only the slices between the cuts matter, with the model mask's margin beyond them (the widest, a
+  // tunnel repair's) and max_depth more: every distance the mask and the side labels compare with max_depth or less
+  // is then the same as on all the slices, and so is the model. A scan of the neck and shoulders costs no more.
+  const double widest_margin =
+      3 * options.smoothing_sigma * (1 + kTunnelRepairAttempts * kTunnelRepairBlur) + 2 * options.working_spacing;
+  const auto [head_slices, bone_slices] = [&] {
+    const GridGeometry& g = head.geometry;
+    const double reach = widest_margin + options.max_depth + 2 * g.spacing.z();
+    std::array<int, 3> lo = {0, 0, 0}, hi = g.dims;
+    lo[2] = std::clamp(static_cast<int>(std::floor((model.cuts.bottom_z - reach - g.origin.z()) / g.spacing.z())), 0,
+                       g.dims[2] - 1);
+    hi[2] = std::clamp(static_cast<int>(std::ceil((model.cuts.top_z + reach - g.origin.z()) / g.spacing.z())) + 1,
+                       lo[2] + 1, g.dims[2]);
+    return std::pair{crop(head, lo, hi), crop(bone, lo, hi)};
+  }();
+  Mask air = head_slices;
   for (auto& v : air.data) v = !v;
   const Field air_distance = distance_to(air);
   // Bone with its narrow gaps closed (between the teeth, in thin orbital walls) hides what is behind it.
-  Mask hiding_bone = close(bone, options.bone_gap_radius);
-  for (size_t i = 0; i < hiding_bone.data.size(); ++i) hiding_bone.data[i] &= head.data[i];
+  Mask hiding_bone = close(bone_slices, options.bone_gap_radius);
+  for (size_t i = 0; i < hiding_bone.data.size(); ++i) hiding_bone.data[i] &= head_slices.data[i];
 
   // Where the tissue is only a voxel or two thick (thin skin over bone, a warped or streaky scan), its surface can
   // pierce it: a tunnel. The surface is then made again with a thicker minimum layer and a wider blur, which fill
@@ -349,13 +364,13 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
     model.cuts = automatic_cuts;
     // The mask reaches this far beyond the cuts, so that its blur does not round the creases where they cut it.
     const double margin = 3 * used.smoothing_sigma + 2 * used.working_spacing;
-    const Mask tissue = model_mask(head, hiding_bone, air_distance, model.cuts, used, margin);
+    const Mask tissue = model_mask(head_slices, hiding_bone, air_distance, model.cuts, used, margin);
     if (std::count(tissue.data.begin(), tissue.data.end(), 1) == 0)
       throw Error("segment", "no soft tissue between the cuts; check the thresholds and the cut planes");
     // Clear of the blurred mask's edge, so the posterior cut meets two separate pieces.
     find_jaw_cut(tissue, 2 * used.smoothing_sigma + used.working_spacing, model.cuts);
-    Mask inner = head;
-    for (size_t i = 0; i < inner.data.size(); ++i) inner.data[i] = head.data[i] && !tissue.data[i];
+    Mask inner = head_slices;
+    for (size_t i = 0; i < inner.data.size(); ++i) inner.data[i] = head_slices.data[i] && !tissue.data[i];
     inner_distance = distance_to(inner);
     step(attempt == 0 ? "the surface" : "the surface again (the first had tunnels)", 0.33);
     surface = level_surface_with_cuts(tissue, model.cuts, used);
