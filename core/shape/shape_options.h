@@ -53,7 +53,8 @@ struct UntangleOptions {
 };
 
 // The shape relaxation's settings, from a repair's (`repair`: its bounds, targets, threads): every movable vertex
-// moves; steps start at 1.5 times the Newton step (a lower energy within the sweep budget); no good cell drops below
+// moves, for 40 sweeps; steps start at 1.8 times the Newton step (long, smooth moves go further per sweep, so the
+// budget reaches the shapes that plain steps reach in more sweeps: docs/benchmarks.md); no good cell drops below
 // a scaled Jacobian of 0.05 (while folds remain, the energy's regularization weakens its barrier against flat corners,
 // so a cell far from any fold could otherwise come out nearly flat); the plain sum of the corners' energies (the
 // relaxation evens out all cells; a higher power is for a repair's worst ones).

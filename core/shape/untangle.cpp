@@ -348,9 +348,10 @@ class LocalShapeSolver {
 UntangleOptions relaxation_options(UntangleOptions repair) {
   UntangleOptions relax = std::move(repair);
   relax.whole_mesh = true;
-  relax.over_relaxation = 1.5;
+  relax.over_relaxation = 1.8;
   relax.keep_above = 0.05;
   relax.corner_power = 1;
+  relax.max_sweeps = 40;
   return relax;
 }
 
