@@ -66,16 +66,6 @@ void send(int fd, Kind kind, const std::vector<char>& payload, std::uint64_t siz
 
 void send(int fd, Kind kind, const std::vector<char>& payload) { send(fd, kind, payload, payload.size()); }
 
-// Writes all bytes to a file, or ends the child (the parent then reports it ended without a result).
-void write_all(int fd, const char* data, std::size_t bytes) {
-  while (bytes > 0) {
-    const ssize_t n = ::write(fd, data, bytes);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) ::_exit(3);
-    data += n, bytes -= static_cast<std::size_t>(n);
-  }
-}
-
 std::vector<char> error_payload(const std::string& subject, const std::string& problem) {
   std::vector<char> p(subject.begin(), subject.end());
   p.push_back('\0');
@@ -147,8 +137,8 @@ bool ChildProcess::read_some() {
   return true;
 }
 
-void ChildProcess::read_all(std::size_t until_bytes) {
-  while (fd_ >= 0 && output_.size() < until_bytes) {
+void ChildProcess::read_all() {
+  while (fd_ >= 0) {
     int wait_ms = -1;
     if (limits_.seconds > 0) {
       const double left = started_ + limits_.seconds - now();
@@ -205,7 +195,7 @@ void write_to_parent(int fd, const void* data, std::size_t bytes) {
   while (bytes > 0) {
     const ssize_t n = ::write(fd, p, bytes);
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) ::_exit(3);  // the parent is gone: nothing to report to
+    if (n <= 0) ::_exit(3);  // the parent is gone, or the memory file cannot grow: it sees no result
     p += n, bytes -= static_cast<std::size_t>(n);
   }
 }
@@ -229,7 +219,7 @@ std::vector<char> compute_in_child(const std::string& subject, const std::string
         if (devnull >= 0) ::dup2(devnull, STDOUT_FILENO), ::dup2(devnull, STDERR_FILENO);
         try {
           const std::vector<char> result = work();
-          write_all(result_file, result.data(), result.size());
+          write_to_parent(result_file, result.data(), result.size());
           send(fd, kResult, {}, result.size());
         } catch (const Error& e) {
           const std::string message = e.what();

@@ -9,7 +9,6 @@
 
 #include <cstddef>
 #include <functional>
-#include <limits>
 #include <string>
 #include <vector>
 
@@ -38,11 +37,8 @@ class ChildProcess {
   int fd() const { return fd_; }      // the read end, -1 once the child closed it
   // Reads what the child wrote so far (blocks until something comes); false once the pipe is closed.
   bool read_some();
-  // Reads until the child closes the pipe, or until at least `until_bytes` have come; kills it when its time is up
-  // (timed_out()).
-  void read_all(std::size_t until_bytes = std::numeric_limits<std::size_t>::max());
-  // Room for this many bytes of output, for a child that announces its result's size.
-  void reserve_output(std::size_t bytes) { output_.reserve(bytes); }
+  // Reads until the child closes the pipe; kills it when its time is up (timed_out()).
+  void read_all();
   void kill();
   void reap();  // closes the pipe and waits for the child to end
 
@@ -69,7 +65,7 @@ class ChildProcess {
 // size (a compressed file may expand that much), generous for any sound file and small beside a damaged one's runaway.
 ChildLimits limits_for_reading(const std::string& path, std::size_t base_bytes = std::size_t{2} << 30);
 
-// Writes all bytes to the parent, or ends the child if the parent is gone.
+// Writes all bytes to the parent (the pipe, or compute_in_child's memory file), or ends the child if that fails.
 void write_to_parent(int fd, const void* data, std::size_t bytes);
 
 // Runs work() in a child and returns its result. A facehex::Error thrown there is thrown here as it was; running

@@ -61,29 +61,6 @@ TEST(ChildProcess, AHangIsStoppedAtTheTimeLimit) {
   EXPECT_LT(seconds, 10);
 }
 
-TEST(ChildProcess, ReadingCanStopAtTheBytesAskedFor) {
-  // compute_in_child reads a result's size first: that read returns once the bytes asked for have come, with the
-  // child still running, and the rest follows.
-  ChildLimits limits;
-  limits.seconds = 20;
-  ChildProcess child = ChildProcess::spawn(
-      "s",
-      [](int fd) {
-        write_to_parent(fd, "head", 4);
-        std::this_thread::sleep_for(std::chrono::milliseconds(300));
-        write_to_parent(fd, "tail", 4);
-      },
-      limits);
-  child.read_all(4);
-  EXPECT_EQ(std::string(child.output().begin(), child.output().end()), "head");
-  EXPECT_FALSE(child.timed_out());
-  child.reserve_output(8);
-  child.read_all();
-  child.reap();
-  EXPECT_EQ(std::string(child.output().begin(), child.output().end()), "headtail");
-  EXPECT_EQ(child.exit_code(), 0);
-}
-
 TEST(ChildProcess, AllocationBeyondTheBudgetIsAnErrorNamingTheBudget) {
   ChildLimits limits;
   limits.memory_bytes = size_t{256} << 20;
