@@ -183,6 +183,16 @@ constexpr int kTunnelRepairAttempts = 2;
 constexpr double kTunnelRepairThickness = 1.0;
 constexpr double kTunnelRepairBlur = 0.25;
 
+// The options of the tunnel repair's attempt (0: as given).
+SegmentOptions tunnel_repair_options(SegmentOptions options, int attempt) {
+  options.min_thickness += attempt * kTunnelRepairThickness;
+  options.smoothing_sigma *= 1 + attempt * kTunnelRepairBlur;
+  return options;
+}
+
+// How far the model mask reaches beyond the cuts, so that its blur does not round the creases where they cut it.
+double mask_margin(const SegmentOptions& options) { return 3 * options.smoothing_sigma + 2 * options.working_spacing; }
+
 int euler_characteristic(const Eigen::MatrixXi& faces) {
   std::set<int> vertices;
   std::set<std::pair<int, int>> edges;
@@ -330,11 +340,10 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   // From here on only the slices between the cuts matter, with the model mask's margin beyond them (the widest, a
   // tunnel repair's) and max_depth more: every distance the mask and the side labels compare with max_depth or less
   // is then the same as on all the slices, and so is the model. A scan of the neck and shoulders costs no more.
-  const double widest_margin =
-      3 * options.smoothing_sigma * (1 + kTunnelRepairAttempts * kTunnelRepairBlur) + 2 * options.working_spacing;
   const auto [head_slices, bone_slices] = [&] {
     const GridGeometry& g = head.geometry;
-    const double reach = widest_margin + options.max_depth + 2 * g.spacing.z();
+    const double reach =
+        mask_margin(tunnel_repair_options(options, kTunnelRepairAttempts)) + options.max_depth + 2 * g.spacing.z();
     std::array<int, 3> lo = {0, 0, 0}, hi = g.dims;
     lo[2] = std::clamp(static_cast<int>(std::floor((model.cuts.bottom_z - reach - g.origin.z()) / g.spacing.z())), 0,
                        g.dims[2] - 1);
@@ -357,14 +366,10 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   Field inner_distance;
   int first_chi = 2;
   for (int attempt = 0;; ++attempt) {
-    model.options = options;
-    model.options.min_thickness += attempt * kTunnelRepairThickness;
-    model.options.smoothing_sigma *= 1 + attempt * kTunnelRepairBlur;
+    model.options = tunnel_repair_options(options, attempt);
     const SegmentOptions& used = model.options;
     model.cuts = automatic_cuts;
-    // The mask reaches this far beyond the cuts, so that its blur does not round the creases where they cut it.
-    const double margin = 3 * used.smoothing_sigma + 2 * used.working_spacing;
-    const Mask tissue = model_mask(head_slices, hiding_bone, air_distance, model.cuts, used, margin);
+    const Mask tissue = model_mask(head_slices, hiding_bone, air_distance, model.cuts, used, mask_margin(used));
     if (std::count(tissue.data.begin(), tissue.data.end(), 1) == 0)
       throw Error("segment", "no soft tissue between the cuts; check the thresholds and the cut planes");
     // Clear of the blurred mask's edge, so the posterior cut meets two separate pieces.
