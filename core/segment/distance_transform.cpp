@@ -47,15 +47,15 @@ void lower_envelope(const double* f, int n, double h, double* d, int* arg, std::
 }
 
 // The squared distances (mm^2) of distance_to.
-std::vector<double> squared_distance_to(const Mask& features, std::vector<std::int64_t>* nearest) {
+std::vector<float> squared_distance_to(const Mask& features, std::vector<std::int64_t>* nearest) {
   const GridGeometry& g = features.geometry;
   const size_t n = g.size();
-  std::vector<double> sq(n);
+  std::vector<float> sq(n);
   std::vector<std::int64_t> near;
   if (nearest) near.resize(n);
 #pragma omp parallel for schedule(static)
   for (size_t i = 0; i < n; ++i) {
-    sq[i] = features.data[i] ? 0.0 : kInf;
+    sq[i] = features.data[i] ? 0.0f : std::numeric_limits<float>::infinity();
     if (nearest) near[i] = features.data[i] ? static_cast<std::int64_t>(i) : -1;
   }
   const size_t stride[3] = {1, static_cast<size_t>(g.dims[0]), static_cast<size_t>(g.dims[0]) * g.dims[1]};
@@ -92,7 +92,7 @@ std::vector<double> squared_distance_to(const Mask& features, std::vector<std::i
           for (int x = 0; x < len; ++x)
             for (int b = 0; b < lines; ++b) {
               const size_t at = start + b * inner_stride + x * stride[axis], line = static_cast<size_t>(b) * len;
-              sq[at] = d[line + x];
+              sq[at] = static_cast<float>(d[line + x]);
               if (nearest) near[at] = arg[line + x] < 0 ? -1 : line_near[line + arg[line + x]];
             }
         }
@@ -105,7 +105,7 @@ std::vector<double> squared_distance_to(const Mask& features, std::vector<std::i
 }  // namespace
 
 Field distance_to(const Mask& features, std::vector<std::int64_t>* nearest) {
-  const std::vector<double> sq = squared_distance_to(features, nearest);
+  const std::vector<float> sq = squared_distance_to(features, nearest);
   Field out(features.geometry, 0.0f);
 #pragma omp parallel for schedule(static)
   for (size_t i = 0; i < sq.size(); ++i) out.data[i] = static_cast<float>(std::sqrt(sq[i]));
@@ -115,7 +115,7 @@ Field distance_to(const Mask& features, std::vector<std::int64_t>* nearest) {
 Mask within_distance(const Mask& features, double radius) {
   Mask out(features.geometry, 0);
   if (radius < 0) return out;
-  const std::vector<double> sq = squared_distance_to(features, nullptr);
+  const std::vector<float> sq = squared_distance_to(features, nullptr);
   // Squared distances clearly below or above radius^2 decide without the square root; the few near it are decided
   // as distance_to's rounded value would be (the float's relative rounding is far below the bracket's 1e-6).
   const double below = radius * (1 - 1e-6) * radius * (1 - 1e-6), above = radius * (1 + 1e-6) * radius * (1 + 1e-6);
