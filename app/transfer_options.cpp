@@ -205,6 +205,8 @@ CliTransfer cli_transfer(const Args& args, const std::string& patient, const std
   TerminalProgress progress;
   t.result = transfer(t.standard, t.patient, options, progress.callback());
   progress.finish();
+  if (!t.result.patient_openings.empty())
+    std::cerr << "note: the patient model's " << t.result.patient_openings << " as the standard's are\n";
   if (!t.result.cache_note.empty())
     std::cerr << "note: " << t.result.cache_note << "; the standard's parameterization was computed instead (expected "
               << "with --standard-domain, --standard-constraints, --iterations or --order; after editing a bundled "

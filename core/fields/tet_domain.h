@@ -17,6 +17,7 @@ struct TetDomain {
   int non_positive_tets = 0;        // tets with volume <= 0 (badly shaped hex cells split into tets)
   std::string description;          // how it was built, for reports
   int relaxed_corner_vertices = 0;  // side labels dropped at shell corners (side_mask.h relax_corner_quads)
+  int closed_openings = 0;          // openings closed by plugs (core/standard/closed_domain.h)
 };
 
 // The paper's auxiliary tet mesh: hexes and wedges split into tets, no vertex added (hex_to_tets.h).

@@ -6,6 +6,8 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <string>
+#include <utility>
 
 #include "core/mesh/sides.h"
 #include "core/mesh/tet_topology.h"
@@ -139,26 +141,39 @@ TetDomain closed_domain(const VolumeMesh& hex) {
   TetDomain d = auxiliary_domain(hex);
   if (d.side_mask.size() != d.V.rows())
     throw Error("closed domain", "the standard has no \"side_mask\" (label its sides first: facehex sides)");
-  // Opening walls: boundary triangles with no side common to their three vertices.
+  return close_openings(std::move(d), "auxiliary tets");
+}
+
+TetDomain close_openings(TetDomain d, const std::string& kind) {
+  if (d.side_mask.size() != d.V.rows()) return d;
+  // Candidate walls: boundary triangles with no side common to their three vertices.
   const BoundaryFaces boundary = boundary_faces(d.T);
   std::vector<Eigen::Vector3i> walls;
   for (int f = 0; f < boundary.F.rows(); ++f) {
     const Eigen::Vector3i t = boundary.F.row(f).transpose();
     if ((d.side_mask(t(0)) & d.side_mask(t(1)) & d.side_mask(t(2))) == 0) walls.push_back(t);
   }
-  int openings = 0, closed = 0;
-  const std::vector<int> comp = triangle_components(walls, openings);
+  int components = 0, openings = 0, closed = 0;
+  const std::vector<int> comp = triangle_components(walls, components);
   std::vector<Eigen::Vector4i> new_tets;
   std::vector<Eigen::RowVector3d> new_points;
-  for (int o = 0; o < openings; ++o) {
+  for (int o = 0; o < components; ++o) {
     std::vector<Eigen::Vector3i> plug;
+    bool sideless_vertex = false;
     for (size_t i = 0; i < walls.size(); ++i)
-      if (comp[i] == o) plug.push_back(walls[i]);
+      if (comp[i] == o) {
+        plug.push_back(walls[i]);
+        for (int k = 0; k < 3; ++k) sideless_vertex |= d.side_mask(walls[i](k)) == 0;
+      }
+    if (!sideless_vertex) continue;  // where sides meet, not an opening
+    const std::vector<Eigen::Vector3i> wall = plug;
+    const std::vector<std::vector<int>> loops = rim_loops(wall);
+    if (loops.size() < 2) continue;  // a dent in one side, not an opening through the shell
+    ++openings;
     double wall_edges = 0;
     for (const auto& t : plug) wall_edges += (d.V.row(t(0)) - d.V.row(t(1))).norm();
     bool capped = true;
-    const std::vector<Eigen::Vector3i> wall = plug;
-    for (const auto& loop : rim_loops(wall)) {
+    for (const auto& loop : loops) {
       auto cap = cap_loop(d.V, loop);
       capped = capped && !cap.empty();
       orient_cap(cap, wall);
@@ -216,8 +231,10 @@ TetDomain closed_domain(const VolumeMesh& hex) {
   d.side_mask.tail(static_cast<Eigen::Index>(new_points.size())).setZero();  // plug interiors lie on no side
   d.T.conservativeResize(nt + static_cast<Eigen::Index>(new_tets.size()), 4);
   for (size_t i = 0; i < new_tets.size(); ++i) d.T.row(nt + static_cast<Eigen::Index>(i)) = new_tets[i].transpose();
-  d.description = "auxiliary tets with " + std::to_string(closed) + " of " + std::to_string(openings) +
-                  " openings closed by TetGen plugs";
+  d.closed_openings = closed;
+  d.description = kind + (openings == 0 ? std::string(", no opening")
+                                        : " with " + std::to_string(closed) + " of " + std::to_string(openings) +
+                                              " openings closed by TetGen plugs");
   return d;
 }
 

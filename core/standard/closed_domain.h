@@ -9,13 +9,22 @@
 // without Steiner points on its surface, so the plug conforms to the auxiliary tets around it. The caps lie on the
 // skin or bone side and carry that side; the hex vertices stay the domain's first vertices.
 //
-// An opening whose cap cannot be built or meshed (e.g. rims that touch each other) stays open; the returned
-// description says how many were closed.
+// An opening whose cap cannot be built or meshed (e.g. rims that touch each other, or caps that would cut through
+// its wall) stays open; the returned description says how many were closed.
 #include "core/fields/tet_domain.h"
 
 namespace facehex {
 
 TetDomain closed_domain(const VolumeMesh& hex);
+
+// The openings of any tet domain closed as closed_domain() closes a standard's: a patient model with open eyes,
+// nostrils or mouth (walls on no side) gets the standard's plugs, so that the two domains have the same shape there.
+// An opening is a connected set of boundary triangles with no side common to their three vertices that reaches a
+// boundary vertex on no side (its wall) and is bounded by two or more rim loops (it goes through the shell, from one
+// side to another); where sides meet, the three vertices carry different sides but each has one, and a patch with
+// one rim loop is a dent, not an opening. `kind` names the domain in the description ("the model's own tets");
+// closed_openings counts the openings closed.
+TetDomain close_openings(TetDomain domain, const std::string& kind);
 
 // A domain's boundary as a closed surface on the domain's boundary vertices (renumbered), each triangle labelled
 // Side + 1 with the side its three vertices share (0: none, the walls of an opening left open; tetrahedralize.h's

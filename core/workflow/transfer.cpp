@@ -3,7 +3,9 @@
 #include "core/face/automatic_constraints.h"
 #include "core/io/fe_sets.h"
 #include "core/io/mesh_io.h"
+#include "core/mesh/sides.h"
 #include "core/quality/hex_quality.h"
+#include "core/standard/closed_domain.h"
 #include "core/standard/parameterization_cache.h"
 #include "core/util/stopwatch.h"
 
@@ -57,11 +59,29 @@ PointPairs given_landmark_pairs(const StandardSetup& standard, const PatientSetu
   return pairs;
 }
 
+// The patient with its model's openings closed (close_openings), and what was closed in `note`; empty when the
+// model has no opening.
+std::optional<PatientSetup> with_openings_closed(const PatientSetup& patient, std::string& note) {
+  if (!patient.mesh.is_tet_mesh()) return std::nullopt;
+  TetDomain domain = close_openings(own_domain(patient.mesh), "the model's own tets");
+  if (domain.T.rows() == patient.mesh.num_cells()) return std::nullopt;
+  PatientSetup closed = patient;
+  closed.mesh = VolumeMesh::from_tets(domain.V, domain.T);
+  closed.mesh.point_data[kSideMaskArray] = domain.side_mask.cast<double>();
+  closed.mesh.field_data = patient.mesh.field_data;
+  note = domain.description.substr(domain.description.find(" with ") + 6);
+  closed.domain = std::move(domain);
+  return closed;
+}
+
 }  // namespace
 
-TransferResult transfer(const StandardSetup& standard, const PatientSetup& patient, const TransferOptions& options,
-                        const ProgressCallback& progress) {
+TransferResult transfer(const StandardSetup& standard, const PatientSetup& patient_as_given,
+                        const TransferOptions& options, const ProgressCallback& progress) {
   TransferResult r;
+  std::optional<PatientSetup> closed;
+  if (standard.domain.closed_openings > 0) closed = with_openings_closed(patient_as_given, r.patient_openings);
+  const PatientSetup& patient = closed ? *closed : patient_as_given;
   std::optional<ModelParameterization> standard_p =
       cached_parameterization(standard.path, standard.domain, standard.constraints, options.fields, &r.cache_note);
   const bool cached = standard_p.has_value();

@@ -28,6 +28,9 @@ struct TransferResult {
   std::vector<std::string> left_out_constraints;
   // Why the registered skin was asked for but the feature constraints were used (its error), or empty.
   std::string registered_failure;
+  // The patient model's openings closed as the standard's (transfer()), e.g. "3 of 8 openings closed by TetGen
+  // plugs", or empty when it had none.
+  std::string patient_openings;
 };
 
 // With options.skin_correspondence registered, the sides are registered first (core/correspondence/
@@ -37,6 +40,10 @@ struct TransferResult {
 // options.max_inverted_fraction, even with allow_inverted_parameterization, or the repair diverged), it runs again
 // with the feature constraints, and registered_failure says why; when the policy could not place them either
 // (patient.features_problem), that is an error naming both.
+// When the standard's domain has openings closed by plugs (core/standard/closed_domain.h), a patient model with
+// openings (walls on no side: open eyes, nostrils or a mouth) is parameterized with them closed the same way
+// (close_openings): harmonic fields bend around an open rim where the standard's do not, and the two
+// parameterizations would not correspond there. A segmented CT's model has none.
 // Throws facehex::Error naming the file or stage; facehex::Cancelled when `progress` asks to stop.
 TransferResult transfer(const StandardSetup& standard, const PatientSetup& patient, const TransferOptions& options,
                         const ProgressCallback& progress = {});

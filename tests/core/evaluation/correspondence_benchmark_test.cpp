@@ -80,8 +80,11 @@ TEST(CorrespondenceBenchmark, TheRegisteredSkinFollowsSelfMapsAndLocalWarps) {
     EXPECT_TRUE(r.registered_skin) << r.name << ": " << r.registered_failure;
   }
   const auto& self = find_case(results, "split");
-  EXPECT_LT(self.error.all.mean, 0.2);
-  EXPECT_LT(self.error.all.p95, 0.6);
+  // The split model's open eyes are closed by plugs as the standard's are (core/workflow/transfer.h): the two
+  // parameterizations then agree around them too (left open, the mean is about twice as large).
+  EXPECT_LT(self.error.all.mean, 0.12);
+  EXPECT_LT(self.error.all.p95, 0.35);
+  EXPECT_LT(self.folded_parametric_tets, 180);
   for (const auto& region : self.error.regions) {
     if (region.name == "skin") {
       EXPECT_LT(region.error.mean, 0.05);
