@@ -6,6 +6,8 @@
 #include "core/face/automatic_constraints.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh/hex_to_tets.h"
+#include "core/mesh/sides.h"
+#include "core/standard/closed_domain.h"
 #include "core/util/error.h"
 #include "core/workflow/patient_setup.h"
 #include "core/workflow/standard_setup.h"
@@ -108,6 +110,35 @@ TEST_F(Workflow, ATetModelIsItsOwnDomainWithAllItsVerticesAsModelVertices) {
   const PatientSetup p = patient_from_mesh(box, "in memory", nullptr);
   EXPECT_EQ(p.domain.hex_vertices, box.num_vertices());
   EXPECT_TRUE(p.constraints_path.empty());
+}
+
+// A model whose openings were closed by plugs (close_openings) is written with its own point data, the plugs' inner
+// vertices on no side.
+TEST_F(Workflow, TheParameterizedModelKeepsTheModelsPointDataWithItsPlugs) {
+  VolumeMesh hex = test::hex_box(3, 2, 3, 30, 10, 30);
+  std::vector<int> kept;
+  for (int c = 0; c < hex.num_cells(); ++c)
+    if (c % 3 != 1 || (c / 6) != 1) kept.push_back(c);  // a tunnel through the middle column, back to front
+  VolumeMesh open = hex;
+  open.C.resize(static_cast<Eigen::Index>(kept.size()), 8);
+  for (size_t i = 0; i < kept.size(); ++i) open.C.row(static_cast<Eigen::Index>(i)) = hex.C.row(kept[i]);
+  open.types.assign(kept.size(), CellType::Hex);
+  VolumeMesh model = VolumeMesh::from_tets(open.V, split_into_tets(open).T);
+  model.point_data = hex.point_data;
+  const TetDomain closed = close_openings(own_domain(model), "the model's own tets");
+  ASSERT_EQ(closed.closed_openings, 1);
+  const ModelParameterization p =
+      parameterize_model(closed.V, closed.T, closed.side_mask, side_constraints(), "box", HarmonicFieldsOptions{});
+  const VolumeMesh written = parameterized_tet_mesh(p, &model);
+  ASSERT_EQ(written.point_data.count(kSideMaskArray), 1u);
+  const Eigen::MatrixXd& mask = written.point_data.at(kSideMaskArray);
+  ASSERT_EQ(mask.rows(), closed.V.rows());
+  EXPECT_EQ(mask.topRows(model.num_vertices()), model.point_data.at(kSideMaskArray));
+  EXPECT_TRUE(mask.bottomRows(closed.V.rows() - model.num_vertices()).isZero());
+  // A model of other vertices lends none.
+  VolumeMesh other = model;
+  other.V.array() += 1;
+  EXPECT_EQ(parameterized_tet_mesh(p, &other).point_data.count(kSideMaskArray), 0u);
 }
 
 TEST_F(Workflow, AStandardMustBeHexDominantAndItsDomainKindKnown) {
