@@ -9,8 +9,8 @@
 #include "core/fields/parameterization.h"
 #include "core/fields/tet_domain.h"
 #include "core/mapping/hex_transfer.h"
-#include "core/shape/untangle.h"
 #include "core/mesh/mesh.h"
+#include "core/shape/untangle.h"
 #include "core/util/progress.h"
 
 namespace facehex {
@@ -69,6 +69,7 @@ struct SideConditions {
 struct TransferRun {
   ModelParameterization standard, patient;   // standard: on its domain; its first #Vs rows are the hex vertices
   std::string standard_domain;               // how the standard's tet domain was built
+  std::string patient_domain;                // the patient's (its own tets; its openings closed: workflow/transfer.h)
   int standard_domain_non_positive = 0;      // domain tets with non-positive volume (badly shaped standard cells)
   int standard_relaxed_corner_vertices = 0;  // side labels dropped at the standard's shell corners
   std::string standard_parameterization_source = "computed";  // or where it was read from (a cache)

@@ -207,7 +207,7 @@ json run_report(const TransferRun& run, const MeshQualityReport& standard_qualit
             {"domain_tets_non_positive", run.standard_domain_non_positive},
             {"relaxed_corner_vertices", run.standard_relaxed_corner_vertices},
             {"quality", to_json(standard_quality)}}},
-          {"patient", {{"parameterization", parameterization_json(run.patient)}}},
+          {"patient", {{"parameterization", parameterization_json(run.patient)}, {"domain", run.patient_domain}}},
           {"transfer",
            {{"vertices", t.vertices},
             {"located_inside", t.located_inside},

@@ -134,6 +134,7 @@ TransferResult transfer(const StandardSetup& standard, const PatientSetup& patie
                                    "), nor did the feature lines: " + e.problem());
     }
   }
+  r.run.patient_domain = patient.domain.description;
   if (cached) r.run.standard_parameterization_source = parameterization_cache_path(standard.path);
   if (!cached && standard_p) {  // computed above for the registration
     r.run.standard_parameterization_source = "computed";
