@@ -33,7 +33,8 @@ QString sizeText(const LoadedModel& m) {
 }
 
 // What a transfer gave, a line per fact: the cells, their validity before and after the repair, their quality
-// against the standard's, how far the side vertices lie from the patient's surface, and the time of each stage.
+// against the standard's, how far the side vertices lie from the patient's surface, the time of each stage, and the
+// openings of the patient model closed as the standard's (core/workflow/transfer.h).
 QStringList transferDetail(const TransferResult& r) {
   const QualitySummary &q = r.patient_quality.summary, &sq = r.standard_quality.summary;
   QStringList stages;
@@ -42,26 +43,31 @@ QStringList transferDetail(const TransferResult& r) {
     stages << QString("%1 %2 s").arg(QString::fromStdString(stage).replace('_', ' ')).arg(seconds, 0, 'f', 1);
     total += seconds;
   }
-  return {QObject::tr("%1 cells (%2 hexes, %3 wedges)").arg(count(q.cells), count(q.hexes), count(q.wedges)),
-          QObject::tr("%1 inverted, %2 flat (%3 inverted after the plain mapping)")
-              .arg(q.inverted)
-              .arg(q.degenerate)
-              .arg(r.plain_mapping_quality.summary.inverted),
-          QObject::tr("shape mean %1, min %2 (standard: mean %3, min %4)")
-              .arg(q.shape_mean, 0, 'f', 3)
-              .arg(q.shape_min, 0, 'f', 3)
-              .arg(sq.shape_mean, 0, 'f', 3)
-              .arg(sq.shape_min, 0, 'f', 3),
-          QObject::tr("scaled Jacobian min %1, %2% of the cells below 0.3")
-              .arg(q.scaled_jacobian_min, 0, 'f', 3)
-              .arg(100 * q.fraction_scaled_jacobian_below_0_3, 0, 'f', 1),
-          QObject::tr("dihedral angles changed by %1\u00b0 on average, %2\u00b0 at most")
-              .arg(r.patient_quality.distortion.mean_deg, 0, 'f', 1)
-              .arg(r.patient_quality.distortion.max_deg, 0, 'f', 1),
-          QObject::tr("side vertices off the patient's surface: mean %1 mm, max %2 mm")
-              .arg(r.distance.mean, 0, 'f', 2)
-              .arg(r.distance.max, 0, 'f', 2),
-          QObject::tr("time %1 s: %2").arg(total, 0, 'f', 1).arg(stages.join(", "))};
+  QStringList lines = {
+      QObject::tr("%1 cells (%2 hexes, %3 wedges)").arg(count(q.cells), count(q.hexes), count(q.wedges)),
+      QObject::tr("%1 inverted, %2 flat (%3 inverted after the plain mapping)")
+          .arg(q.inverted)
+          .arg(q.degenerate)
+          .arg(r.plain_mapping_quality.summary.inverted),
+      QObject::tr("shape mean %1, min %2 (standard: mean %3, min %4)")
+          .arg(q.shape_mean, 0, 'f', 3)
+          .arg(q.shape_min, 0, 'f', 3)
+          .arg(sq.shape_mean, 0, 'f', 3)
+          .arg(sq.shape_min, 0, 'f', 3),
+      QObject::tr("scaled Jacobian min %1, %2% of the cells below 0.3")
+          .arg(q.scaled_jacobian_min, 0, 'f', 3)
+          .arg(100 * q.fraction_scaled_jacobian_below_0_3, 0, 'f', 1),
+      QObject::tr("dihedral angles changed by %1\u00b0 on average, %2\u00b0 at most")
+          .arg(r.patient_quality.distortion.mean_deg, 0, 'f', 1)
+          .arg(r.patient_quality.distortion.max_deg, 0, 'f', 1),
+      QObject::tr("side vertices off the patient's surface: mean %1 mm, max %2 mm")
+          .arg(r.distance.mean, 0, 'f', 2)
+          .arg(r.distance.max, 0, 'f', 2),
+      QObject::tr("time %1 s: %2").arg(total, 0, 'f', 1).arg(stages.join(", "))};
+  if (!r.patient_openings.empty())
+    lines
+        << QObject::tr("the patient model's %1 as the standard's are").arg(QString::fromStdString(r.patient_openings));
+  return lines;
 }
 
 const char* kStale = QT_TRANSLATE_NOOP("TransferController", " (not applied: the models changed meanwhile)");
