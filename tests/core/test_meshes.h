@@ -1,8 +1,11 @@
 #pragma once
 // Small meshes built in code for the core tests.
 #include <Eigen/Core>
+#include <functional>
 #include <random>
+#include <vector>
 
+#include "core/mesh/hex_to_tets.h"
 #include "core/mesh/mesh.h"
 #include "core/mesh/sides.h"
 
@@ -39,6 +42,25 @@ inline VolumeMesh hex_box(int nx, int ny, int nz, double sx = 1, double sy = 1, 
             id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1);
   m.types.assign(m.C.rows(), CellType::Hex);
   return m;
+}
+
+// hex_box's cells split into tets, without the cells (i, j, k) that `removed` picks, with the box's side labels: the
+// walls of what is removed lie on no side (a tunnel from back to front is an opening through the shell).
+inline VolumeMesh tet_box_without(int nx, int ny, int nz, double sx, double sy, double sz,
+                                  const std::function<bool(int i, int j, int k)>& removed) {
+  const VolumeMesh hex = hex_box(nx, ny, nz, sx, sy, sz);
+  std::vector<int> kept;
+  for (int c = 0, k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i, ++c)
+        if (!removed(i, j, k)) kept.push_back(c);
+  VolumeMesh cut = hex;
+  cut.C.resize(static_cast<Eigen::Index>(kept.size()), 8);
+  for (size_t c = 0; c < kept.size(); ++c) cut.C.row(static_cast<Eigen::Index>(c)) = hex.C.row(kept[c]);
+  cut.types.assign(kept.size(), CellType::Hex);
+  VolumeMesh tets = VolumeMesh::from_tets(cut.V, split_into_tets(cut).T);
+  tets.point_data = hex.point_data;
+  return tets;
 }
 
 // Moves interior vertices randomly by up to `amount` (in units of the smallest cell edge) so meshes are irregular.

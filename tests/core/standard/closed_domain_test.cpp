@@ -4,7 +4,6 @@
 
 #include <functional>
 
-#include "core/mesh/hex_to_tets.h"
 #include "core/mesh/sides.h"
 #include "core/mesh/tet_laplacian.h"
 #include "core/mesh/tet_topology.h"
@@ -15,22 +14,9 @@ namespace {
 
 constexpr int kNx = 5, kNy = 3, kNz = 5;  // cells of the 10 x 6 x 10 mm box
 
-// The box's tets without the hex cells (i, j, k) that `removed` picks, with the box's side labels: the walls of what
-// is removed lie on no side, their rims on the front (w1) or the back (w0).
+// The 10 x 6 x 10 mm box without the cells `removed` picks (test::tet_box_without).
 VolumeMesh box_without(const std::function<bool(int, int, int)>& removed) {
-  VolumeMesh hex = test::hex_box(kNx, kNy, kNz, 10, 6, 10);
-  std::vector<int> kept;
-  for (int c = 0, k = 0; k < kNz; ++k)
-    for (int j = 0; j < kNy; ++j)
-      for (int i = 0; i < kNx; ++i, ++c)
-        if (!removed(i, j, k)) kept.push_back(c);
-  VolumeMesh cut = hex;
-  cut.C.resize(static_cast<Eigen::Index>(kept.size()), 8);
-  for (size_t c = 0; c < kept.size(); ++c) cut.C.row(static_cast<Eigen::Index>(c)) = hex.C.row(kept[c]);
-  cut.types.assign(kept.size(), CellType::Hex);
-  VolumeMesh tets = VolumeMesh::from_tets(cut.V, split_into_tets(cut).T);
-  tets.point_data = hex.point_data;
-  return tets;
+  return test::tet_box_without(kNx, kNy, kNz, 10, 6, 10, removed);
 }
 
 TEST(CloseOpenings, ATunnelThroughTheShellGetsAPlugThatFillsIt) {

@@ -115,16 +115,9 @@ TEST_F(Workflow, ATetModelIsItsOwnDomainWithAllItsVerticesAsModelVertices) {
 // A model whose openings were closed by plugs (close_openings) is written with its own point data, the plugs' inner
 // vertices on no side.
 TEST_F(Workflow, TheParameterizedModelKeepsTheModelsPointDataWithItsPlugs) {
-  VolumeMesh hex = test::hex_box(3, 2, 3, 30, 10, 30);
-  std::vector<int> kept;
-  for (int c = 0; c < hex.num_cells(); ++c)
-    if (c % 3 != 1 || (c / 6) != 1) kept.push_back(c);  // a tunnel through the middle column, back to front
-  VolumeMesh open = hex;
-  open.C.resize(static_cast<Eigen::Index>(kept.size()), 8);
-  for (size_t i = 0; i < kept.size(); ++i) open.C.row(static_cast<Eigen::Index>(i)) = hex.C.row(kept[i]);
-  open.types.assign(kept.size(), CellType::Hex);
-  VolumeMesh model = VolumeMesh::from_tets(open.V, split_into_tets(open).T);
-  model.point_data = hex.point_data;
+  // A tunnel from back to front through the middle column of the box.
+  const VolumeMesh model =
+      test::tet_box_without(3, 2, 3, 30, 10, 30, [](int i, int, int k) { return i == 1 && k == 1; });
   const TetDomain closed = close_openings(own_domain(model), "the model's own tets");
   ASSERT_EQ(closed.closed_openings, 1);
   const ModelParameterization p =
