@@ -59,12 +59,11 @@ PointPairs given_landmark_pairs(const StandardSetup& standard, const PatientSetu
   return pairs;
 }
 
-// The patient with its model's openings closed (close_openings), and what was closed in `note`; empty when the
-// model has no opening.
+// The patient with its model's openings closed (close_openings on its domain, the model's own tets), and what was
+// closed in `note`; empty when the model has no opening.
 std::optional<PatientSetup> with_openings_closed(const PatientSetup& patient, std::string& note) {
-  if (!patient.mesh.is_tet_mesh()) return std::nullopt;
-  TetDomain domain = close_openings(own_domain(patient.mesh), "the model's own tets");
-  if (domain.T.rows() == patient.mesh.num_cells()) return std::nullopt;
+  TetDomain domain = close_openings(patient.domain, "the model's own tets");
+  if (domain.closed_openings == 0) return std::nullopt;
   PatientSetup closed = patient;
   closed.mesh = VolumeMesh::from_tets(domain.V, domain.T);
   closed.mesh.point_data[kSideMaskArray] = domain.side_mask.cast<double>();

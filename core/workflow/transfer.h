@@ -28,7 +28,7 @@ struct TransferResult {
   std::vector<std::string> left_out_constraints;
   // Why the registered skin was asked for but the feature constraints were used (its error), or empty.
   std::string registered_failure;
-  // The patient model's openings closed as the standard's (transfer()), e.g. "3 of 8 openings closed by TetGen
+  // The patient model's openings closed as the standard's (transfer()), e.g. "3 of 4 openings closed by TetGen
   // plugs", or empty when it had none.
   std::string patient_openings;
 };
