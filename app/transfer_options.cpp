@@ -15,7 +15,8 @@ namespace {
 // The thresholds and cuts a CT was segmented with, and the options that change them, on stderr.
 void print_segmentation(const CtSegmentation& segmentation) {
   std::cerr << "segmentation: " << segmentation_summary(segmentation)
-            << "\n  (change with --skin, --bone, --head-turn, --top-cut, --bottom-cut, --posterior-cut, --mid-plane)\n";
+            << "\n  (change with --skin, --bone, --head-turn, --head-pitch, --top-cut, --bottom-cut, --posterior-cut, "
+               "--mid-plane)\n";
 }
 
 }  // namespace
@@ -35,8 +36,14 @@ void add_segment_options(Args& args) {
               "degrees the head is turned about the vertical axis in the scanner, towards +x from +y; the cuts are "
               "placed in the head frame turned back by it, and the model stays in the CT's frame (default: from the "
               "head's mirror symmetry, none under 2; 0: the CT's own frame)")
+      .option("head-pitch",
+              "degrees the head is pitched (nodding) about the lateral axis in the scanner, positive with the chin "
+              "raised; the cuts are placed in the head frame pitched back by it, and the model stays in the CT's frame "
+              "(default: the CT's own frame, or the hard palate's slope when the face or its landmarks are not found "
+              "there and it slopes 5 degrees or more; 0: the CT's own frame only)")
       .option("top-cut",
-              "height z (mm, head frame: the segmentation frame unless the head is turned) of the top cut (default: "
+              "height z (mm, head frame: the segmentation frame unless the head is turned or pitched) of the top cut "
+              "(default: "
               "--brow-clearance above the glabella)")
       .option("bottom-cut",
               "height z (mm) of the bottom cut (default: --chin-clearance below the menton, the chin's lowest bone)")
@@ -115,6 +122,7 @@ SegmentOptions segment_options(const Args& args) {
   };
   FaceCutOptions& cuts = o.cuts;
   if (args.has("head-turn")) cuts.head_turn = args.number("head-turn", -45, 45);
+  if (args.has("head-pitch")) cuts.head_pitch = args.number("head-pitch", -45, 45);
   if (args.has("top-cut")) cuts.top_z = finite("top-cut");
   if (args.has("bottom-cut")) cuts.bottom_z = finite("bottom-cut");
   if (args.has("posterior-cut")) cuts.posterior_y = finite("posterior-cut");

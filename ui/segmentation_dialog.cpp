@@ -97,9 +97,15 @@ SegmentationDialog::SegmentationDialog(QWidget* parent) : QDialog(parent) {
             tr("Degrees the head is turned about the vertical axis in the scanner, towards +x from +y; the cuts are "
                "placed in the head frame turned back by it, and the model stays in the CT's frame. Automatic: from "
                "the head's mirror symmetry, none under 2 degrees; 0: the CT's own frame."));
+  addNumber(
+      HeadPitchAngle, tr("Head pitch"), -45, 45, tr(" deg"), "segmentHeadPitch",
+      tr("Degrees the head is pitched (nodding) about the lateral axis in the scanner, positive with the chin "
+         "raised; the cuts are placed in the head frame pitched back by it, and the model stays in the CT's "
+         "frame. Automatic: the CT's own frame, or the hard palate's slope when the face or its landmarks are not "
+         "found there and it slopes 5 degrees or more; 0: the CT's own frame only."));
   const QString frame =
       tr("Millimetres in the head frame: the file's coordinates, axes swapped or negated so the face looks to +y "
-         "and the top of the head is +z, turned back by the head's turn.");
+         "and the top of the head is +z, turned and pitched back by the head's turn and pitch.");
   addNumber(TopCut, tr("Top cut z"), -1e4, 1e4, tr(" mm"), "segmentTopCut",
             tr("Automatic: the brow clearance above the glabella, within the CT. ") + frame);
   addNumber(BottomCut, tr("Bottom cut z"), -1e4, 1e4, tr(" mm"), "segmentBottomCut",
@@ -141,6 +147,7 @@ void SegmentationDialog::setOptions(const SegmentOptions& o) {
   numbers_[Skin].set(o.skin_threshold);
   numbers_[Bone].set(o.bone_threshold);
   numbers_[HeadTurnAngle].set(o.cuts.head_turn);
+  numbers_[HeadPitchAngle].set(o.cuts.head_pitch);
   numbers_[TopCut].set(o.cuts.top_z);
   numbers_[BottomCut].set(o.cuts.bottom_z);
   numbers_[PosteriorCut].set(o.cuts.posterior_y);
@@ -159,6 +166,7 @@ SegmentOptions SegmentationDialog::options() const {
   o.skin_threshold = numbers_[Skin].get();
   o.bone_threshold = numbers_[Bone].get();
   o.cuts.head_turn = numbers_[HeadTurnAngle].get();
+  o.cuts.head_pitch = numbers_[HeadPitchAngle].get();
   o.cuts.top_z = numbers_[TopCut].get();
   o.cuts.bottom_z = numbers_[BottomCut].get();
   o.cuts.posterior_y = numbers_[PosteriorCut].get();
@@ -170,8 +178,8 @@ SegmentOptions SegmentationDialog::options() const {
 }
 
 void SegmentationDialog::showFound(const TissueThresholds& thresholds, const FaceCuts& cuts) {
-  const std::array<double, kNumbers> found = {thresholds.skin, thresholds.bone,  cuts.turn.degrees, cuts.top_z,
-                                              cuts.bottom_z,   cuts.posterior_y, cuts.centre_x};
+  const std::array<double, kNumbers> found = {thresholds.skin, thresholds.bone, cuts.turn.degrees, cuts.turn.pitch,
+                                              cuts.top_z,      cuts.bottom_z,   cuts.posterior_y,  cuts.centre_x};
   for (int n = 0; n < kNumbers; ++n)
     if (numbers_[n].automatic->isChecked()) numbers_[n].value->setValue(found[n]);
 }

@@ -37,7 +37,7 @@ class SegmentationDialog : public QDialog {
     void set(const std::optional<double>& given);
     std::optional<double> get() const;
   };
-  enum Number { Skin, Bone, HeadTurnAngle, TopCut, BottomCut, PosteriorCut, MidPlane, kNumbers };
+  enum Number { Skin, Bone, HeadTurnAngle, HeadPitchAngle, TopCut, BottomCut, PosteriorCut, MidPlane, kNumbers };
 
   QLabel* heading_;
   QDoubleSpinBox *edgeLength_, *browClearance_, *chinClearance_, *earClearance_;

@@ -15,12 +15,12 @@ ConstraintSet landmark_feature_constraints(const Eigen::MatrixXd& V, const Eigen
                                            const std::map<std::string, double>& values, double band,
                                            FaceLandmarks* landmarks_out, const FaceLandmarks* given) {
   FaceLandmarks landmarks = given ? *given : find_face_landmarks(V, side_mask, landmark_options);
-  // Given landmarks place the plane (through their pronasale); the model's own plane, where it has one, its lean and
-  // turn.
+  // Given landmarks place the plane (through their pronasale); the model's own plane, where it has one, its lean,
+  // turn and pitch.
   if (given && landmark_options.mid_sagittal_plane) {
     const MidSagittalPlane& own = *landmark_options.mid_sagittal_plane;
     const Eigen::Vector3d prn = landmarks.points.at("pronasale");
-    landmarks.plane = MidSagittalPlane{prn.x(), own.slope, prn.z(), own.turn, prn.y()};
+    landmarks.plane = MidSagittalPlane{prn.x(), own.slope, prn.z(), own.turn, prn.y(), own.pitch};
   }
   const std::string remedy = given ? "correct the landmark file" : "give the landmarks with --landmarks FILE";
   check_plausible(landmarks, remedy);

@@ -39,7 +39,8 @@
 // (core/face/mouth_corners.h); absent where the lips show no such line.
 // Then the plausibility check (check_plausible). Every landmark is listed with its status: found, or estimated.
 // Each feature constraint pins the chosen field on the skin (and on walls of openings, e.g. the standard's mouth
-// slit) near the landmark: v on the horizontal plane through it, u = 0.5 on the mid-sagittal plane (whole volume).
+// slit) near the landmark: v on the horizontal plane through it (horizontal in the head frame of a pitched head, whose
+// plane says so), u = 0.5 on the mid-sagittal plane (whole volume).
 #include <Eigen/Core>
 #include <limits>
 #include <map>

@@ -5,43 +5,72 @@
 namespace facehex {
 namespace {
 
+constexpr double kRadians = M_PI / 180;
+
 // Counter-clockwise about +z by `degrees`.
 Eigen::Vector2d rotated(const Eigen::Vector2d& v, double degrees) {
-  const double a = degrees * M_PI / 180, c = std::cos(a), s = std::sin(a);
+  const double a = degrees * kRadians, c = std::cos(a), s = std::sin(a);
   return {c * v.x() - s * v.y(), s * v.x() + c * v.y()};
+}
+
+// (y, z) turned about +x by `degrees` (from +y towards +z) about the line through (y, z) = centre.
+Eigen::Vector3d pitched(const Eigen::Vector3d& p, const Eigen::Vector2d& centre, double degrees) {
+  const Eigen::Vector2d q = centre + rotated(p.tail<2>() - centre, degrees);
+  return {p.x(), q.x(), q.y()};
+}
+
+// The plane through `point` with normal n (n.x() != 0).
+MidSagittalPlane plane_through(const Eigen::Vector3d& point, const Eigen::Vector3d& n, double pitch) {
+  return MidSagittalPlane{point.x(), -n.z() / n.x(), point.z(), -n.y() / n.x(), point.y(), pitch};
+}
+
+// The plane's normal (1, -turn, -slope) turned by t about z is (cos t + turn sin t, sin t - turn cos t, -slope).
+MidSagittalPlane yawed(const MidSagittalPlane& plane, const Eigen::Vector2d& axis, double degrees) {
+  const double a = degrees * kRadians, c = std::cos(a), s = std::sin(a);
+  const Eigen::Vector2d q = axis + rotated(Eigen::Vector2d(plane.x, plane.y) - axis, degrees);
+  return plane_through(Eigen::Vector3d(q.x(), q.y(), plane.z),
+                       Eigen::Vector3d(c + plane.turn * s, s - plane.turn * c, -plane.slope), plane.pitch);
+}
+
+MidSagittalPlane pitched(const MidSagittalPlane& plane, const Eigen::Vector2d& centre, double degrees) {
+  const Eigen::Vector3d n = pitched(Eigen::Vector3d(1, -plane.turn, -plane.slope), Eigen::Vector2d::Zero(), degrees);
+  return plane_through(pitched(Eigen::Vector3d(plane.x, plane.y, plane.z), centre, degrees), n, plane.pitch + degrees);
 }
 
 }  // namespace
 
 Eigen::Vector3d HeadTurn::to_head(const Eigen::Vector3d& p) const {
   const Eigen::Vector2d q = axis + rotated(p.head<2>() - axis, degrees);
-  return {q.x(), q.y(), p.z()};
+  const Eigen::Vector3d yawed(q.x(), q.y(), p.z());
+  return pitch == 0 ? yawed : pitched(yawed, Eigen::Vector2d(axis.y(), axis_z), -pitch);
 }
 
 Eigen::Vector3d HeadTurn::to_model(const Eigen::Vector3d& head) const {
-  const Eigen::Vector2d q = axis + rotated(head.head<2>() - axis, -degrees);
-  return {q.x(), q.y(), head.z()};
+  const Eigen::Vector3d q = pitch == 0 ? head : pitched(head, Eigen::Vector2d(axis.y(), axis_z), pitch);
+  const Eigen::Vector2d r = axis + rotated(q.head<2>() - axis, -degrees);
+  return {r.x(), r.y(), q.z()};
 }
 
-// A plane's normal (1, -turn, -slope) turned by t about z is (cos t + turn sin t, sin t - turn cos t, -slope); scaled
-// to a first component of 1 it gives the turned plane's turn and slope.
 MidSagittalPlane HeadTurn::to_head(const MidSagittalPlane& plane) const {
-  const double a = degrees * M_PI / 180, c = std::cos(a), s = std::sin(a);
-  const double nx = c + plane.turn * s, ny = s - plane.turn * c;
-  const Eigen::Vector3d point = to_head(Eigen::Vector3d(plane.x, plane.y, plane.z));
-  return MidSagittalPlane{point.x(), plane.slope / nx, point.z(), -ny / nx, point.y()};
+  const MidSagittalPlane yawed_plane = yawed(plane, axis, degrees);
+  return pitch == 0 ? yawed_plane : pitched(yawed_plane, Eigen::Vector2d(axis.y(), axis_z), -pitch);
 }
 
 MidSagittalPlane HeadTurn::to_model(const MidSagittalPlane& head) const {
-  HeadTurn back = *this;
-  back.degrees = -degrees;
-  return back.to_head(head);
+  return yawed(pitch == 0 ? head : pitched(head, Eigen::Vector2d(axis.y(), axis_z), pitch), axis, -degrees);
 }
 
+// The yaw t that leaves the plane unturned once pitched back: its normal (1, -turn, -slope) turned by t about z has
+// y component sin t - turn cos t, which the pitch p back mixes with the z component -slope into
+// (sin t - turn cos t) cos p - slope sin p; zero when sin(t - atan(turn)) = slope tan p / sqrt(1 + turn^2).
 HeadTurn head_turn_of(const MidSagittalPlane& plane) {
   HeadTurn turn;
-  turn.degrees = std::atan(plane.turn) * 180 / M_PI;
+  turn.degrees = std::atan(plane.turn) / kRadians;
+  if (plane.pitch != 0)
+    turn.degrees += std::asin(plane.slope * std::tan(plane.pitch * kRadians) / std::hypot(1.0, plane.turn)) / kRadians;
   turn.axis = Eigen::Vector2d(plane.x, plane.y);
+  turn.pitch = plane.pitch;
+  turn.axis_z = plane.z;
   return turn;
 }
 

@@ -29,7 +29,8 @@ std::vector<CutPlane> FaceCuts::planes() const {
   return p;
 }
 
-FaceCuts find_face_cuts(const Mask& head, const Mask& without_ears, const Mask& bone, const FaceCutOptions& options) {
+FaceCuts find_face_cuts(const Mask& head, const Mask& without_ears, const Mask& bone, const FaceCutOptions& options,
+                        const std::optional<ScanSlab>& slab) {
   const GridGeometry& g = head.geometry;
   // The first body voxel in slice order lies in the lowest slice with any body: below it a scan holds air only (a
   // field of view that starts above its lowest slices, or a volume resampled into a larger box).
@@ -39,9 +40,24 @@ FaceCuts find_face_cuts(const Mask& head, const Mask& without_ears, const Mask& 
   FaceCuts cuts;
   if (!options.top_z || !options.bottom_z || !options.posterior_y || !options.centre_x)
     cuts.anatomy = find_face_anatomy(head, without_ears, bone);
-  const double z_min = std::max(g.lower(2), lowest_body_z) + options.border_margin;
-  const double z_max = g.upper(2) - options.border_margin;
   cuts.centre_x = options.centre_x ? *options.centre_x : cuts.anatomy->centre_x;
+  cuts.posterior_y = options.posterior_y ? *options.posterior_y : cuts.anatomy->ear_front_y + options.ear_clearance;
+  double scan_lo = g.lower(2), scan_hi = g.upper(2);
+  if (slab && slab->turn.pitch != 0 && cuts.anatomy) {
+    // The slice z = level of the CT's frame meets the head frame's sagittal plane in the line
+    // z = axis_z + (level - axis_z - (y - axis_y) sin p) / cos p (HeadTurn::to_model: the pitch first, then the turn,
+    // which keeps heights); over the face's depth its ends are the extremes.
+    const HeadTurn& t = slab->turn;
+    const double p = t.pitch * M_PI / 180;
+    const auto height = [&](double level, double y) {
+      return t.axis_z + (level - t.axis_z - (y - t.axis.y()) * std::sin(p)) / std::cos(p);
+    };
+    const double y_back = cuts.posterior_y, y_front = cuts.anatomy->pronasale.y();
+    scan_lo = std::max({scan_lo, height(slab->z_lo, y_back), height(slab->z_lo, y_front)});
+    scan_hi = std::min({scan_hi, height(slab->z_hi, y_back), height(slab->z_hi, y_front)});
+  }
+  const double z_min = std::max(scan_lo, lowest_body_z) + options.border_margin;
+  const double z_max = scan_hi - options.border_margin;
   cuts.bottom_z =
       options.bottom_z ? *options.bottom_z : std::max(z_min, cuts.anatomy->menton.z() - options.chin_clearance);
   if (options.top_z) {
@@ -54,7 +70,6 @@ FaceCuts find_face_cuts(const Mask& head, const Mask& without_ears, const Mask& 
   if (!(cuts.top_z > cuts.bottom_z + 10.0))
     throw Error("segment", "the top cut (z = " + mm(cuts.top_z) + ") must be well above the bottom cut (z = " +
                                mm(cuts.bottom_z) + "); check the cut options and the CT's superior axis");
-  cuts.posterior_y = options.posterior_y ? *options.posterior_y : cuts.anatomy->ear_front_y + options.ear_clearance;
   return cuts;
 }
 

@@ -2,7 +2,8 @@
 // The cut planes that bound the facial soft-tissue model, and where they go when not given.
 //
 // In the head frame (core/mesh/head_turn.h: the segmentation frame, +y anterior and +z superior, turned about the
-// vertical axis so that a turned head's face looks to +y; the segmentation frame itself when the head is not turned):
+// vertical axis and pitched about the lateral one so that a turned or pitched head's face looks to +y, upright; the
+// segmentation frame itself when the head is neither):
 //   top cut      z = top_z        (side v1): just above the eyebrows, or the top of the CT when that is lower;
 //   bottom cut   z = bottom_z     (side v0): below the chin;
 //   posterior    y = posterior_y  (sides u0 at x < centre_x, u1 at x > centre_x): in front of the ears;
@@ -39,6 +40,9 @@ struct FaceCutOptions {
   // Degrees the head is turned about the vertical axis (core/mesh/head_turn.h; 0: the CT's own frame); found from the
   // head's symmetry when unset (find_head_turn), and a turn under kMinHeadTurn is taken as none.
   std::optional<double> head_turn;
+  // Degrees the head is pitched about the lateral axis (core/mesh/head_turn.h; positive: the chin raised); none when
+  // unset.
+  std::optional<double> head_pitch;
   double brow_clearance = 15.0;  // mm above the glabella (the eyebrows lie within it)
   double chin_clearance = 15.0;  // mm below the menton (the chin's soft tissue is about 10 mm thick there)
   // mm in front of the front of the ears: the auricle's front edge found can lie a few millimetres behind the tragus
@@ -59,8 +63,16 @@ struct CutPlane {
 // as good, and the turn found on an upright head is within it.
 constexpr double kMinHeadTurn = 2.0;  // degrees
 
+// A head whose hard palate slopes less than this (core/segment/palate_pitch.h) is not segmented again pitched back when
+// its face or landmarks are not found in the CT's frame: the palate's slope varies by a few degrees from head to head,
+// and the anatomy rules read faces pitched that little.
+constexpr double kMinHeadPitch = 5.0;  // degrees
+
 struct FaceCuts {
   HeadTurn turn;  // the head frame the cuts are planes of
+  // Degrees the hard palate slopes towards the front in the CT's frame, positive up (core/segment/palate_pitch.h):
+  // how far the head is pitched; none where no palate was found.
+  std::optional<double> palate_pitch;
   double top_z = 0, bottom_z = 0, posterior_y = 0, centre_x = 0;
   double jaw_z = -std::numeric_limits<double>::infinity();  // -infinity: no jaw cut
   std::optional<FaceAnatomy> anatomy;  // what the automatic cuts were placed by; empty if all given
@@ -68,11 +80,20 @@ struct FaceCuts {
   std::vector<CutPlane> planes() const;
 };
 
+// Where the scan's first and last slices lie (mm, the CT's frame) and the head frame of the grids below: a pitched
+// head's scan ends in planes tilted in its head frame, and the automatic top and bottom cuts stay within them over the
+// face's depth (from the posterior cut to the pronasale) rather than within the grid's own first and last levels.
+struct ScanSlab {
+  double z_lo = 0, z_hi = 0;
+  HeadTurn turn;
+};
+
 // `head` is the body (with its ears), `without_ears` the body opened (find_face_anatomy), `bone` the bone voxels, on
-// the same grid.
+// the same grid; `slab`: where the scan ends, when the grid is pitched (else the grid's first and last levels).
 // The anatomy is looked for unless all four values are given. Throws facehex::Error("segment", ...) if it cannot be
 // found (naming the option that places the cut by hand) or if the cuts leave no face (bottom above top, ...).
-FaceCuts find_face_cuts(const Mask& head, const Mask& without_ears, const Mask& bone, const FaceCutOptions& options);
+FaceCuts find_face_cuts(const Mask& head, const Mask& without_ears, const Mask& bone, const FaceCutOptions& options,
+                        const std::optional<ScanSlab>& slab = std::nullopt);
 
 // The mid-sagittal plane the landmarks are read on (core/mesh/mid_sagittal_plane.h), stored with the model: the cuts'
 // plane, leaning as the head does when the symmetry's fit leans more than kLandmarkPlaneMinLean, else vertical through

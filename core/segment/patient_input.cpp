@@ -4,11 +4,55 @@
 #include <iomanip>
 #include <sstream>
 
+#include "core/face/face_landmarks.h"
+#include "core/fields/constraint_set.h"
 #include "core/io/mesh_io.h"
 #include "core/segment/ct_volume.h"
 #include "core/util/memory_errors.h"
 
 namespace facehex {
+namespace {
+
+// Why the landmarks of a segmented model cannot be found or are implausible, or none.
+std::optional<std::string> landmarks_problem(const VolumeMesh& mesh, const std::string& path) {
+  try {
+    check_plausible(find_face_landmarks(mesh.V, side_mask_of(mesh), landmark_options_for(mesh, path)),
+                    "give them with --landmarks FILE");
+    return std::nullopt;
+  } catch (const Error& e) {
+    return e.problem();
+  }
+}
+
+// The CT segmented; when the landmarks are not found on the model of a head whose hard palate slopes enough for that
+// to be why, and no pitch was given, segmented again with the head pitched back by the palate's slope, and that model
+// taken if its landmarks are found.
+PatientModel segment_ct(const std::string& path, const SegmentOptions& options, const ProgressCallback& progress) {
+  const CtVolume ct = read_ct_volume(path, options.orientation);
+  PatientModel model = build_patient_model(ct, options, progress);
+  const std::optional<double> palate = model.cuts.palate_pitch;
+  if (options.cuts.head_pitch || model.cuts.turn.pitch != 0 || !palate || std::abs(*palate) < kMinHeadPitch)
+    return model;
+  const std::optional<std::string> problem = landmarks_problem(model.mesh, path);
+  if (!problem) return model;
+  SegmentOptions again = options;
+  again.cuts.head_pitch = *palate;
+  try {
+    PatientModel pitched = build_patient_model(ct, again, progress);
+    if (landmarks_problem(pitched.mesh, path)) return model;
+    std::ostringstream note;
+    note << std::fixed << std::setprecision(1) << "the landmarks were not found in the CT's frame (" << *problem
+         << "); segmented again with the head pitched back by " << *palate
+         << " degrees, the hard palate's slope (--head-pitch sets it)";
+    pitched.repair = pitched.repair.empty() ? note.str() : note.str() + "; " + pitched.repair;
+    pitched.cuts.palate_pitch = palate;  // as found in the CT's frame, which the note names
+    return pitched;
+  } catch (const Error&) {
+    return model;  // the first model, whose landmarks' problem the transfer reports
+  }
+}
+
+}  // namespace
 
 PatientTetModel load_patient_model(const std::string& path, const SegmentOptions& options,
                                    const ProgressCallback& progress) {
@@ -16,7 +60,7 @@ PatientTetModel load_patient_model(const std::string& path, const SegmentOptions
     PatientTetModel model;
     if (is_ct_input(path)) {
       report_progress(progress, "segmentation: reading the CT", 0.0);
-      PatientModel segmented = build_patient_model(read_ct_volume(path, options.orientation), options, progress);
+      PatientModel segmented = segment_ct(path, options, progress);
       model.mesh = std::move(segmented.mesh);
       CtSegmentation as_used{segmented.options, segmented.thresholds, segmented.cuts, segmented.repair};
       as_used.options.tets.target_edge_length = segmented.edge_length;
@@ -40,13 +84,21 @@ std::string segmentation_summary(const CtSegmentation& segmentation) {
        << thresholds.bone << " (file units); ";
   if (cuts.turn.degrees != 0)
     text << "head turned " << cuts.turn.degrees << " deg about the vertical axis through x " << cuts.turn.axis.x()
-         << ", y " << cuts.turn.axis.y() << "; cuts (mm, head frame, --head-turn 0 for the CT's): ";
+         << ", y " << cuts.turn.axis.y() << "; ";
+  if (cuts.turn.pitch != 0)
+    text << "head pitched " << cuts.turn.pitch << " deg (chin " << (cuts.turn.pitch > 0 ? "raised" : "lowered")
+         << ") about the lateral axis through y " << cuts.turn.axis.y() << ", z " << cuts.turn.axis_z << "; ";
+  if (cuts.turn.turned())
+    text << "cuts (mm, head frame, --head-turn 0 --head-pitch 0 for the CT's): ";
   else
     text << "cuts (mm, segmentation frame): ";
   text << "top z " << cuts.top_z << ", bottom z " << cuts.bottom_z << ", posterior y " << cuts.posterior_y
        << ", mid-plane x " << cuts.centre_x;
   if (std::isfinite(cuts.jaw_z)) text << ", jaw cut rising to z " << cuts.jaw_z << " at the posterior cut";
   if (cuts.anatomy) text << "; found: " << face_anatomy_text(*cuts.anatomy);
+  if (cuts.palate_pitch)
+    text << "; hard palate " << std::abs(*cuts.palate_pitch) << " deg " << (*cuts.palate_pitch >= 0 ? "up" : "down")
+         << " to the front";
   text << "; tets of edge length " << segmentation.options.tets.target_edge_length << " mm";
   if (!segmentation.repair.empty()) text << "; repaired: " << segmentation.repair;
   return text.str();

@@ -13,6 +13,7 @@
 #include "core/segment/head_frame.h"
 #include "core/segment/iso_surface.h"
 #include "core/segment/morphology.h"
+#include "core/segment/palate_pitch.h"
 #include "core/segment/remesh.h"
 #include "core/segment/side_labels.h"
 #include "core/util/error.h"
@@ -257,9 +258,15 @@ SurfaceMesh level_surface_with_cuts(const Mask& tissue, FaceCuts& cuts, const Se
                              "--bottom-cut, --posterior-cut");
 }
 
-}  // namespace
+// Thrown by segment_in_head_frame when the face's anatomy is not found in a head whose hard palate slopes enough for
+// that to be why: build_patient_model segments again with the head pitched back by the palate's slope.
+struct PitchedFace {
+  double palate_pitch;
+  Error error;
+};
 
-PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& options, const ProgressCallback& progress) {
+PatientModel segment_in_head_frame(const CtVolume& ct, const SegmentOptions& options,
+                                   const ProgressCallback& progress) {
   if (!(options.working_spacing > 0) || !(options.tets.target_edge_length > 0) || !(options.max_depth > 0))
     throw Error("segment", "working_spacing, target_edge_length and max_depth must be positive");
   // Fractions of the whole from the stages' share of the time on the bundled CT.
@@ -275,6 +282,7 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   step("resampling the CT", 0.02);
   Field intensity;
   Mask raw_body;
+  std::optional<ScanSlab> slab;  // where a pitched head's scan ends
   {
     const double blur = kCtBlur * ct.intensity.geometry.spacing.maxCoeff();
     Field scan = gaussian_smooth(
@@ -283,7 +291,7 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
     if (std::count(scan_body.data.begin(), scan_body.data.end(), 1) == 0)
       throw Error("segment", "no voxel reaches the skin threshold " + number(model.thresholds.skin) +
                                  "; lower the skin threshold");
-    // The cuts are planes of the head frame, where a turned head's face looks to +y.
+    // The cuts are planes of the head frame, where a turned or pitched head's face looks to +y, upright.
     HeadTurn& turn = model.cuts.turn;
     const auto [body_lo, body_hi] = occupied_box(scan_body);
     if (options.cuts.head_turn) {
@@ -295,7 +303,12 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
       turn = find_head_turn(scan_body);
       if (std::abs(turn.degrees) < kMinHeadTurn) turn.degrees = 0;
     }
-    if (turn.degrees != 0) {
+    if (options.cuts.head_pitch) {
+      turn.pitch = *options.cuts.head_pitch;
+      turn.axis_z = 0.5 * (scan.geometry.point(0, 0, body_lo[2]).z() + scan.geometry.point(0, 0, body_hi[2] - 1).z());
+    }
+    if (turn.pitch != 0) slab = ScanSlab{ct.intensity.geometry.lower(2), ct.intensity.geometry.upper(2), turn};
+    if (turn.turned()) {
       step("resampling the CT in the head frame", 0.03);
       // From the CT itself: a second interpolation would blur the skin. Only around the body: the crop below keeps
       // the body's box and kBodyBoxMargin, and the blur reaches a few sigma further.
@@ -327,14 +340,24 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
                                number(model.thresholds.bone) + "; lower it (--bone) if this is a head CT");
   // The ears, thin, do not survive the opening: the cuts find them where the body before it stands out of it.
   const HeadTurn turn = model.cuts.turn;
+  std::optional<double> palate = palate_pitch(head, bone, turn.axis.x());
+  if (palate) *palate += turn.pitch;  // the slope in the CT's frame
   try {
-    model.cuts = find_face_cuts(raw_body, body, bone, options.cuts);
+    model.cuts = find_face_cuts(raw_body, body, bone, options.cuts, slab);
   } catch (const Error& e) {
-    if (turn.degrees == 0) throw;
-    throw Error(e.subject(), e.problem() + " (the head was looked for turned " + number(turn.degrees) +
-                                 " degrees about the vertical axis; --head-turn sets the turn, 0 for none)");
+    const Error stated =
+        !turn.turned()
+            ? e
+            : Error(e.subject(), e.problem() + " (the head was looked for turned " + number(turn.degrees) +
+                                     " degrees about the vertical axis" +
+                                     (turn.pitch != 0 ? " and pitched " + number(turn.pitch) + " degrees" : "") +
+                                     "; --head-turn sets the turn" +
+                                     (turn.pitch != 0 ? ", --head-pitch the pitch" : "") + ", 0 for none)");
+    if (!options.cuts.head_pitch && palate && std::abs(*palate) >= kMinHeadPitch) throw PitchedFace{*palate, stated};
+    throw stated;
   }
   model.cuts.turn = turn;
+  model.cuts.palate_pitch = palate;
 
   step("the soft tissue", 0.2);
   // From here on only the slices between the cuts matter, with the model mask's margin beyond them (the widest, a
@@ -443,6 +466,30 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   step("checks", 0.95);
   check_topology(model);
   return model;
+}
+
+}  // namespace
+
+PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& options, const ProgressCallback& progress) {
+  try {
+    return segment_in_head_frame(ct, options, progress);
+  } catch (const PitchedFace& pitched) {
+    SegmentOptions again = options;
+    again.cuts.head_pitch = pitched.palate_pitch;
+    const std::string how =
+        "the head pitched back by " + number(pitched.palate_pitch) + " degrees, the hard palate's slope";
+    try {
+      PatientModel model = segment_in_head_frame(ct, again, progress);
+      const std::string note = "the face was not found in the CT's frame (" + pitched.error.problem() +
+                               "); segmented again with " + how + " (--head-pitch sets it)";
+      model.repair = model.repair.empty() ? note : note + "; " + model.repair;
+      model.cuts.palate_pitch = pitched.palate_pitch;  // as found in the CT's frame, which the note names
+      return model;
+    } catch (const Error& e) {
+      throw Error(pitched.error.subject(), pitched.error.problem() + "; nor with " + how + " (" + e.problem() +
+                                               "); --head-pitch sets the pitch");
+    }
+  }
 }
 
 }  // namespace facehex

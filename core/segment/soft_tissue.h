@@ -72,9 +72,11 @@ struct PatientModel {
   FaceCuts cuts;                   // as used
   double edge_length = 0;          // mm, the tets' target edge length as used (SegmentOptions::coarsen_above_tets)
   SegmentOptions options;          // as used: min_thickness and smoothing_sigma raised by a tunnel repair
-  std::string repair;              // the tunnel repair made, or empty
+  std::string repair;              // the tunnel repair made, the head pitched back, or empty
 };
 
+// When the face's anatomy is not found and the hard palate slopes kMinHeadPitch or more (face_cuts.h) with no pitch
+// given, the CT is segmented again with the head pitched back by the palate's slope (PatientModel::repair says so).
 // Throws facehex::Error naming the stage ("thresholds", "segment", "tetgen") with what to change. `progress` hears of
 // each step ("segmentation: ..."); cancelling throws facehex::Cancelled at the next step (TetGen, the longest one,
 // runs to its end first).

@@ -185,6 +185,7 @@ json landmarks_json(const std::optional<FaceLandmarks>& landmarks) {
             {"z", landmarks->plane.z},
             {"turn", landmarks->plane.turn},
             {"y", landmarks->plane.y},
+            {"pitch", landmarks->plane.pitch},
             {"source", landmarks->plane_source}}}};
 }
 

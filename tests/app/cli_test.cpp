@@ -336,6 +336,13 @@ TEST_F(Cli, SegmentTakesTheCutsGivenAndRejectsBadOnes) {
   r = run("info " + path("turned.vtu"));
   EXPECT_NE(r.output.find("mid_sagittal_plane(field,1x5)"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find(", turned 5.0 degrees"), std::string::npos) << r.output;
+  // A pitch given: the same, about the lateral axis, and the plane carries the pitch.
+  r = run("segment " + ct + " --edge-length 4 --head-pitch 8 -o " + path("pitched.vtu"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("head pitched 8.0 deg (chin raised) about the lateral axis"), std::string::npos) << r.output;
+  r = run("info " + path("pitched.vtu"));
+  EXPECT_NE(r.output.find("mid_sagittal_plane(field,1x6)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(", pitched 8.0 degrees"), std::string::npos) << r.output;
   // A turn far from the head's: no face in the head frame, and the error names the turn's option.
   r = run("segment " + ct + " --edge-length 4 --head-turn 12 -o " + path("wrong.vtu"));
   EXPECT_EQ(r.status, 1) << r.output;
@@ -344,7 +351,7 @@ TEST_F(Cli, SegmentTakesTheCutsGivenAndRejectsBadOnes) {
 
   for (const char* bad : {"--ear-clearance -1", "--brow-clearance -2", "--top-cut nan", "--chin-clearance x",
                           "--max-depth 0", "--smoothing -1", "--bone-gap x", "--min-thickness -3", "--cavity-closing y",
-                          "--head-turn 60", "--head-turn x"}) {
+                          "--head-turn 60", "--head-turn x", "--head-pitch -50", "--head-pitch x"}) {
     r = run("segment " + ct + " " + bad + " -o " + path("bad.vtu"));
     EXPECT_EQ(r.status, 2) << bad << ": " << r.output;  // a usage error
     EXPECT_NE(r.output.find(std::string(bad).substr(0, std::string(bad).find(' '))), std::string::npos) << r.output;

@@ -563,7 +563,7 @@ void GuiTest::segmentationDialogRoundTripsItsOptions() {
   QCOMPARE(o.tets.target_edge_length, defaults.tets.target_edge_length);
   QCOMPARE(o.coarsen_above_tets, defaults.coarsen_above_tets);
   QVERIFY(!o.skin_threshold && !o.bone_threshold && !o.cuts.top_z && !o.cuts.bottom_z && !o.cuts.posterior_y &&
-          !o.cuts.centre_x && !o.cuts.head_turn);
+          !o.cuts.centre_x && !o.cuts.head_turn && !o.cuts.head_pitch);
   QVERIFY(o.orientation.anterior.empty() && o.orientation.superior.empty());
   QCOMPARE(o.cuts.ear_clearance, defaults.cuts.ear_clearance);
 
@@ -574,6 +574,7 @@ void GuiTest::segmentationDialogRoundTripsItsOptions() {
   given.cuts.top_z = 120;
   given.cuts.centre_x = -4.5;
   given.cuts.head_turn = -12;
+  given.cuts.head_pitch = 14;
   given.cuts.ear_clearance = 5;
   given.orientation.anterior = "-y";
   dialog.setOptions(given);
@@ -586,6 +587,7 @@ void GuiTest::segmentationDialogRoundTripsItsOptions() {
   QCOMPARE(*o.cuts.top_z, 120.0);
   QCOMPARE(*o.cuts.centre_x, -4.5);
   QCOMPARE(*o.cuts.head_turn, -12.0);
+  QCOMPARE(*o.cuts.head_pitch, 14.0);
   QVERIFY(!o.cuts.bottom_z && !o.cuts.posterior_y);
   QCOMPARE(o.cuts.ear_clearance, 5.0);
   QCOMPARE(o.orientation.anterior, std::string("-y"));
@@ -598,11 +600,13 @@ void GuiTest::segmentationDialogRoundTripsItsOptions() {
   found.posterior_y = 101;
   found.centre_x = 98;
   found.turn.degrees = 7.5;
+  found.turn.pitch = -6;
   dialog.findChild<QCheckBox*>("segmentHeadTurnAutomatic")->setChecked(true);
   dialog.showFound({550, 1100}, found);
   o = dialog.options();
   QVERIFY(!o.cuts.head_turn);
   QCOMPARE(dialog.findChild<QDoubleSpinBox*>("segmentHeadTurn")->value(), 7.5);
+  QCOMPARE(*o.cuts.head_pitch, 14.0);  // given, not replaced by the found -6
   QVERIFY(!o.bone_threshold && !o.cuts.posterior_y);
   QCOMPARE(*o.cuts.top_z, 120.0);  // given, not replaced by the found 130
   dialog.findChild<QCheckBox*>("segmentPosteriorCutAutomatic")->setChecked(false);

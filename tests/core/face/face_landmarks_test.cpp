@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <random>
 #include <vector>
@@ -229,6 +230,55 @@ TEST(FaceLandmarks, AHeadTurnedAboutTheVerticalIsReadInItsHeadFrame) {
     const PlaneSelection& given_mid = *from_file.constraints.front().select.plane;
     EXPECT_NEAR(given_mid.normal.dot(forward), 0, 1e-12);
     EXPECT_NEAR(given_mid.normal.dot(given.points.at("pronasale") - given_mid.point), 0, 1e-9);
+  }
+}
+
+TEST(FaceLandmarks, APitchedHeadIsReadInItsHeadFrameAndItsFeaturesArePitchedWithIt) {
+  // The phantom pitched about the lateral line y = 60, z = 0 (chin raised by 14 degrees, lowered by 10), and turned by
+  // 8: with the plane carrying the pitch, every landmark is the upright phantom's moved with it, and the eyebrow,
+  // below-nose and lip lines lie on planes horizontal in the head frame.
+  const PhantomFace upright;
+  const FaceLandmarks straight = find_face_landmarks(upright.V, upright.side_mask);
+  for (const double pitch : {14.0, -10.0}) {
+    HeadTurn turn;
+    turn.degrees = 8;
+    turn.axis = Eigen::Vector2d(PhantomFace::x0, 60);
+    turn.pitch = pitch;
+    PhantomFace face;
+    for (Eigen::Index v = 0; v < face.V.rows(); ++v)
+      face.V.row(v) = turn.to_model(upright.V.row(v).transpose()).transpose();
+    MidSagittalPlane head_plane;
+    head_plane.x = PhantomFace::x0;
+    head_plane.y = 60;
+    LandmarkOptions options;
+    options.mid_sagittal_plane = turn.to_model(head_plane);
+    EXPECT_EQ(options.mid_sagittal_plane->pitch, pitch);
+    const FaceLandmarks l = find_face_landmarks(face.V, face.side_mask, options);
+    ASSERT_EQ(l.points.size(), straight.points.size()) << pitch;
+    for (const auto& [name, p] : straight.points) {
+      ASSERT_TRUE(l.points.count(name)) << name;
+      EXPECT_LT((l.points.at(name) - turn.to_model(p)).norm(), 0.6) << name << " at " << pitch << " degrees";
+    }
+    // Read in the model's own frame instead (no pitch known), some landmark lies further off.
+    LandmarkOptions unpitched = options;
+    unpitched.mid_sagittal_plane->pitch = 0;
+    double worst = 0;
+    try {
+      const FaceLandmarks wrong = find_face_landmarks(face.V, face.side_mask, unpitched);
+      for (const auto& [name, p] : straight.points)
+        if (wrong.points.count(name)) worst = std::max(worst, (wrong.points.at(name) - turn.to_model(p)).norm());
+    } catch (const Error&) {
+      worst = std::numeric_limits<double>::infinity();
+    }
+    EXPECT_GT(worst, 1.0) << pitch;  // beyond the 0.6 mm the head frame meets
+    const ConstraintSet set =
+        feature_constraints(l, {{"eyebrow line", 0.9}, {"below-nose line", 0.6}, {"middle lip line", 0.5}}, 2.0);
+    const Eigen::Vector3d up = turn.to_model(Eigen::Vector3d::UnitZ()) - turn.to_model(Eigen::Vector3d::Zero());
+    for (const Constraint& c : set.constraints) {
+      if (c.field == 1) {
+        EXPECT_LT((c.select.plane->normal - up).norm(), 1e-12) << c.name;
+      }
+    }
   }
 }
 

@@ -47,6 +47,42 @@ TEST(HeadFrame, TheTurnedFieldHoldsTheFieldWhereItTurnedTo) {
   EXPECT_GT(inside, 1000);
 }
 
+TEST(HeadFrame, APitchedFieldHoldsTheFieldWhereItPitchedToOverItsWholeTiltedBox) {
+  const Field f = smooth_field();
+  HeadTurn turn;
+  turn.degrees = -9;
+  turn.axis = Eigen::Vector2d(15, 30);
+  turn.pitch = 25;
+  turn.axis_z = 14;
+  const Field t = turned_to_head_frame(f, turn, 1.0, -100);
+  const GridGeometry& g = t.geometry;
+  int inside = 0;
+  for (int k = 0; k < g.dims[2]; ++k)
+    for (int j = 0; j < g.dims[1]; ++j)
+      for (int i = 0; i < g.dims[0]; ++i) {
+        const Eigen::Vector3d source = turn.to_model(g.point(i, j, k));
+        const bool in = source.x() >= -11 && source.x() <= 49 && source.y() >= 3.75 && source.y() <= 63.75 &&
+                        source.z() >= 0.5 && source.z() <= 27.5;
+        if (in) {
+          EXPECT_FLOAT_EQ(t(i, j, k), static_cast<float>(sample(f, source)));
+          ++inside;
+        }
+      }
+  EXPECT_GT(inside, 5000);
+  // Every corner of the field's box, pitched, lies within the grid: the pitch tilts the box beyond its own heights.
+  const GridGeometry& fg = f.geometry;
+  for (const double x : {fg.lower(0), fg.upper(0)})
+    for (const double y : {fg.lower(1), fg.upper(1)})
+      for (const double z : {fg.lower(2), fg.upper(2)}) {
+        const Eigen::Vector3d q = turn.to_head(Eigen::Vector3d(x, y, z));
+        for (int a = 0; a < 3; ++a) {
+          EXPECT_GE(q(a), g.lower(a) - 1.0 - 1e-9);
+          EXPECT_LE(q(a), g.upper(a) + 1.0 + 1e-9);
+        }
+      }
+  EXPECT_GT(g.upper(2) - g.lower(2), fg.upper(2) - fg.lower(2) + 10);
+}
+
 TEST(HeadFrame, ARegionIsThePartOfTheWholeGridThatHoldsIt) {
   // The same voxel centres and values as the whole turned grid, over a grid that holds the turned region.
   const Field f = smooth_field();

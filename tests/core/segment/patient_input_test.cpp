@@ -3,11 +3,17 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <string>
 
+#include "core/face/face_landmarks.h"
+#include "core/fields/constraint_set.h"
 #include "core/io/mesh_io.h"
 #include "core/segment/ct_volume.h"
+#include "core/segment/face_cuts.h"
+#include "core/segment/head_frame.h"
 #include "core/util/error.h"
 #include "tests/core/segment/phantom.h"
 
@@ -59,6 +65,40 @@ TEST(PatientInput, ACtIsSegmentedAndItsThresholdsAndCutsAreReturned) {
   EXPECT_GE(lo.z(), cuts.bottom_z - 1e-6);
   EXPECT_GE(lo.y(), cuts.posterior_y - 1e-6);  // the model lies in front of the posterior cut
   EXPECT_GT(p.mesh.num_cells(), 1000);
+}
+
+TEST(PatientInput, AHeadPitchedInTheScannerIsSegmentedAgainInTheFrameOfItsHardPalate) {
+  // The Visible Human's CT (../shared, optional) with its chin raised by 10 degrees: in the CT's frame its lips are not
+  // found; its hard palate says how far it is pitched, and the CT is segmented again in that frame, where they are.
+  const std::string source = std::string(FACEHEX_SHARED_DIR) + "/data/ct/vhfemale-head.mha";
+  if (!fs::exists(source)) GTEST_SKIP() << "no shared data at " << source;
+  CtVolume ct = read_ct_volume(source);
+  const std::optional<double> upright = build_patient_model(ct, SegmentOptions{}).cuts.palate_pitch;
+  ASSERT_TRUE(upright);
+  EXPECT_LT(std::abs(*upright), kMinHeadPitch);  // this head lies upright: its palate within a few degrees
+  HeadTurn scan;                                 // from the upright CT to the pitched one
+  scan.pitch = -10;
+  scan.axis = Eigen::Vector2d(256, 256);
+  scan.axis_z = 117;
+  ct.intensity = turned_to_head_frame(ct.intensity, scan, 1.0,
+                                      *std::min_element(ct.intensity.data.begin(), ct.intensity.data.end()));
+  const fs::path path = fs::temp_directory_path() / ("facehex-pitched-" + std::to_string(::getpid()) + ".mha");
+  write_ct_volume(path.string(), ct);
+  const PatientTetModel p = load_patient_model(path.string());
+  fs::remove(path);
+  ASSERT_TRUE(p.segmentation);
+  const FaceCuts& cuts = p.segmentation->cuts;
+  ASSERT_TRUE(cuts.palate_pitch);
+  EXPECT_NEAR(*cuts.palate_pitch, *upright + 10, 3.0);
+  EXPECT_EQ(cuts.turn.pitch, *cuts.palate_pitch);
+  EXPECT_NE(p.segmentation->repair.find("segmented again with the head pitched back by"), std::string::npos)
+      << p.segmentation->repair;
+  const FaceLandmarks l = find_face_landmarks(p.mesh.V, side_mask_of(p.mesh), landmark_options_for(p.mesh, "model"));
+  check_plausible(l, "");
+  // The profile read in the pitched frame: the nose tip in front of the lips, the chin below them.
+  const HeadTurn frame = head_turn_of(l.plane);
+  EXPECT_GT(frame.to_head(l.points.at("subnasale")).z(), frame.to_head(l.points.at("stomion")).z() + 10);
+  EXPECT_GT(frame.to_head(l.points.at("stomion")).z(), frame.to_head(l.points.at("pogonion")).z() + 10);
 }
 
 TEST(PatientInput, AMeshFileHasNoSegmentation) {
