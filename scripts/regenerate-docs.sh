@@ -151,12 +151,23 @@ EOF
           --write-landmarks "$out/landmarks-$key-turned$degrees.json"
         rm -f "$out/turned.mha"
       done
+      # A head pitched in the scanner (chin raised, lowered): found from the hard palate, with no option.
+      if [ -f ../shared/data/ct/vhfemale-head.mha ]; then
+        for degrees in 10 -10; do
+          /usr/bin/python3 scripts/turn_ct.py --pitch ../shared/data/ct/vhfemale-head.mha "$degrees" "$out/pitched.mha" \
+            tests/data/landmarks/vhfemale-head.json "$out/reference-vhf-pitched$degrees.json"
+          step "landmarks-vhf-pitched$degrees" "$facehex" segment "$out/pitched.mha" \
+            -o "$out/vhf-pitched$degrees.vtu" --write-landmarks "$out/landmarks-vhf-pitched$degrees.json"
+          rm -f "$out/pitched.mha"
+        done
+      fi
     fi
     # The models with their sides and landmarks, pictured (needs xvfb-run and python3-vtk9).
     if command -v xvfb-run >/dev/null && /usr/bin/python3 -c 'import vtk' 2>/dev/null; then
       for model in bundled-ct:headsq:headsq:front,side,cuts vhf:vhfemale:vhfemale-head:front,side,cuts \
         bundled-ct-turned-20:headsq_turned-20:reference-bundled-ct-turned-20:front,cuts \
-        vhf-turned15:vhfemale_turned15:reference-vhf-turned15:front,cuts; do
+        vhf-turned15:vhfemale_turned15:reference-vhf-turned15:front,cuts \
+        vhf-pitched10:vhfemale_pitched10:reference-vhf-pitched10:side; do
         IFS=: read -r key picture reference views <<<"$model"
         [ -f "$out/$key.vtu" ] || continue
         reference_file="tests/data/landmarks/$reference.json"
@@ -413,6 +424,11 @@ if only in ("", "landmarks"):
     for key, label, degrees in [("vhf", "Visible Human", -10), ("vhf", "Visible Human", 15),
                                 ("bundled-ct", "bundled CT", 12), ("bundled-ct", "bundled CT", -20)]:
         columns.append((f"{label} turned {degrees} deg", f"{key}-turned{degrees}", f"reference-{key}-turned{degrees}.json"))
+    # Pitched about the lateral axis (scripts/turn_ct.py --pitch): the chin raised, lowered.
+    for degrees in (10, -10):
+        chin = "raised" if degrees > 0 else "lowered"
+        columns.append((f"Visible Human pitched {degrees} deg (chin {chin})", f"vhf-pitched{degrees}",
+                        f"reference-vhf-pitched{degrees}.json"))
     columns = [(label, landmarks(key), reference(ref)) for label, key, ref in columns if landmarks(key) is not None]
     names = []
     for _, _, ref in columns:
