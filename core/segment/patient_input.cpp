@@ -24,32 +24,53 @@ std::optional<std::string> landmarks_problem(const VolumeMesh& mesh, const std::
   }
 }
 
-// The CT segmented; when the landmarks are not found on the model of a head whose hard palate slopes enough for that
-// to be why, and no pitch was given, segmented again with the head pitched back by the palate's slope, and that model
-// taken if its landmarks are found.
+// The CT segmented in its own frame; when its face's anatomy or the landmarks on its model are not found there, no
+// pitch was given and the hard palate slopes kMinHeadPitch or more, segmented again with the head pitched back by the
+// palate's slope, and that model taken if its landmarks are found.
 PatientModel segment_ct(const std::string& path, const SegmentOptions& options, const ProgressCallback& progress) {
   const CtVolume ct = read_ct_volume(path, options.orientation);
-  PatientModel model = build_patient_model(ct, options, progress);
-  const std::optional<double> palate = model.cuts.palate_pitch;
-  if (options.cuts.head_pitch || model.cuts.turn.pitch != 0 || !palate || std::abs(*palate) < kMinHeadPitch)
-    return model;
-  const std::optional<std::string> problem = landmarks_problem(model.mesh, path);
-  if (!problem) return model;
+  const auto pitch_worth_trying = [&](const std::optional<double>& palate) {
+    return !options.cuts.head_pitch && palate && std::abs(*palate) >= kMinHeadPitch;
+  };
+  std::optional<PatientModel> model;
+  std::optional<FaceNotFound> not_found;
+  std::string problem;  // why the CT's frame did not do
+  std::optional<double> palate;
+  try {
+    model = build_patient_model(ct, options, progress);
+    palate = model->cuts.palate_pitch;
+    if (!pitch_worth_trying(palate) || model->cuts.turn.pitch != 0) return std::move(*model);
+    const std::optional<std::string> landmarks = landmarks_problem(model->mesh, path);
+    if (!landmarks) return std::move(*model);
+    problem = "the landmarks were not found in the CT's frame (" + *landmarks + ")";
+  } catch (const FaceNotFound& e) {
+    if (!pitch_worth_trying(e.palate_pitch)) throw;
+    not_found = e;
+    palate = e.palate_pitch;
+    problem = "the face was not found in the CT's frame (" + e.problem() + ")";
+  }
+  std::ostringstream how;
+  how << std::fixed << std::setprecision(1) << "the head pitched back by " << *palate
+      << " degrees, the hard palate's slope";
   SegmentOptions again = options;
   again.cuts.head_pitch = *palate;
+  std::string second_problem;
   try {
     PatientModel pitched = build_patient_model(ct, again, progress);
-    if (landmarks_problem(pitched.mesh, path)) return model;
-    std::ostringstream note;
-    note << std::fixed << std::setprecision(1) << "the landmarks were not found in the CT's frame (" << *problem
-         << "); segmented again with the head pitched back by " << *palate
-         << " degrees, the hard palate's slope (--head-pitch sets it)";
-    pitched.repair = pitched.repair.empty() ? note.str() : note.str() + "; " + pitched.repair;
-    pitched.cuts.palate_pitch = palate;  // as found in the CT's frame, which the note names
-    return pitched;
-  } catch (const Error&) {
-    return model;  // the first model, whose landmarks' problem the transfer reports
+    const std::optional<std::string> landmarks = landmarks_problem(pitched.mesh, path);
+    if (!landmarks) {
+      const std::string note = problem + "; segmented again with " + how.str() + " (--head-pitch sets it)";
+      pitched.repair = pitched.repair.empty() ? note : note + "; " + pitched.repair;
+      pitched.cuts.palate_pitch = palate;  // as found in the CT's frame, which the note names
+      return pitched;
+    }
+    second_problem = "its landmarks: " + *landmarks;
+  } catch (const Error& e) {
+    second_problem = e.problem();
   }
+  if (model) return std::move(*model);  // the first model, whose landmarks' problem the transfer reports
+  throw Error(not_found->subject(), not_found->problem() + "; nor with " + how.str() + " (" + second_problem +
+                                        "); --head-pitch sets the pitch");
 }
 
 }  // namespace

@@ -28,10 +28,11 @@ struct PatientTetModel {
   std::optional<CtSegmentation> segmentation;  // empty for a mesh file
 };
 
-// A CT is recognized by is_ct_input (ct_volume.h). When the landmarks are not found on its model (find_face_landmarks,
-// check_plausible) and its hard palate slopes kMinHeadPitch or more (FaceCuts::palate_pitch) with no pitch given, it
-// is segmented again with the head pitched back by the palate's slope, and that model is taken if its landmarks are
-// found (CtSegmentation::repair says so). Throws facehex::Error naming the file or the segmentation stage;
+// A CT is recognized by is_ct_input (ct_volume.h). When its face's anatomy (FaceNotFound) or the landmarks on its
+// model (find_face_landmarks, check_plausible) are not found and its hard palate slopes kMinHeadPitch or more
+// (FaceCuts::palate_pitch) with no pitch given, it is segmented again with the head pitched back by the palate's
+// slope, and that model is taken if its landmarks are found (CtSegmentation::repair says so); a face found in neither
+// frame is an error that says both. Throws facehex::Error naming the file or the segmentation stage;
 // `progress` hears of the segmentation's steps.
 PatientTetModel load_patient_model(const std::string& path, const SegmentOptions& options = {},
                                    const ProgressCallback& progress = {});

@@ -258,15 +258,9 @@ SurfaceMesh level_surface_with_cuts(const Mask& tissue, FaceCuts& cuts, const Se
                              "--bottom-cut, --posterior-cut");
 }
 
-// Thrown by segment_in_head_frame when the face's anatomy is not found in a head whose hard palate slopes enough for
-// that to be why: build_patient_model segments again with the head pitched back by the palate's slope.
-struct PitchedFace {
-  double palate_pitch;
-  Error error;
-};
+}  // namespace
 
-PatientModel segment_in_head_frame(const CtVolume& ct, const SegmentOptions& options,
-                                   const ProgressCallback& progress) {
+PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& options, const ProgressCallback& progress) {
   if (!(options.working_spacing > 0) || !(options.tets.target_edge_length > 0) || !(options.max_depth > 0))
     throw Error("segment", "working_spacing, target_edge_length and max_depth must be positive");
   // Fractions of the whole from the stages' share of the time on the bundled CT.
@@ -353,8 +347,7 @@ PatientModel segment_in_head_frame(const CtVolume& ct, const SegmentOptions& opt
                                      (turn.pitch != 0 ? " and pitched " + number(turn.pitch) + " degrees" : "") +
                                      "; --head-turn sets the turn" +
                                      (turn.pitch != 0 ? ", --head-pitch the pitch" : "") + ", 0 for none)");
-    if (!options.cuts.head_pitch && palate && std::abs(*palate) >= kMinHeadPitch) throw PitchedFace{*palate, stated};
-    throw stated;
+    throw FaceNotFound(stated, palate);
   }
   model.cuts.turn = turn;
   model.cuts.palate_pitch = palate;
@@ -466,30 +459,6 @@ PatientModel segment_in_head_frame(const CtVolume& ct, const SegmentOptions& opt
   step("checks", 0.95);
   check_topology(model);
   return model;
-}
-
-}  // namespace
-
-PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& options, const ProgressCallback& progress) {
-  try {
-    return segment_in_head_frame(ct, options, progress);
-  } catch (const PitchedFace& pitched) {
-    SegmentOptions again = options;
-    again.cuts.head_pitch = pitched.palate_pitch;
-    const std::string how =
-        "the head pitched back by " + number(pitched.palate_pitch) + " degrees, the hard palate's slope";
-    try {
-      PatientModel model = segment_in_head_frame(ct, again, progress);
-      const std::string note = "the face was not found in the CT's frame (" + pitched.error.problem() +
-                               "); segmented again with " + how + " (--head-pitch sets it)";
-      model.repair = model.repair.empty() ? note : note + "; " + model.repair;
-      model.cuts.palate_pitch = pitched.palate_pitch;  // as found in the CT's frame, which the note names
-      return model;
-    } catch (const Error& e) {
-      throw Error(pitched.error.subject(), pitched.error.problem() + "; nor with " + how + " (" + e.problem() +
-                                               "); --head-pitch sets the pitch");
-    }
-  }
 }
 
 }  // namespace facehex

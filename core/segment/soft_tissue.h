@@ -75,9 +75,17 @@ struct PatientModel {
   std::string repair;              // the tunnel repair made, the head pitched back, or empty
 };
 
-// When the face's anatomy is not found and the hard palate slopes kMinHeadPitch or more (face_cuts.h) with no pitch
-// given, the CT is segmented again with the head pitched back by the palate's slope (PatientModel::repair says so).
-// Throws facehex::Error naming the stage ("thresholds", "segment", "tetgen") with what to change. `progress` hears of
+// The face's anatomy was not found (find_face_cuts): the error, and the hard palate's slope in the CT's frame when one
+// was found (FaceCuts::palate_pitch), by which a caller can try again with the head pitched back (patient_input.h).
+class FaceNotFound : public Error {
+ public:
+  FaceNotFound(const Error& error, std::optional<double> palate_pitch)
+      : Error(error.subject(), error.problem()), palate_pitch(palate_pitch) {}
+  std::optional<double> palate_pitch;
+};
+
+// Throws facehex::Error naming the stage ("thresholds", "segment", "tetgen") with what to change, FaceNotFound where
+// the face's anatomy is not found. `progress` hears of
 // each step ("segmentation: ..."); cancelling throws facehex::Cancelled at the next step (TetGen, the longest one,
 // runs to its end first).
 PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& options = {},

@@ -15,6 +15,7 @@
 #include "core/segment/face_cuts.h"
 #include "core/segment/head_frame.h"
 #include "core/util/error.h"
+#include "core/util/resources.h"
 #include "tests/core/segment/phantom.h"
 
 namespace facehex {
@@ -99,6 +100,43 @@ TEST(PatientInput, AHeadPitchedInTheScannerIsSegmentedAgainInTheFrameOfItsHardPa
   const HeadTurn frame = head_turn_of(l.plane);
   EXPECT_GT(frame.to_head(l.points.at("subnasale")).z(), frame.to_head(l.points.at("stomion")).z() + 10);
   EXPECT_GT(frame.to_head(l.points.at("stomion")).z(), frame.to_head(l.points.at("pogonion")).z() + 10);
+}
+
+TEST(PatientInput, AFaceFoundNeitherInTheCtsFrameNorPitchedBackIsAnErrorNamingBoth) {
+  // The bundled CT with its chin lowered 25 degrees more, on its own grid (what turns out of the field of view is
+  // lost): no nose stands out of its profile in the CT's frame, and pitched back by its palate's slope the field of
+  // view's tilted ends leave a face whose landmarks are implausible. The error says both, and names the option.
+  const CtVolume upright = read_ct_volume(default_ct());
+  HeadTurn scan;  // from the upright CT to the pitched one
+  scan.pitch = 25;
+  scan.axis = Eigen::Vector2d(100.8, 100.8);
+  scan.axis_z = 69;
+  CtVolume ct = upright;
+  ct.intensity = resample_mapped(
+      upright.intensity, upright.intensity.geometry, [&](const Eigen::Vector3d& p) { return scan.to_model(p); },
+      *std::min_element(upright.intensity.data.begin(), upright.intensity.data.end()));
+  const fs::path path = fs::temp_directory_path() / ("facehex-pitched-bundled-" + std::to_string(::getpid()) + ".mha");
+  write_ct_volume(path.string(), ct);
+  SegmentOptions options;
+  options.tets.target_edge_length = 4.0;
+  try {
+    load_patient_model(path.string(), options);
+    ADD_FAILURE() << "expected facehex::Error";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("no nose stands out"), std::string::npos) << what;
+    EXPECT_NE(what.find("; nor with the head pitched back by"), std::string::npos) << what;
+    EXPECT_NE(what.find("--head-pitch sets the pitch"), std::string::npos) << what;
+  }
+  // A pitch given is the only one tried.
+  options.cuts.head_pitch = 0;
+  try {
+    load_patient_model(path.string(), options);
+    ADD_FAILURE() << "expected facehex::Error";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()).find("nor with"), std::string::npos) << e.what();
+  }
+  fs::remove(path);
 }
 
 TEST(PatientInput, AMeshFileHasNoSegmentation) {
