@@ -34,12 +34,12 @@ PatientModel segment_ct(const std::string& path, const SegmentOptions& options, 
   };
   std::optional<PatientModel> model;
   std::optional<FaceNotFound> not_found;
-  std::string problem;  // why the CT's frame did not do
+  std::string problem;  // what went wrong in the CT's own frame
   std::optional<double> palate;
   try {
     model = build_patient_model(ct, options, progress);
     palate = model->cuts.palate_pitch;
-    if (!pitch_worth_trying(palate) || model->cuts.turn.pitch != 0) return std::move(*model);
+    if (!pitch_worth_trying(palate)) return std::move(*model);
     const std::optional<std::string> landmarks = landmarks_problem(model->mesh, path);
     if (!landmarks) return std::move(*model);
     problem = "the landmarks were not found in the CT's frame (" + *landmarks + ")";
