@@ -15,8 +15,10 @@
 #include "core/face/landmark_file.h"
 #include "core/fields/constraint_set.h"
 #include "core/io/mesh_io.h"
+#include "core/mesh/head_turn.h"
 #include "core/mesh/mid_sagittal_plane.h"
 #include "core/mesh/sides.h"
+#include "core/util/error.h"
 #include "core/util/resources.h"
 
 namespace facehex {
@@ -140,6 +142,52 @@ TEST(ReferenceLandmarks, VisibleHumanFemaleOnTheCtsSkinPoints) {
   for (const auto& [name, p] : on_points.points) EXPECT_EQ(found.points.at(name), p) << name;
   EXPECT_NO_THROW(check_plausible(found, "test"));
   expect_near_reference(found, kData + "vhfemale-head.json", 2.0, 11, 0, {{"stomion", 2.5}, {"cheilion left", 2.5}});
+}
+
+TEST(ReferenceLandmarks, VisibleHumanFemalePitchedIsReadInTheFrameItsPlaneCarries) {
+  // The same skin points with the head pitched (its chin raised 15 degrees, lowered 15) about its own lateral axis
+  // (this head is turned by a few degrees, so that its pitch mixes with the turn) through its plane's point, and the
+  // plane pitched with them: against the hand-placed landmarks pitched with the head, the bounds of the upright head.
+  // Read without the pitch, some landmark falls outside them.
+  const SkinPoints points = read_skin_points(kData + "vhfemale-head-ct-skin.xyz");
+  const MidSagittalPlane& plane = *points.options.mid_sagittal_plane;
+  const std::map<std::string, double> wider = {{"stomion", 2.5}, {"cheilion left", 2.5}};
+  for (const double pitch : {15.0, -15.0}) {
+    const HeadTurn upright = head_turn_of(plane);
+    HeadTurn pitched = upright;
+    pitched.pitch = pitch;
+    const auto moved = [&](const Eigen::Vector3d& p) { return pitched.to_model(upright.to_head(p)); };
+    Eigen::MatrixXd V(points.V.rows(), 3);
+    for (Eigen::Index v = 0; v < V.rows(); ++v) V.row(v) = moved(points.V.row(v).transpose()).transpose();
+    LandmarkOptions options;
+    options.mid_sagittal_plane = pitched.to_model(upright.to_head(plane));
+    EXPECT_EQ(options.mid_sagittal_plane->pitch, pitch);
+    const auto worst_excess = [&](const FaceLandmarks& found) {
+      double worst = -std::numeric_limits<double>::infinity();
+      std::size_t compared = 0;
+      for (const NamedLandmark& ref : read_landmark_file(kData + "vhfemale-head.json")) {
+        const auto p = found.points.find(ref.name);
+        if (p == found.points.end()) continue;
+        const double bound = ref.status == LandmarkStatus::estimated ? 5.0
+                             : wider.count(ref.name)                 ? wider.at(ref.name)
+                                                                     : 2.0;
+        worst = std::max(worst, (p->second - moved(ref.position)).norm() - bound);
+        ++compared;
+      }
+      EXPECT_GE(compared, 11u) << pitch;
+      return worst;
+    };
+    const FaceLandmarks found = find_face_landmarks(V, points.side_mask, options);
+    EXPECT_NO_THROW(check_plausible(found, "test")) << pitch;
+    EXPECT_LE(worst_excess(found), 0.0) << pitch;
+    LandmarkOptions unpitched = options;
+    unpitched.mid_sagittal_plane->pitch = 0;
+    try {
+      EXPECT_GT(worst_excess(find_face_landmarks(V, points.side_mask, unpitched)), 0.0) << pitch;
+    } catch (const Error&) {
+      // not found at all: as wrong
+    }
+  }
 }
 
 TEST(ReferenceLandmarks, PointsOnWholeMillimetresFallInOneBinHoweverTheyAreRounded) {
