@@ -248,12 +248,14 @@ std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const Standar
         const TransferResult& original = ct_originals.at(p.model).second;
         const CtVolume ct = read_ct_volume(p.model);
         // The scan's first and last slices stay flat: where a field of view ends is no anatomy, and a transfer
-        // cannot follow a warp that bends them (the face region found ends at the scan's end slices).
+        // cannot follow a warp that bends them (the face region found ends at the scan's end slices). A pitch tilts
+        // them, as pitching the head in the scanner would, and a pitched warp keeps them tilted: flattened within a
+        // ramp, a pitch of a few degrees across the whole scan folds it.
         const GridGeometry& grid = ct.intensity.geometry;
         const CtWarpFrame frame = ct_warp_frame(ct.intensity);
-        const SmoothWarp warp =
-            random_warp(static_cast<std::uint64_t>(p.ct_seed), frame.centre, frame.anchors, options.ct_ranges)
-                .with_flat_levels(grid.lower(2), grid.upper(2), kCtEndRamp);
+        SmoothWarp warp =
+            random_warp(static_cast<std::uint64_t>(p.ct_seed), frame.centre, frame.anchors, options.ct_ranges);
+        if (warp.pitch_degrees() == 0) warp = warp.with_flat_levels(grid.lower(2), grid.upper(2), kCtEndRamp);
         // Checked where the head is (the original's face region and the ramp's length around it, within the scan): a
         // wide scan's far corners, all air, may fold in the ramps, where the slices' tilt grows with the distance.
         const Eigen::Vector3d scan_lower(grid.lower(0), grid.lower(1), grid.lower(2)),

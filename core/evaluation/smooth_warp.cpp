@@ -27,8 +27,12 @@ double uniform(std::mt19937_64& rng, double lo, double hi) {
 }  // namespace
 
 SmoothWarp::SmoothWarp(const Eigen::Vector3d& centre, const Eigen::Matrix3d& linear, std::vector<GaussianBump> bumps,
-                       double turn_degrees)
-    : centre_(centre), linear_(linear), bumps_(std::move(bumps)), turn_degrees_(turn_degrees) {}
+                       double turn_degrees, double pitch_degrees)
+    : centre_(centre),
+      linear_(linear),
+      bumps_(std::move(bumps)),
+      turn_degrees_(turn_degrees),
+      pitch_degrees_(pitch_degrees) {}
 
 SmoothWarp SmoothWarp::with_flat_levels(double low, double high, double ramp) const {
   SmoothWarp w = *this;
@@ -140,14 +144,16 @@ SmoothWarp random_warp(std::uint64_t seed, const Eigen::Vector3d& centre, const 
     b.sigma = uniform(rng, ranges.min_sigma, ranges.max_sigma);
     bumps.push_back(b);
   }
-  // Drawn last, so that a seed's scale, shear and bumps do not depend on whether the warp turns.
+  // Drawn last, so that a seed's scale, shear and bumps do not depend on whether the warp turns or pitches.
   const double turn = ranges.max_turn > 0 ? uniform(rng, -ranges.max_turn, ranges.max_turn) : 0.0;
-  A = Eigen::AngleAxisd(turn * M_PI / 180, Eigen::Vector3d::UnitZ()) * A;
-  SmoothWarp warp(centre, A, bumps, turn);
+  const double pitch = ranges.max_pitch > 0 ? uniform(rng, -ranges.max_pitch, ranges.max_pitch) : 0.0;
+  A = Eigen::AngleAxisd(pitch * M_PI / 180, Eigen::Vector3d::UnitX()) *
+      Eigen::AngleAxisd(turn * M_PI / 180, Eigen::Vector3d::UnitZ()) * A;
+  SmoothWarp warp(centre, A, bumps, turn, pitch);
   const double limit = 0.5 * warp.linear_min_singular_value(), L = warp.bump_gradient_bound();
   if (L > limit) {
     for (GaussianBump& b : bumps) b.displacement *= limit / L;
-    warp = SmoothWarp(centre, A, bumps, turn);
+    warp = SmoothWarp(centre, A, bumps, turn, pitch);
   }
   return warp;
 }
@@ -173,7 +179,9 @@ double min_jacobian_determinant(const SmoothWarp& warp, const Eigen::Vector3d& l
 
 std::string warp_description(const SmoothWarp& warp) {
   const Eigen::Matrix3d A =
-      Eigen::AngleAxisd(-warp.turn_degrees() * M_PI / 180, Eigen::Vector3d::UnitZ()).toRotationMatrix() * warp.linear();
+      Eigen::AngleAxisd(-warp.turn_degrees() * M_PI / 180, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
+      Eigen::AngleAxisd(-warp.pitch_degrees() * M_PI / 180, Eigen::Vector3d::UnitX()).toRotationMatrix() *
+      warp.linear();
   double shear = 0, bump = 0;
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c)
@@ -187,6 +195,11 @@ std::string warp_description(const SmoothWarp& warp) {
     char turn[40];
     std::snprintf(turn, sizeof turn, ", turned %.1f deg", warp.turn_degrees());
     description += turn;
+  }
+  if (warp.pitch_degrees() != 0) {
+    char pitch[40];
+    std::snprintf(pitch, sizeof pitch, ", pitched %.1f deg", warp.pitch_degrees());
+    description += pitch;
   }
   if (warp.has_flat_levels()) description += ", end slices flat";
   return description;

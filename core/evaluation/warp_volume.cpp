@@ -33,15 +33,19 @@ Field warp_volume(const Field& field, const SmoothWarp& warp) {
   hi += 2 * g.spacing;
   // A scanner's volume ends in slice planes; W may bend the original's: the slices are cropped to those the original
   // covers across their whole area, between the highest level of the bottom slice's image and the lowest of the top
-  // slice's (every voxel of both: a warp that keeps them flat keeps all of the original's levels).
-  double top_lowest = std::numeric_limits<double>::infinity(), bottom_highest = -top_lowest;
-  for (int j = 0; j < g.dims[1]; ++j)
-    for (int i = 0; i < g.dims[0]; ++i) {
-      bottom_highest = std::max(bottom_highest, warp.apply(g.point(i, j, 0)).z());
-      top_lowest = std::min(top_lowest, warp.apply(g.point(i, j, g.dims[2] - 1)).z());
-    }
-  lo.z() = bottom_highest;
-  hi.z() = top_lowest;
+  // slice's (every voxel of both: a warp that keeps them flat keeps all of the original's levels). A pitched warp
+  // tilts them across the whole scan, and such a crop would cut the face; it keeps the whole image, as a head pitched
+  // within a scanner's taller field of view, with air beyond the original's tilted end slices.
+  if (warp.pitch_degrees() == 0) {
+    double top_lowest = std::numeric_limits<double>::infinity(), bottom_highest = -top_lowest;
+    for (int j = 0; j < g.dims[1]; ++j)
+      for (int i = 0; i < g.dims[0]; ++i) {
+        bottom_highest = std::max(bottom_highest, warp.apply(g.point(i, j, 0)).z());
+        top_lowest = std::min(top_lowest, warp.apply(g.point(i, j, g.dims[2] - 1)).z());
+      }
+    lo.z() = bottom_highest;
+    hi.z() = top_lowest;
+  }
   GridGeometry target;
   target.spacing = g.spacing;
   target.origin = lo;

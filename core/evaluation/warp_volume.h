@@ -8,7 +8,8 @@ namespace facehex {
 
 // The warped volume on a grid of the original's spacing whose box holds the image of the original's box (W of its
 // faces) across, and in z only the levels the image of the original covers across its whole area: a scanner's volume
-// ends in slice planes, where W bends the original's end slices into curved ends. Each voxel y takes the original's
+// ends in slice planes, where W bends the original's end slices into curved ends. A pitched warp (pitch_degrees) keeps
+// the whole image in z too: its tilted end slices would crop the face. Each voxel y takes the original's
 // trilinear sample at W^-1(y) (voxel_grid.h sample), and where W^-1(y) lies outside the original's box (by more than
 // half a voxel), the original's lowest value: nothing was scanned there, and a border value carried outwards would add
 // tissue that the original does not have.

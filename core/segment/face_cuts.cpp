@@ -46,15 +46,17 @@ FaceCuts find_face_cuts(const Mask& head, const Mask& without_ears, const Mask& 
   if (slab && slab->turn.pitch != 0 && cuts.anatomy) {
     // The slice z = level of the CT's frame meets the head frame's sagittal plane in the line
     // z = axis_z + (level - axis_z - (y - axis_y) sin p) / cos p (HeadTurn::to_model: the pitch first, then the turn,
-    // which keeps heights); over the face's depth its ends are the extremes.
+    // which keeps heights). The top cut stays below the last slice over the face's depth (from the posterior cut to
+    // the pronasale), the bottom cut above the first at the chin: behind the chin the jaw cut, rising at 45 degrees,
+    // takes the region above the bottom cut away.
     const HeadTurn& t = slab->turn;
     const double p = t.pitch * M_PI / 180;
     const auto height = [&](double level, double y) {
       return t.axis_z + (level - t.axis_z - (y - t.axis.y()) * std::sin(p)) / std::cos(p);
     };
-    const double y_back = cuts.posterior_y, y_front = cuts.anatomy->pronasale.y();
-    scan_lo = std::max({scan_lo, height(slab->z_lo, y_back), height(slab->z_lo, y_front)});
-    scan_hi = std::min({scan_hi, height(slab->z_hi, y_back), height(slab->z_hi, y_front)});
+    const FaceAnatomy& a = *cuts.anatomy;
+    scan_lo = std::max(scan_lo, height(slab->z_lo, a.menton.y()));
+    scan_hi = std::min({scan_hi, height(slab->z_hi, cuts.posterior_y), height(slab->z_hi, a.pronasale.y())});
   }
   const double z_min = std::max(scan_lo, lowest_body_z) + options.border_margin;
   const double z_max = scan_hi - options.border_margin;

@@ -81,8 +81,9 @@ struct FaceCuts {
 };
 
 // Where the scan's first and last slices lie (mm, the CT's frame) and the head frame of the grids below: a pitched
-// head's scan ends in planes tilted in its head frame, and the automatic top and bottom cuts stay within them over the
-// face's depth (from the posterior cut to the pronasale) rather than within the grid's own first and last levels.
+// head's scan ends in planes tilted in its head frame, and the automatic top cut stays below the last over the face's
+// depth (from the posterior cut to the pronasale), the bottom cut above the first at the chin (the menton's depth),
+// rather than within the grid's own first and last levels.
 struct ScanSlab {
   double z_lo = 0, z_hi = 0;
   HeadTurn turn;

@@ -101,6 +101,28 @@ TEST(SmoothWarp, ATurnTurnsTheSameSeedsWarp) {
   }
 }
 
+// A pitched warp (a head nodding in the scanner) is the same seed's warp, turned as it would be, with its linear part
+// then turned about x.
+TEST(SmoothWarp, APitchPitchesTheSameSeedsTurnedWarp) {
+  RandomWarpRanges turned, pitched;
+  turned.max_turn = pitched.max_turn = 10;
+  pitched.max_pitch = 15;
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    const SmoothWarp t = random_warp(seed, Eigen::Vector3d(5, -3, 2), anchors(), turned),
+                     w = random_warp(seed, Eigen::Vector3d(5, -3, 2), anchors(), pitched);
+    EXPECT_EQ(w.turn_degrees(), t.turn_degrees());
+    EXPECT_LE(std::abs(w.pitch_degrees()), 15.0);
+    EXPECT_GT(std::abs(w.pitch_degrees()), 0.0);
+    const Eigen::Matrix3d R =
+        Eigen::AngleAxisd(w.pitch_degrees() * M_PI / 180, Eigen::Vector3d::UnitX()).toRotationMatrix();
+    EXPECT_TRUE(w.linear().isApprox(R * t.linear(), 1e-12)) << seed;
+    const std::string a = warp_description(t), b = warp_description(w);
+    EXPECT_EQ(b.substr(0, a.size()), a) << b;  // the same scale, shear, bumps and turn
+    EXPECT_NE(b.find(", pitched "), std::string::npos) << b;
+    EXPECT_GT(min_jacobian_determinant(w, Eigen::Vector3d::Constant(-100), Eigen::Vector3d::Constant(100), 9), 0);
+  }
+}
+
 TEST(SmoothWarp, InverseUndoesApplyAndTheJacobianIsItsDerivative) {
   const SmoothWarp w = random_warp(3, Eigen::Vector3d(1, 2, 3), anchors());
   const Eigen::MatrixXd V = anchors() * 0.9;
