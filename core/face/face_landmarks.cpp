@@ -384,10 +384,10 @@ FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorX
     return find_face_landmarks(*options.skin_points,
                                Eigen::VectorXi::Constant(options.skin_points->rows(), side_bit(W1)), on_points);
   }
-  if (!options.mid_sagittal_plane || (options.mid_sagittal_plane->turn == 0 && options.mid_sagittal_plane->pitch == 0))
-    return find_in_head_frame(V, side_mask, options);
+  if (!options.mid_sagittal_plane) return find_in_head_frame(V, side_mask, options);
   // A turned or pitched head's profile is read in its head frame, where the face looks to +y, upright.
   const HeadTurn turn = head_turn_of(*options.mid_sagittal_plane);
+  if (!turn.turned()) return find_in_head_frame(V, side_mask, options);
   Eigen::MatrixXd head(V.rows(), 3);
   for (int v = 0; v < V.rows(); ++v) head.row(v) = turn.to_head(V.row(v).transpose()).transpose();
   LandmarkOptions in_head = options;
@@ -523,13 +523,10 @@ ConstraintSet feature_constraints(const FaceLandmarks& landmarks, const std::map
       p.region = "volume";
     } else {
       p.point = at;
-      // Horizontal in the head frame: a pitched head's features lie on planes pitched with it.
-      if (landmarks.plane.pitch == 0) {
-        p.normal = Eigen::Vector3d::UnitZ();
-      } else {
-        const HeadTurn turn = head_turn_of(landmarks.plane);
-        p.normal = turn.to_model(Eigen::Vector3d::UnitZ()) - turn.to_model(Eigen::Vector3d::Zero());
-      }
+      // Horizontal in the head frame: a pitched head's features lie on planes pitched with it (a turn keeps the
+      // vertical).
+      const HeadTurn turn = head_turn_of(landmarks.plane);
+      p.normal = turn.to_model(Eigen::Vector3d::UnitZ()) - turn.to_model(Eigen::Vector3d::Zero());
       p.region = "boundary";
       p.within_center = at;
       p.within_radius = spec.radius;

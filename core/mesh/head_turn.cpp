@@ -51,6 +51,14 @@ Eigen::Vector3d HeadTurn::to_model(const Eigen::Vector3d& head) const {
   return {r.x(), r.y(), q.z()};
 }
 
+// to_model pitches first, about the lateral line (axis.y, axis_z), and then turns, which keeps heights: the model's
+// height of a head point is axis_z + (head_y - axis.y) sin p + (head_z - axis_z) cos p.
+double HeadTurn::head_height_of_level(double level, double head_y) const {
+  if (pitch == 0) return level;
+  const double p = pitch * kRadians;
+  return axis_z + (level - axis_z - (head_y - axis.y()) * std::sin(p)) / std::cos(p);
+}
+
 MidSagittalPlane HeadTurn::to_head(const MidSagittalPlane& plane) const {
   const MidSagittalPlane yawed_plane = yawed(plane, axis, degrees);
   return pitch == 0 ? yawed_plane : pitched(yawed_plane, Eigen::Vector2d(axis.y(), axis_z), -pitch);

@@ -24,6 +24,9 @@ struct HeadTurn {
   bool turned() const { return degrees != 0 || pitch != 0; }
   Eigen::Vector3d to_head(const Eigen::Vector3d& p) const;
   Eigen::Vector3d to_model(const Eigen::Vector3d& head) const;
+  // The height in the head frame, at its depth head_y, of the model frame's level z = level (a CT's slice plane:
+  // tilted in the head frame of a pitched head, level with it otherwise).
+  double head_height_of_level(double level, double head_y) const;
   // The plane in the other frame; its point (x, y, z) moves with the frame (an unturned plane's y is the axis' y), and
   // its pitch is the head frame's pitch in that frame (MidSagittalPlane::pitch).
   MidSagittalPlane to_head(const MidSagittalPlane& plane) const;

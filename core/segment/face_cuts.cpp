@@ -44,19 +44,14 @@ FaceCuts find_face_cuts(const Mask& head, const Mask& without_ears, const Mask& 
   cuts.posterior_y = options.posterior_y ? *options.posterior_y : cuts.anatomy->ear_front_y + options.ear_clearance;
   double scan_lo = g.lower(2), scan_hi = g.upper(2);
   if (slab && slab->turn.pitch != 0 && cuts.anatomy) {
-    // The slice z = level of the CT's frame meets the head frame's sagittal plane in the line
-    // z = axis_z + (level - axis_z - (y - axis_y) sin p) / cos p (HeadTurn::to_model: the pitch first, then the turn,
-    // which keeps heights). The top cut stays below the last slice over the face's depth (from the posterior cut to
-    // the pronasale), the bottom cut above the first at the chin: behind the chin the jaw cut, rising at 45 degrees,
-    // takes the region above the bottom cut away.
+    // The scan's slices are tilted in the head frame: the top cut stays below the last over the face's depth (from
+    // the posterior cut to the pronasale), the bottom cut above the first at the chin (behind the chin the jaw cut,
+    // rising at 45 degrees, takes the region above the bottom cut away).
     const HeadTurn& t = slab->turn;
-    const double p = t.pitch * M_PI / 180;
-    const auto height = [&](double level, double y) {
-      return t.axis_z + (level - t.axis_z - (y - t.axis.y()) * std::sin(p)) / std::cos(p);
-    };
     const FaceAnatomy& a = *cuts.anatomy;
-    scan_lo = std::max(scan_lo, height(slab->z_lo, a.menton.y()));
-    scan_hi = std::min({scan_hi, height(slab->z_hi, cuts.posterior_y), height(slab->z_hi, a.pronasale.y())});
+    scan_lo = std::max(scan_lo, t.head_height_of_level(slab->z_lo, a.menton.y()));
+    scan_hi = std::min({scan_hi, t.head_height_of_level(slab->z_hi, cuts.posterior_y),
+                        t.head_height_of_level(slab->z_hi, a.pronasale.y())});
   }
   const double z_min = std::max(scan_lo, lowest_body_z) + options.border_margin;
   const double z_max = scan_hi - options.border_margin;

@@ -66,8 +66,15 @@ TEST(HeadTurn, PitchesAboutItsLateralAxisAfterTheTurnSoThatTheFaceLooksToPlusYUp
     EXPECT_LT((turn.to_model(turn.to_head(q)) - q).norm(), 1e-12);
     EXPECT_NEAR((turn.to_head(q) - centre).norm(), (q - centre).norm(), 1e-12);
   }
+  // A slice plane of the model's frame, in the head frame: the head height of each of its points at their depth.
+  for (const Eigen::Vector3d& on :
+       {Eigen::Vector3d(3, 4, 12), Eigen::Vector3d(-50, 80, 12), Eigen::Vector3d(7, -60, 12)}) {
+    const Eigen::Vector3d head = turn.to_head(on);
+    EXPECT_NEAR(turn.head_height_of_level(12, head.y()), head.z(), 1e-9);
+  }
   // Without a pitch, the height stays as it was, bit for bit.
   turn.pitch = 0;
+  EXPECT_EQ(turn.head_height_of_level(12, 80), 12);
   EXPECT_EQ(turn.to_head(Eigen::Vector3d(3, 4, -2)).z(), -2);
 }
 
