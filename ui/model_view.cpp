@@ -44,6 +44,7 @@
 #include <optional>
 #include <set>
 
+#include "core/face/landmark_file.h"
 #include "core/quality/vtk_grid.h"
 #include "ui/palette.h"
 
@@ -732,6 +733,8 @@ void ModelView::updateLandmarks() {
     for (const auto& [name, x] : landmarks->points) {
       markers.add(x, landmarkColour());
       names->InsertNextValue("   " + name);  // clear of the marker
+      // A handle slides on the model's surface: one that lies off it (a tragus) is shown, not dragged.
+      if (!lies_on_model_skin(name)) continue;
       Ptr<vtkHandleWidget>& handle = handles[name];
       const auto old = p.handles.find(name);
       if (old != p.handles.end()) {
@@ -772,7 +775,7 @@ void ModelView::showSessionLandmarks() {
 }
 
 int ModelView::shownLandmarks() const {
-  return p_->landmarkActor->GetVisibility() ? static_cast<int>(p_->handles.size()) : 0;
+  return p_->landmarkActor->GetVisibility() ? static_cast<int>(p_->landmarkPoints->GetNumberOfPoints()) : 0;
 }
 
 void ModelView::onLandmarkDragged(vtkObject* handle, unsigned long event, void*) {
@@ -787,7 +790,8 @@ void ModelView::onLandmarkDragged(vtkObject* handle, unsigned long event, void*)
     return;
   }
   // While dragging only the marker moves: the features are placed again on release.
-  const vtkIdType i = std::distance(p.handles.begin(), dragged);
+  const auto& points = session_->landmarks(role_)->points;
+  const vtkIdType i = std::distance(points.begin(), points.find(dragged->first));
   p.landmarkPoints->GetPoints()->SetPoint(i, x.data());
   p.landmarkPoints->Modified();
 }

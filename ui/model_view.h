@@ -2,7 +2,8 @@
 // One 3D view of a model (the standard or the patient), rendered from the session: the surface, plain or coloured by
 // a field with iso-lines and optionally cut open at the plane; the vertices of the visible constraints; on the active
 // model, the cutting-plane widget and the vertices it selects; gradient glyphs; and the hex mesh coloured by quality
-// with a threshold; the model's facial landmarks as labelled handles on its surface. Dragging the plane widget moves
+// with a threshold; the model's facial landmarks as labelled handles on its surface (the tragi, which lie behind the
+// model, as labelled markers only). Dragging the plane widget moves
 // the session's plane; releasing a dragged landmark is reported (landmarkMoved) for the controller to place its
 // features again: the view never edits anything else.
 #include <Eigen/Core>
@@ -35,7 +36,7 @@ class ModelView : public QWidget {
   // Where a point of the model appears in the 3D widget (widget pixels; tests drive the mouse there).
   QPoint widgetPosition(const Eigen::Vector3d& x) const;
   QWidget* renderWidget() const;
-  // Landmark handles shown in this view.
+  // Landmarks shown in this view.
   int shownLandmarks() const;
   // Frames the model in a three-quarter view, and keeps it framed as the view resizes until the user turns it.
   void resetCamera();

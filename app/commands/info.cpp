@@ -9,6 +9,7 @@
 #include "core/mesh/mid_sagittal_plane.h"
 #include "core/mesh/sides.h"
 #include "core/mesh/skin_points.h"
+#include "core/mesh/tragi.h"
 
 namespace facehex::cli {
 
@@ -50,6 +51,18 @@ int cmd_info(const Argv& argv) {
   if (const std::optional<Eigen::MatrixXd> skin = skin_points(m, path))
     std::cout << "  skin points " << skin->rows()
               << " (the CT's skin at the segmentation's working spacing; the landmarks are found on them)\n";
+  if (const std::optional<Tragi> tragi = facehex::tragi(m, path)) {
+    std::cout << "  tragi (from the segmentation):";
+    for (const auto& [side, name] : {std::pair{0, "right"}, std::pair{1, "left"}}) {
+      std::cout << " " << name << " ";
+      if (const std::optional<Tragus>& t = (*tragi)[side])
+        std::cout << "(" << t->point.x() << ", " << t->point.y() << ", " << t->point.z() << ") mm"
+                  << (t->estimated ? " (estimated)" : "");
+      else
+        std::cout << "unseen";
+    }
+    std::cout << "\n";
+  }
   return 0;
 }
 

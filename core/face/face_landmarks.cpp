@@ -265,6 +265,7 @@ LandmarkOptions landmark_options_for(const VolumeMesh& model, const std::string&
   LandmarkOptions options;
   options.mid_sagittal_plane = mid_sagittal_plane(model, source);
   options.skin_points = skin_points(model, source);
+  options.tragi = tragi(model, source);
   return options;
 }
 
@@ -376,13 +377,15 @@ FaceLandmarks find_in_head_frame(const Eigen::MatrixXd& V, const Eigen::VectorXi
 
 }  // namespace
 
-FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
-                                  const LandmarkOptions& options) {
+namespace {
+
+// find_face_landmarks without the tragi.
+FaceLandmarks find_on_skin(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask, const LandmarkOptions& options) {
   if (options.skin_points) {
     LandmarkOptions on_points = options;
     on_points.skin_points.reset();
-    return find_face_landmarks(*options.skin_points,
-                               Eigen::VectorXi::Constant(options.skin_points->rows(), side_bit(W1)), on_points);
+    return find_on_skin(*options.skin_points, Eigen::VectorXi::Constant(options.skin_points->rows(), side_bit(W1)),
+                        on_points);
   }
   if (!options.mid_sagittal_plane) return find_in_head_frame(V, side_mask, options);
   // A turned or pitched head's profile is read in its head frame, where the face looks to +y, upright.
@@ -395,6 +398,20 @@ FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorX
   FaceLandmarks l = find_in_head_frame(head, side_mask, in_head);
   for (auto& [name, p] : l.points) p = turn.to_model(p);
   l.plane = *options.mid_sagittal_plane;
+  return l;
+}
+
+}  // namespace
+
+FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
+                                  const LandmarkOptions& options) {
+  FaceLandmarks l = find_on_skin(V, side_mask, options);
+  if (options.tragi)
+    for (const auto& [side, name] : {std::pair{0, "tragus right"}, std::pair{1, "tragus left"}})
+      if (const std::optional<Tragus>& tragus = (*options.tragi)[side]) {
+        l.points[name] = tragus->point;
+        if (tragus->estimated) l.estimated.push_back(name);
+      }
   return l;
 }
 
@@ -444,6 +461,13 @@ void check_plausible(const FaceLandmarks& l, const std::string& remedy) {
     for (const char* mouth : {"cheilion left", "cheilion right"})
       if (has(mouth) && at(eye).z() <= at(mouth).z()) fail(eye, std::string("it lies below the ") + mouth);
     if (has("glabella") && at(eye).z() >= at("glabella").z()) fail(eye, "it lies above the glabella");
+  }
+  range("tragus left", "tragus right", 110, 175, "tragus");
+  for (const char* tragus : {"tragus left", "tragus right"}) {
+    range("nasion", tragus, 80, 150, tragus);
+    if (has(tragus) && has("glabella") && at(tragus).z() >= at("glabella").z())
+      fail(tragus, "it lies above the glabella");
+    if (has(tragus) && has("menton") && at(tragus).z() <= at("menton").z()) fail(tragus, "it lies below the menton");
   }
 }
 

@@ -114,6 +114,8 @@ const std::vector<std::string>& landmark_names() {
   return names;
 }
 
+bool lies_on_model_skin(const std::string& name) { return name != "tragus left" && name != "tragus right"; }
+
 const char* status_name(LandmarkStatus status) {
   switch (status) {
     case LandmarkStatus::found:

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <vector>
 
+#include "core/segment/tragus.h"
 #include "core/util/error.h"
 #include "core/util/mirror_symmetry.h"
 
@@ -489,6 +490,7 @@ FaceAnatomy find_face_anatomy(const Mask& head, const Mask& without_ears, const 
   anatomy.highest_head_z = z_hi;
   find_chin(bone, profile, bottom, anatomy);
   find_ear_front(head, without_ears, anatomy);
+  anatomy.tragi = find_tragi(head, anatomy);
   return anatomy;
 }
 
@@ -508,6 +510,10 @@ std::string face_anatomy_text(const FaceAnatomy& a) {
     << ", menton " << point_text(a.menton) << ", front of the ears y " << a.ear_front_y << " (-x ear " << ear(0)
     << ", +x ear " << ear(1)
     << (a.ears_estimated ? "; estimated: no auricle stands out, the front of the widest rows" : "") << ")";
+  for (const auto& [side, name] : {std::pair{0, "tragus right"}, std::pair{1, "tragus left"}})
+    s << ", " << name << " "
+      << (a.tragi[side] ? point_text(a.tragi[side]->point) + (a.tragi[side]->estimated ? " (estimated)" : "")
+                        : std::string("unseen"));
   if (a.lowest_head_z > -std::numeric_limits<double>::infinity()) s << ", head sections above z " << a.lowest_head_z;
   return s.str();
 }

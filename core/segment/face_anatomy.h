@@ -41,13 +41,15 @@
 //     far back the helix flares out varies from head to head and moves the widest row by centimetres. Where no
 //     auricle stands out (the field of view cuts the ears off, or a support presses them flat), ears_estimated: an
 //     ear's front is the most anterior row whose reach from the plane on that side is within kEarReachTolerance of
-//     the furthest.
+//     the furthest;
+//  6. the tragi: core/segment/tragus.h.
 #include <Eigen/Core>
 #include <array>
 #include <limits>
 #include <string>
 
 #include "core/mesh/head_turn.h"
+#include "core/mesh/tragi.h"
 #include "core/segment/voxel_grid.h"
 
 namespace facehex {
@@ -64,6 +66,7 @@ struct FaceAnatomy {
   // Each ear's front (-x side, +x side); -inf: not seen.
   std::array<double, 2> ear_fronts_y = {-std::numeric_limits<double>::infinity(),
                                         -std::numeric_limits<double>::infinity()};
+  Tragi tragi;                // rule 6: right (-x) and left (+x), none where not seen
   double lowest_head_z = 0;   // below this the slices are shoulders or a support
   double highest_head_z = 0;  // the highest level of the head in the scan
 

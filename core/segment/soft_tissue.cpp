@@ -8,6 +8,7 @@
 #include "core/mesh/mid_sagittal_plane.h"
 #include "core/mesh/side_mask.h"
 #include "core/mesh/skin_points.h"
+#include "core/mesh/tragi.h"
 #include "core/segment/distance_transform.h"
 #include "core/segment/face_anatomy.h"
 #include "core/segment/head_frame.h"
@@ -454,6 +455,12 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   for (size_t i = 0; i < on_skin.size(); ++i)
     skin.row(static_cast<Eigen::Index>(i)) = turn.to_model(surface.V.row(on_skin[i]).transpose()).transpose();
   set_skin_points(model.mesh, skin);
+  if (model.cuts.anatomy) {
+    Tragi tragi = model.cuts.anatomy->tragi;
+    for (std::optional<Tragus>& tragus : tragi)
+      if (tragus) tragus->point = turn.to_model(tragus->point);
+    set_tragi(model.mesh, tragi);
+  }
   model.boundary_faces = std::move(tets.boundary_faces);
   model.boundary_sides = tets.boundary_labels.array() - 1;
   step("checks", 0.95);

@@ -431,6 +431,51 @@ TEST(FaceLandmarks, AFeatureThatSelectsNoVertexNamesItsLandmark) {
   }
 }
 
+// The message check_plausible throws for `l`, or "" when it accepts it.
+std::string implausibility(const FaceLandmarks& l) {
+  try {
+    check_plausible(l, "give them with --landmarks FILE");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(FaceLandmarks, TheTragiAModelCarriesAreListedWithTheirStatusAndChecked) {
+  const PhantomFace face;
+  LandmarkOptions options;
+  Tragi tragi;
+  tragi[0] = Tragus{Eigen::Vector3d(PhantomFace::x0 - 70, -10, 0), false};
+  tragi[1] = Tragus{Eigen::Vector3d(PhantomFace::x0 + 70, -10, 0), true};
+  options.tragi = tragi;
+  const FaceLandmarks l = find_face_landmarks(face.V, face.side_mask, options);
+  EXPECT_EQ(l.points.at("tragus right"), tragi[0]->point);
+  EXPECT_EQ(l.points.at("tragus left"), tragi[1]->point);
+  for (const NamedLandmark& n : named_landmarks(l)) {
+    if (n.name == "tragus right") EXPECT_EQ(n.status, LandmarkStatus::found);
+    if (n.name == "tragus left") EXPECT_EQ(n.status, LandmarkStatus::estimated);
+  }
+  EXPECT_EQ(implausibility(l), "");
+  // Tragi 50 mm apart (no adult head is so narrow), one above the glabella, both 140 mm further back (no head is so
+  // deep): each is an error naming the tragus and the remedy.
+  FaceLandmarks narrow = l;
+  narrow.points["tragus left"].x() = PhantomFace::x0 - 20;
+  EXPECT_NE(implausibility(narrow).find("implausible tragus: the distance tragus left - tragus right is 50.0 mm"),
+            std::string::npos)
+      << implausibility(narrow);
+  FaceLandmarks high = l;
+  high.points["tragus left"].z() = 60;
+  EXPECT_NE(implausibility(high).find("implausible tragus left: it lies above the glabella"), std::string::npos)
+      << implausibility(high);
+  FaceLandmarks far = l;
+  far.points["tragus right"].y() = far.points["tragus left"].y() = -150;
+  EXPECT_NE(implausibility(far).find("implausible tragus left: the distance nasion - tragus left"), std::string::npos)
+      << implausibility(far);
+  EXPECT_NE(implausibility(far).find("--landmarks FILE"), std::string::npos);
+  // Without them, no tragus.
+  EXPECT_FALSE(find_face_landmarks(face.V, face.side_mask).points.count("tragus left"));
+}
+
 TEST(FaceLandmarks, AModelWithoutSkinOrLabelsIsAnError) {
   const PhantomFace face;
   EXPECT_THROW(find_face_landmarks(face.V, Eigen::VectorXi()), Error);

@@ -4,7 +4,9 @@
 // minute of segmentation); also the bundled
 // CT's model meshed coarsely (4.2 mm edges, stored as points too). Tolerances: 2 mm on the 1 mm CT, 3 mm on the
 // 3.2 mm one, 5 mm for a landmark inside a field-of-view cut (which must then be marked estimated). Landmarks the
-// finder does not place (eye corners, tragi) are only in the reference.
+// finder does not place on the skin are only in the reference: the eye corners, and the tragi, which the
+// segmentation finds in the CT (core/segment/tragus.h; tested on the bundled CT in
+// SoftTissue.RealCtMakesASixSidedModel).
 #include <gtest/gtest.h>
 
 #include <cmath>
