@@ -48,11 +48,12 @@ void add_segment_options(Args& args) {
       .option("bottom-cut",
               "height z (mm) of the bottom cut (default: --chin-clearance below the menton, the chin's lowest bone)")
       .option("posterior-cut",
-              "y (mm) of the posterior cut (default: --ear-clearance in front of the ears' front edges)")
+              "y (mm) of the posterior cut (default: --ear-clearance in front of the tragi, else of the auricles' "
+              "front edges)")
       .option("mid-plane", "x (mm) of the plane between the u0 and u1 ends (default: the face's mirror-symmetry plane)")
       .option("brow-clearance", "mm from the glabella (brow ridge) up to the top cut", "15")
       .option("chin-clearance", "mm from the menton (the chin's lowest bone) down to the bottom cut", "15")
-      .option("ear-clearance", "mm from the front of the ears forward to the posterior cut", "12")
+      .option("ear-clearance", "mm from the front of the ears (the tragi) forward to the posterior cut", "9")
       .option("min-thickness", "mm below the skin always in the model", "3")
       .option("max-depth", "mm below the skin beyond which nothing is in the model", "25")
       .option("bone-gap", "mm: gaps in the bone narrower than twice this (teeth) still hide the tissue behind", "5")

@@ -29,6 +29,17 @@ std::vector<CutPlane> FaceCuts::planes() const {
   return p;
 }
 
+// mm the tragus lies in front of the auricle's front edge that rule 5 finds, where no tragus is seen: on the two real
+// CTs the more anterior tragus lies 2-3 mm in front of it (docs/benchmarks.md).
+constexpr double kTragusBeforeAuricleEdge = 3.0;
+
+double front_of_the_ears(const FaceAnatomy& anatomy) {
+  double front = -std::numeric_limits<double>::infinity();
+  for (const std::optional<Tragus>& tragus : anatomy.tragi)
+    if (tragus && !tragus->estimated) front = std::max(front, tragus->point.y());
+  return std::isfinite(front) ? front : anatomy.ear_front_y + kTragusBeforeAuricleEdge;
+}
+
 FaceCuts find_face_cuts(const Mask& head, const Mask& without_ears, const Mask& bone, const FaceCutOptions& options,
                         const std::optional<ScanSlab>& slab) {
   const GridGeometry& g = head.geometry;
@@ -41,7 +52,10 @@ FaceCuts find_face_cuts(const Mask& head, const Mask& without_ears, const Mask& 
   if (!options.top_z || !options.bottom_z || !options.posterior_y || !options.centre_x)
     cuts.anatomy = find_face_anatomy(head, without_ears, bone);
   cuts.centre_x = options.centre_x ? *options.centre_x : cuts.anatomy->centre_x;
-  cuts.posterior_y = options.posterior_y ? *options.posterior_y : cuts.anatomy->ear_front_y + options.ear_clearance;
+  // To the tenth of a millimetre the cuts are printed and shown with, so that a cut given as printed is the same cut.
+  cuts.posterior_y = options.posterior_y
+                         ? *options.posterior_y
+                         : std::round(10 * (front_of_the_ears(*cuts.anatomy) + options.ear_clearance)) / 10;
   double scan_lo = g.lower(2), scan_hi = g.upper(2);
   if (slab && slab->turn.pitch != 0 && cuts.anatomy) {
     // The scan's slices are tilted in the head frame: the top cut stays below the last over the face's depth (from

@@ -21,7 +21,7 @@
 //   top_z       = the glabella plus brow_clearance (above the eyebrows), but at least border_margin below the CT's top
 //                 and below the head's highest level (a scan that ends within the forehead); the head's highest
 //                 level less border_margin when the profile shows no brow (FaceAnatomy::brow_unseen);
-//   posterior_y = the front of the ears (the auricles' front edges, beside the tragi) plus ear_clearance;
+//   posterior_y = the front of the ears (front_of_the_ears) plus ear_clearance;
 //   jaw_z       = just above the highest model voxel on the posterior cut within one voxel of the mid-plane, in the
 //                 lower half of the face (find_jaw_cut, once the soft tissue is known); none if there is none.
 #include <limits>
@@ -45,10 +45,8 @@ struct FaceCutOptions {
   std::optional<double> head_pitch;
   double brow_clearance = 15.0;  // mm above the glabella (the eyebrows lie within it)
   double chin_clearance = 15.0;  // mm below the menton (the chin's soft tissue is about 10 mm thick there)
-  // mm in front of the front of the ears: the auricle's front edge found can lie a few millimetres behind the tragus
-  // (docs/benchmarks.md, the cuts against the hand-placed tragi), and the cut stays clear of the tragus.
-  double ear_clearance = 12.0;
-  double border_margin = 3.0;  // mm: top and bottom cuts stay this far inside the CT and inside the body
+  double ear_clearance = 9.0;    // mm in front of the front of the ears (front_of_the_ears)
+  double border_margin = 3.0;    // mm: top and bottom cuts stay this far inside the CT and inside the body
 };
 
 // A cut half-space boundary: points p with normal . p > offset are cut away (normal points out of the model).
@@ -93,6 +91,11 @@ struct ScanSlab {
 // the same grid; `slab`: where the scan ends, when the grid is pitched (else the grid's first and last levels).
 // The anatomy is looked for unless all four values are given. Throws facehex::Error("segment", ...) if it cannot be
 // found (naming the option that places the cut by hand) or if the cuts leave no face (bottom above top, ...).
+// The front of the ears the posterior cut keeps its clearance from: the more anterior tragus found (face anatomy rule
+// 6), else where it would lie, 3 mm in front of the auricles' front edge (rule 5). The tragus moves less with the
+// auricle's outline than the auricle's front edge does.
+double front_of_the_ears(const FaceAnatomy& anatomy);
+
 FaceCuts find_face_cuts(const Mask& head, const Mask& without_ears, const Mask& bone, const FaceCutOptions& options,
                         const std::optional<ScanSlab>& slab = std::nullopt);
 

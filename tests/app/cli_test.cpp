@@ -202,7 +202,8 @@ TEST_F(Cli, DemoRunsTheWholeChainFromTheBundledCt) {
   EXPECT_EQ(q["degenerate"].get<int>(), 0);
   // The segmentation says where it cut, so that a user can check and give other cuts (docs/segmentation.md).
   // The bundled CT ends just above the brows (top 3 mm inside it) and just below the chin (bottom 3 mm inside it).
-  EXPECT_NE(r.output.find("cuts (mm, segmentation frame): top z 135.0, bottom z 3.0, posterior y 100.0"),
+  // The posterior cut 9 mm in front of the tragi (at y 91.2).
+  EXPECT_NE(r.output.find("cuts (mm, segmentation frame): top z 135.0, bottom z 3.0, posterior y 100.2"),
             std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("found: mid-sagittal plane x 98.4"), std::string::npos) << r.output;
@@ -647,8 +648,8 @@ TEST_F(Cli, ARegistrationThatCannotRunFallsBackToTheFeatureLines) {
 // stops naming --landmarks.
 TEST_F(Cli, TheRegisteredSkinNeedsNoLandmarks) {
   // A model meshed at 6 mm edges without the CT's skin points (a mesh from elsewhere): its own skin is too sparse
-  // for the landmarks.
-  Result r = run("segment " + facehex::default_ct() + " --edge-length 6 -o " + path("coarse.vtu"));
+  // for the landmarks (with the posterior cut at y 100; how a 6 mm mesh's few profile vertices fall depends on it).
+  Result r = run("segment " + facehex::default_ct() + " --edge-length 6 --posterior-cut 100 -o " + path("coarse.vtu"));
   ASSERT_EQ(r.status, 0) << r.output;
   facehex::VolumeMesh model = facehex::read_volume_mesh(path("coarse.vtu"));
   ASSERT_EQ(model.field_data.erase(facehex::kSkinPointsField), 1u);

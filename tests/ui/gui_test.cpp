@@ -652,8 +652,8 @@ void GuiTest::segmentAgainStartsFromWhatWasFoundAndTakesACut() {
   QVERIFY2(error_.isEmpty(), qPrintable(takeError()));
   const LoadedModel& after = session()->model(Role::Patient);
   QCOMPARE(after.segmentation->cuts.posterior_y, found.posterior_y + 8);
-  QCOMPARE(after.segmentation->cuts.top_z, found.top_z);  // still automatic, found again
-  QVERIFY(after.mesh.V.col(1).minCoeff() >= found.posterior_y + 8 - 1e-6);
+  QCOMPARE(after.segmentation->cuts.top_z, found.top_z);                    // still automatic, found again
+  QVERIFY(after.mesh.V.col(1).minCoeff() >= found.posterior_y + 8 - 1e-4);  // the surface is extracted in floats
   QVERIFY(after.mesh.num_cells() < cells);
   QCOMPARE(finished.count(), 1);
   const QString status = finished.first().first().toString();

@@ -106,7 +106,10 @@ TEST(FaceCuts, AutomaticCutsOfASyntheticHeadFollowItsAnatomy) {
   EXPECT_NEAR(cuts.centre_x, 60, 1e-9);
   EXPECT_NEAR(cuts.bottom_z, 25, 1e-9);
   EXPECT_NEAR(cuts.top_z, 155, 1e-9);
-  EXPECT_NEAR(cuts.posterior_y, 72, 1e-9);
+  // Its ears are thin plates with no hollow: no tragus is seen, and the posterior cut keeps its clearance from where a
+  // tragus would lie, 3 mm in front of the auricle's front edge.
+  EXPECT_FALSE(a.tragi[0] || a.tragi[1]);
+  EXPECT_NEAR(cuts.posterior_y, 60 + 3 + 9, 1e-9);
   EXPECT_EQ(cuts.jaw_z, -std::numeric_limits<double>::infinity());  // find_jaw_cut's business
   EXPECT_NE(face_anatomy_text(a).find("glabella (60.0, 94.0, 140.0)"), std::string::npos) << face_anatomy_text(a);
 }
@@ -120,7 +123,18 @@ TEST(FaceCuts, TheClearancesAreOptions) {
   const FaceCuts cuts = cuts_of(h.head, h.bone, o);
   EXPECT_NEAR(cuts.bottom_z, 36, 1e-9);
   EXPECT_NEAR(cuts.top_z, 149, 1e-9);
-  EXPECT_NEAR(cuts.posterior_y, 66, 1e-9);
+  EXPECT_NEAR(cuts.posterior_y, 60 + 3 + 6, 1e-9);
+}
+
+TEST(FaceCuts, TheFrontOfTheEarsIsTheMoreAnteriorTragusFound) {
+  FaceAnatomy a;
+  a.ear_front_y = 60;
+  EXPECT_NEAR(front_of_the_ears(a), 63, 1e-9);  // no tragus: where one would lie
+  a.tragi[0] = Tragus{Eigen::Vector3d(-70, 64.5, 90), false};
+  a.tragi[1] = Tragus{Eigen::Vector3d(70, 61.5, 90), false};
+  EXPECT_NEAR(front_of_the_ears(a), 64.5, 1e-9);
+  a.tragi[0]->estimated = true;  // placed where no auricle stood out: not a tragus seen
+  EXPECT_NEAR(front_of_the_ears(a), 61.5, 1e-9);
 }
 
 TEST(FaceCuts, TheMentonIsTheLowestBoneConnectedToTheChinNearTheSkin) {
