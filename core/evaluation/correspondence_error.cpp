@@ -3,47 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <numeric>
 
 #include "core/face/face_landmarks.h"
 #include "core/fields/constraint_set.h"
 #include "core/fields/tet_domain.h"
 #include "core/mesh/sides.h"
-#include "core/mesh/tet_topology.h"
+#include "core/standard/closed_domain.h"
 
 namespace facehex {
 namespace {
-
-// Union-find root with path halving.
-int root(std::vector<int>& parent, int i) {
-  while (parent[i] != i) i = parent[i] = parent[parent[i]];
-  return i;
-}
-
-// The walls of the openings (boundary triangles of the split hexes on no side common to their three vertices),
-// grouped into openings through shared edges: per opening, its wall triangles.
-std::vector<std::vector<Eigen::Vector3i>> opening_walls(const TetDomain& d) {
-  const BoundaryFaces boundary = boundary_faces(d.T);
-  std::vector<Eigen::Vector3i> walls;
-  for (int f = 0; f < boundary.F.rows(); ++f) {
-    const Eigen::Vector3i t = boundary.F.row(f).transpose();
-    if ((d.side_mask(t(0)) & d.side_mask(t(1)) & d.side_mask(t(2))) == 0) walls.push_back(t);
-  }
-  std::vector<int> parent(walls.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  std::map<std::pair<int, int>, int> first_with_edge;
-  for (size_t i = 0; i < walls.size(); ++i)
-    for (int k = 0; k < 3; ++k) {
-      const int a = walls[i](k), b = walls[i]((k + 1) % 3);
-      const auto [it, inserted] = first_with_edge.emplace(std::minmax(a, b), static_cast<int>(i));
-      if (!inserted) parent[root(parent, static_cast<int>(i))] = root(parent, it->second);
-    }
-  std::map<int, std::vector<Eigen::Vector3i>> by_root;
-  for (size_t i = 0; i < walls.size(); ++i) by_root[root(parent, static_cast<int>(i))].push_back(walls[i]);
-  std::vector<std::vector<Eigen::Vector3i>> openings;
-  for (auto& [r, tris] : by_root) openings.push_back(std::move(tris));
-  return openings;
-}
 
 // An opening's anatomical name from where its centroid lies against the landmarks.
 std::string opening_name(const Eigen::Vector3d& c, const FaceLandmarks& lm, int index) {
@@ -88,7 +56,7 @@ std::vector<VertexRegion> correspondence_regions(const VolumeMesh& standard, dou
   // An opening's wall may fall into several edge-connected pieces (where its rim vertices touch): pieces of the same
   // name are one region.
   const TetDomain domain = auxiliary_domain(standard);
-  const auto openings = opening_walls(domain);
+  const auto openings = sideless_boundary_pieces(domain);
   std::map<std::string, std::vector<int>> rims;
   for (size_t o = 0; o < openings.size(); ++o) {
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();

@@ -144,27 +144,29 @@ TetDomain closed_domain(const VolumeMesh& hex) {
   return close_openings(std::move(d), "auxiliary tets");
 }
 
-TetDomain close_openings(TetDomain d, const std::string& kind) {
-  if (d.side_mask.size() != d.V.rows()) return d;
-  // Candidate walls: boundary triangles with no side common to their three vertices.
+std::vector<std::vector<Eigen::Vector3i>> sideless_boundary_pieces(const TetDomain& d) {
   const BoundaryFaces boundary = boundary_faces(d.T);
-  std::vector<Eigen::Vector3i> walls;
+  std::vector<Eigen::Vector3i> sideless;
   for (int f = 0; f < boundary.F.rows(); ++f) {
     const Eigen::Vector3i t = boundary.F.row(f).transpose();
-    if ((d.side_mask(t(0)) & d.side_mask(t(1)) & d.side_mask(t(2))) == 0) walls.push_back(t);
+    if ((d.side_mask(t(0)) & d.side_mask(t(1)) & d.side_mask(t(2))) == 0) sideless.push_back(t);
   }
-  int components = 0, openings = 0, closed = 0;
-  const std::vector<int> comp = triangle_components(walls, components);
+  int count = 0;
+  const std::vector<int> piece = triangle_components(sideless, count);
+  std::vector<std::vector<Eigen::Vector3i>> pieces(static_cast<size_t>(count));
+  for (size_t i = 0; i < sideless.size(); ++i) pieces[piece[i]].push_back(sideless[i]);
+  return pieces;
+}
+
+TetDomain close_openings(TetDomain d, const std::string& kind) {
+  if (d.side_mask.size() != d.V.rows()) return d;
+  int openings = 0, closed = 0;
   std::vector<Eigen::Vector4i> new_tets;
   std::vector<Eigen::RowVector3d> new_points;
-  for (int o = 0; o < components; ++o) {
-    std::vector<Eigen::Vector3i> plug;
+  for (std::vector<Eigen::Vector3i>& plug : sideless_boundary_pieces(d)) {
     bool sideless_vertex = false;
-    for (size_t i = 0; i < walls.size(); ++i)
-      if (comp[i] == o) {
-        plug.push_back(walls[i]);
-        for (int k = 0; k < 3; ++k) sideless_vertex |= d.side_mask(walls[i](k)) == 0;
-      }
+    for (const Eigen::Vector3i& t : plug)
+      for (int k = 0; k < 3; ++k) sideless_vertex |= d.side_mask(t(k)) == 0;
     if (!sideless_vertex) continue;  // where sides meet, not an opening
     const std::vector<Eigen::Vector3i> wall = plug;
     const std::vector<std::vector<int>> loops = rim_loops(wall);

@@ -11,6 +11,8 @@
 //
 // An opening whose cap cannot be built or meshed (e.g. rims that touch each other, or caps that would cut through
 // its wall) stays open; the returned description says how many were closed.
+#include <vector>
+
 #include "core/fields/tet_domain.h"
 
 namespace facehex {
@@ -25,6 +27,10 @@ TetDomain closed_domain(const VolumeMesh& hex);
 // one rim loop is a dent, not an opening. `kind` names the domain in the description ("the model's own tets");
 // closed_openings counts the openings closed.
 TetDomain close_openings(TetDomain domain, const std::string& kind);
+
+// A domain's boundary triangles with no side common to their three vertices (the walls of its openings, and patches
+// where sides meet), in pieces connected through shared edges, each piece's triangles in boundary order.
+std::vector<std::vector<Eigen::Vector3i>> sideless_boundary_pieces(const TetDomain& domain);
 
 // A domain's boundary as a closed surface on the domain's boundary vertices (renumbered), each triangle labelled
 // Side + 1 with the side its three vertices share (0: none, the walls of an opening left open; tetrahedralize.h's
