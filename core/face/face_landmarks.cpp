@@ -439,12 +439,13 @@ void check_plausible(const FaceLandmarks& l, const std::string& remedy) {
                      number(at(above).z()) + ")");
     above = name;
   }
-  const auto range = [&](const char* a, const char* b, double lo, double hi, const char* blame) {
+  const auto range = [&](const char* a, const char* b, double lo, double hi, const char* blame,
+                         const std::string& why = "") {
     if (!has(a) || !has(b)) return;
     const double d = (at(a) - at(b)).norm();
     if (d < lo || d > hi)
       fail(blame, std::string("the distance ") + a + " - " + b + " is " + number(d) + ", outside the adult range " +
-                      number(lo) + " to " + number(hi));
+                      number(lo) + " to " + number(hi) + why);
   };
   range("nasion", "subnasale", kNasionSubnasale[0], kNasionSubnasale[1], "subnasale");
   range("subnasale", "menton", 45, 95, "menton");
@@ -462,12 +463,14 @@ void check_plausible(const FaceLandmarks& l, const std::string& remedy) {
       if (has(mouth) && at(eye).z() <= at(mouth).z()) fail(eye, std::string("it lies below the ") + mouth);
     if (has("glabella") && at(eye).z() >= at("glabella").z()) fail(eye, "it lies above the glabella");
   }
-  range("tragus left", "tragus right", 110, 175, "tragus");
+  // A segmented CT's posterior cut follows its tragi (core/segment/face_cuts.h): the message says how to place it.
+  const std::string cut = " (a CT's posterior cut follows the tragi found: --posterior-cut places it)";
+  range("tragus left", "tragus right", 110, 175, "tragus", cut);
   for (const char* tragus : {"tragus left", "tragus right"}) {
-    range("nasion", tragus, 80, 150, tragus);
-    if (has(tragus) && has("glabella") && at(tragus).z() >= at("glabella").z())
-      fail(tragus, "it lies above the glabella");
-    if (has(tragus) && has("menton") && at(tragus).z() <= at("menton").z()) fail(tragus, "it lies below the menton");
+    if (!has(tragus)) continue;
+    range("nasion", tragus, 80, 150, tragus, cut);
+    if (has("glabella") && at(tragus).z() >= at("glabella").z()) fail(tragus, "it lies above the glabella" + cut);
+    if (has("menton") && at(tragus).z() <= at("menton").z()) fail(tragus, "it lies below the menton" + cut);
   }
 }
 

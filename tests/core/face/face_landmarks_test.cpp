@@ -452,8 +452,12 @@ TEST(FaceLandmarks, TheTragiAModelCarriesAreListedWithTheirStatusAndChecked) {
   EXPECT_EQ(l.points.at("tragus right"), tragi[0]->point);
   EXPECT_EQ(l.points.at("tragus left"), tragi[1]->point);
   for (const NamedLandmark& n : named_landmarks(l)) {
-    if (n.name == "tragus right") EXPECT_EQ(n.status, LandmarkStatus::found);
-    if (n.name == "tragus left") EXPECT_EQ(n.status, LandmarkStatus::estimated);
+    if (n.name == "tragus right") {
+      EXPECT_EQ(n.status, LandmarkStatus::found);
+    }
+    if (n.name == "tragus left") {
+      EXPECT_EQ(n.status, LandmarkStatus::estimated);
+    }
   }
   EXPECT_EQ(implausibility(l), "");
   // Tragi 50 mm apart (no adult head is so narrow), one above the glabella, both 140 mm further back (no head is so
@@ -472,6 +476,7 @@ TEST(FaceLandmarks, TheTragiAModelCarriesAreListedWithTheirStatusAndChecked) {
   EXPECT_NE(implausibility(far).find("implausible tragus left: the distance nasion - tragus left"), std::string::npos)
       << implausibility(far);
   EXPECT_NE(implausibility(far).find("--landmarks FILE"), std::string::npos);
+  EXPECT_NE(implausibility(far).find("--posterior-cut places it"), std::string::npos);
   // Without them, no tragus.
   EXPECT_FALSE(find_face_landmarks(face.V, face.side_mask).points.count("tragus left"));
 }
