@@ -21,6 +21,9 @@ constexpr double kDeepFraction = 0.5;         // of the hollow's greatest depth:
 constexpr double kWallHeight = 5.0;           // mm the skin reaches further out in front of the wall
 constexpr double kWallGap = 2.0;              // mm in front of the wall where it does
 constexpr double kWallTolerance = 1.0;        // mm: walls this close to the most anterior one are the tragus's
+// mm a tragus may lie behind the auricle's front edge: on the real CTs it lies 2-3 mm in front of it; a wall further
+// back is one inside the concha, and the posterior cut would follow it.
+constexpr double kMaxBehindAuricleEdge = 8.0;
 
 // A 2D map over the window's rows (j) and levels (k), k slowest.
 struct Map2 {
@@ -166,7 +169,9 @@ std::optional<Tragus> find_tragus(const Mask& head, const FaceAnatomy& anatomy, 
     const double edge = reach(j + 1, k);
     sum_point += Eigen::Vector3d(side == 0 ? centre - edge : centre + edge, g.point(0, j0 + j, 0).y() + 0.5 * dy, z);
   }
-  return Tragus{sum_point / (last - first + 1), anatomy.ears_estimated};
+  const Eigen::Vector3d point = sum_point / (last - first + 1);
+  if (point.y() < front - kMaxBehindAuricleEdge) return std::nullopt;
+  return Tragus{point, anatomy.ears_estimated};
 }
 
 }  // namespace

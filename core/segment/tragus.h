@@ -16,7 +16,8 @@
 //  4. the tragus: the levels whose wall lies within kWallTolerance of the most anterior wall, contiguous from the
 //     lowest level where it is the most anterior; its point is their mean height, the wall between the hollow's row
 //     and the next in front, and the skin's reach in that next row: the lateral free edge of the tragus, where it
-//     overhangs the hollow. Estimated where rule 5 found no auricle standing out (its front of the widest rows).
+//     overhangs the hollow. None where that lies more than kMaxBehindAuricleEdge behind the auricle's front edge (a
+//     wall inside the concha); estimated where rule 5 found no auricle standing out (its front of the widest rows).
 #include "core/mesh/tragi.h"
 #include "core/segment/face_anatomy.h"
 #include "core/segment/voxel_grid.h"

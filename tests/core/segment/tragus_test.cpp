@@ -27,7 +27,7 @@ EarPhantom ear_phantom(bool hollow) {
         const double x = i, y = j, z = k;
         const bool in_head = std::pow((x - 100) / 70, 2) + std::pow((y - 100) / 90, 2) <= 1;
         const bool in_block = x >= 165 && x <= 185 && y >= 60 && y <= 110 && z >= 50 && z <= 85;
-        const bool in_hollow = hollow && x >= 172 && y >= 85 && y <= 100 && z >= 58 && z <= 75;
+        const bool in_hollow = hollow && x >= 172 && y >= 85 && y <= 104 && z >= 58 && z <= 75;
         p.head(i, j, k) = (in_head || in_block) && !in_hollow;
       }
   p.anatomy.centre_x = 100;
@@ -43,9 +43,9 @@ TEST(Tragus, TheFreeEdgeInFrontOfTheEarsHollow) {
   const Tragi tragi = find_tragi(p.head, p.anatomy);
   EXPECT_FALSE(tragi[0]);  // no auricle on the -x side
   ASSERT_TRUE(tragi[1]);
-  // Between the hollow's front row (y 100) and the next, at the middle of the wall's levels, as far out as the tragus.
+  // Between the hollow's front row (y 104) and the next, at the middle of the wall's levels, as far out as the tragus.
   EXPECT_NEAR(tragi[1]->point.x(), 185, 1e-9);
-  EXPECT_NEAR(tragi[1]->point.y(), 100.5, 1e-9);
+  EXPECT_NEAR(tragi[1]->point.y(), 104.5, 1e-9);
   EXPECT_NEAR(tragi[1]->point.z(), 66.5, 1e-9);
   EXPECT_FALSE(tragi[1]->estimated);
 }
@@ -63,8 +63,17 @@ TEST(Tragus, TheMirroredEarGivesTheMirroredTragus) {
   EXPECT_FALSE(tragi[1]);
   ASSERT_TRUE(tragi[0]);
   EXPECT_NEAR(tragi[0]->point.x(), d[0] - 1 - 185, 1e-9);
-  EXPECT_NEAR(tragi[0]->point.y(), 100.5, 1e-9);
+  EXPECT_NEAR(tragi[0]->point.y(), 104.5, 1e-9);
   EXPECT_NEAR(tragi[0]->point.z(), 66.5, 1e-9);
+}
+
+TEST(Tragus, AWallFarBehindTheAuriclesFrontEdgeIsNoTragus) {
+  // The auricle's front edge 14.5 mm in front of the wall: the wall is one inside the concha.
+  EarPhantom p = ear_phantom(true);
+  p.anatomy.ear_fronts_y[1] = 119;
+  EXPECT_FALSE(find_tragi(p.head, p.anatomy)[1]);
+  p.anatomy.ear_fronts_y[1] = 112;  // 7.5 mm: still the tragus
+  EXPECT_TRUE(find_tragi(p.head, p.anatomy)[1]);
 }
 
 TEST(Tragus, NoHollowNoTragus) {
@@ -84,7 +93,7 @@ TEST(Tragus, AShallowDentIsNoEar) {
   // A hollow 4 mm deep (less than kMinDepth) over the same area: a skin fold, not the concha.
   EarPhantom p = ear_phantom(false);
   for (int k = 58; k <= 75; ++k)
-    for (int j = 85; j <= 100; ++j)
+    for (int j = 85; j <= 104; ++j)
       for (int i = 182; i <= 185; ++i) p.head(i, j, k) = 0;
   EXPECT_FALSE(find_tragi(p.head, p.anatomy)[1]);
 }
