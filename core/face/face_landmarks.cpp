@@ -407,10 +407,10 @@ FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorX
                                   const LandmarkOptions& options) {
   FaceLandmarks l = find_on_skin(V, side_mask, options);
   if (options.tragi)
-    for (const auto& [side, name] : {std::pair{0, "tragus right"}, std::pair{1, "tragus left"}})
+    for (int side = 0; side < 2; ++side)
       if (const std::optional<Tragus>& tragus = (*options.tragi)[side]) {
-        l.points[name] = tragus->point;
-        if (tragus->estimated) l.estimated.push_back(name);
+        l.points[kTragusNames[side]] = tragus->point;
+        if (tragus->estimated) l.estimated.push_back(kTragusNames[side]);
       }
   return l;
 }

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "core/mesh/tragi.h"
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
 #include "core/util/json_errors.h"
@@ -114,7 +115,7 @@ const std::vector<std::string>& landmark_names() {
   return names;
 }
 
-bool lies_on_model_skin(const std::string& name) { return name != "tragus left" && name != "tragus right"; }
+bool lies_on_model_skin(const std::string& name) { return name != kTragusNames[0] && name != kTragusNames[1]; }
 
 const char* status_name(LandmarkStatus status) {
   switch (status) {

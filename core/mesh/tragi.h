@@ -22,6 +22,8 @@ struct Tragus {
 
 // Right (-x) and left (+x).
 using Tragi = std::array<std::optional<Tragus>, 2>;
+// The landmark names of Tragi's two sides (core/face/landmark_file.h).
+inline constexpr std::array<const char*, 2> kTragusNames = {"tragus right", "tragus left"};
 
 // The tragi, or none when the model does not carry them. Throws facehex::Error(source, ...) when the field data is
 // not 2 x 4 with rows of finite numbers (or all NaN) and a status of 0 or 1.

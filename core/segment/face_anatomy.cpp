@@ -510,8 +510,8 @@ std::string face_anatomy_text(const FaceAnatomy& a) {
     << ", menton " << point_text(a.menton) << ", front of the ears y " << a.ear_front_y << " (-x ear " << ear(0)
     << ", +x ear " << ear(1)
     << (a.ears_estimated ? "; estimated: no auricle stands out, the front of the widest rows" : "") << ")";
-  for (const auto& [side, name] : {std::pair{0, "tragus right"}, std::pair{1, "tragus left"}})
-    s << ", " << name << " "
+  for (int side = 0; side < 2; ++side)
+    s << ", " << kTragusNames[side] << " "
       << (a.tragi[side] ? point_text(a.tragi[side]->point) + (a.tragi[side]->estimated ? " (estimated)" : "")
                         : std::string("unseen"));
   if (a.lowest_head_z > -std::numeric_limits<double>::infinity()) s << ", head sections above z " << a.lowest_head_z;

@@ -6,6 +6,8 @@
 #include <map>
 #include <vector>
 
+#include "core/segment/morphology.h"
+
 namespace facehex {
 namespace {
 
@@ -25,56 +27,37 @@ constexpr double kWallTolerance = 1.0;        // mm: walls this close to the mos
 // back is one inside the concha, and the posterior cut would follow it.
 constexpr double kMaxBehindAuricleEdge = 8.0;
 
-// A 2D map over the window's rows (j) and levels (k), k slowest.
-struct Map2 {
-  int rows = 0, levels = 0;
-  std::vector<double> v;
-  Map2(int r, int l, double value) : rows(r), levels(l), v(static_cast<size_t>(r) * l, value) {}
-  double& operator()(int j, int k) { return v[static_cast<size_t>(k) * rows + j]; }
-  double operator()(int j, int k) const { return v[static_cast<size_t>(k) * rows + j]; }
-};
+// A map over the window's rows (j, along y) and levels (k, along z): a grid one voxel thick in x's place, so that the
+// segmentation's grid tools (label_components) read it.
+using Map = VoxelGrid<double>;
+
+Map window_map(int rows, int levels, double dy, double dz) {
+  GridGeometry g;
+  g.dims = {rows, levels, 1};
+  g.spacing = Eigen::Vector3d(dy, dz, 1);
+  return Map(g, 0);
+}
 
 // Grey dilation (max) or erosion (min) by a disc of `radius` mm, the map extended by its border values.
-Map2 grey(const Map2& m, double radius, double dy, double dz, bool max) {
+Map grey(const Map& m, double radius, bool max) {
+  const GridGeometry& g = m.geometry;
+  const double dy = g.spacing.x(), dz = g.spacing.y();
   const int ry = static_cast<int>(radius / dy), rz = static_cast<int>(radius / dz);
   std::vector<std::pair<int, int>> disc;
   for (int b = -rz; b <= rz; ++b)
     for (int a = -ry; a <= ry; ++a)
       if ((a * dy) * (a * dy) + (b * dz) * (b * dz) <= radius * radius + 1e-9) disc.emplace_back(a, b);
-  Map2 out(m.rows, m.levels, 0);
-  for (int k = 0; k < m.levels; ++k)
-    for (int j = 0; j < m.rows; ++j) {
+  Map out(g, 0);
+  for (int k = 0; k < g.dims[1]; ++k)
+    for (int j = 0; j < g.dims[0]; ++j) {
       double best = max ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
       for (const auto& [a, b] : disc) {
-        const double value = m(std::clamp(j + a, 0, m.rows - 1), std::clamp(k + b, 0, m.levels - 1));
+        const double value = m(std::clamp(j + a, 0, g.dims[0] - 1), std::clamp(k + b, 0, g.dims[1] - 1), 0);
         best = max ? std::max(best, value) : std::min(best, value);
       }
-      out(j, k) = best;
+      out(j, k, 0) = best;
     }
   return out;
-}
-
-// 4-connected pieces of the pixels where `in` holds: a label per pixel (-1 outside) and the count.
-int pieces(const std::vector<bool>& in, int rows, int levels, std::vector<int>& label) {
-  label.assign(in.size(), -1);
-  int count = 0;
-  for (size_t start = 0; start < in.size(); ++start) {
-    if (!in[start] || label[start] >= 0) continue;
-    std::vector<size_t> stack = {start};
-    label[start] = count;
-    while (!stack.empty()) {
-      const size_t p = stack.back();
-      stack.pop_back();
-      const int j = static_cast<int>(p % rows), k = static_cast<int>(p / rows);
-      for (const auto& [a, b] : {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
-        if (j + a < 0 || j + a >= rows || k + b < 0 || k + b >= levels) continue;
-        const size_t q = static_cast<size_t>(k + b) * rows + (j + a);
-        if (in[q] && label[q] < 0) label[q] = count, stack.push_back(q);
-      }
-    }
-    ++count;
-  }
-  return count;
 }
 
 std::optional<Tragus> find_tragus(const Mask& head, const FaceAnatomy& anatomy, int side) {
@@ -93,39 +76,42 @@ std::optional<Tragus> find_tragus(const Mask& head, const FaceAnatomy& anatomy, 
   if (rows < 3 || levels < 3) return std::nullopt;
 
   // 1. The reach map.
-  Map2 reach(rows, levels, 0);
+  const double dy = g.spacing.y(), dz = g.spacing.z();
+  Map reach = window_map(rows, levels, dy, dz);
   for (int k = 0; k < levels; ++k) {
     const double centre = anatomy.centre_at(g.point(0, 0, k0 + k).z());
     for (int j = 0; j < rows; ++j)
       for (int i = 0; i < g.dims[0]; ++i)
         if (head(i, j0 + j, k0 + k)) {
           const double out = side == 0 ? centre - g.point(i, 0, 0).x() : g.point(i, 0, 0).x() - centre;
-          reach(j, k) = std::max(reach(j, k), out);
+          reach(j, k, 0) = std::max(reach(j, k, 0), out);
         }
   }
   // 2. The hollow.
-  const double dy = g.spacing.y(), dz = g.spacing.z();
-  const Map2 closed = grey(grey(reach, kClosingRadius, dy, dz, true), kClosingRadius, dy, dz, false);
-  Map2 depth(rows, levels, 0);
-  for (size_t p = 0; p < depth.v.size(); ++p) depth.v[p] = reach.v[p] > 0 ? closed.v[p] - reach.v[p] : 0;
-  std::vector<bool> deep(depth.v.size());
-  for (size_t p = 0; p < deep.size(); ++p) deep[p] = depth.v[p] >= kMinDepth;
-  std::vector<int> label;
-  const int count = pieces(deep, rows, levels, label);
+  const Map closed = grey(grey(reach, kClosingRadius, true), kClosingRadius, false);
+  Map depth = window_map(rows, levels, dy, dz);
+  Mask deep(depth.geometry, 0);
+  for (size_t p = 0; p < depth.data.size(); ++p) {
+    depth.data[p] = reach.data[p] > 0 ? closed.data[p] - reach.data[p] : 0;
+    deep.data[p] = depth.data[p] >= kMinDepth;
+  }
+  std::vector<int> label;  // 1..count, 0: not deep
+  std::vector<size_t> sizes;
+  const int count = label_components(deep, label, sizes);
   if (count == 0) return std::nullopt;
-  std::vector<double> sum(count, 0), deepest(count, 0);
+  std::vector<double> sum(count + 1, 0), deepest(count + 1, 0);
   for (size_t p = 0; p < label.size(); ++p)
-    if (label[p] >= 0)
-      sum[label[p]] += depth.v[p] * dy * dz, deepest[label[p]] = std::max(deepest[label[p]], depth.v[p]);
-  const int main = static_cast<int>(std::max_element(sum.begin(), sum.end()) - sum.begin());
+    if (label[p] > 0)
+      sum[label[p]] += depth.data[p] * dy * dz, deepest[label[p]] = std::max(deepest[label[p]], depth.data[p]);
+  const int main = static_cast<int>(std::max_element(sum.begin() + 1, sum.end()) - sum.begin());
   if (sum[main] < kMinHollow || deepest[main] < kMinMaxDepth) return std::nullopt;
-  Map2 in_main(rows, levels, 0);
-  for (size_t p = 0; p < label.size(); ++p) in_main.v[p] = label[p] == main ? 1 : 0;
-  const Map2 near_main = grey(in_main, kClosingRadius, dy, dz, true);
-  std::vector<bool> joined(count, false);
+  Map in_main = window_map(rows, levels, dy, dz);
+  for (size_t p = 0; p < label.size(); ++p) in_main.data[p] = label[p] == main ? 1 : 0;
+  const Map near_main = grey(in_main, kClosingRadius, true);
+  std::vector<bool> joined(count + 1, false);
   joined[main] = true;
   for (size_t p = 0; p < label.size(); ++p)
-    if (label[p] >= 0 && near_main.v[p] > 0 && deepest[label[p]] >= kMinMaxDepth) joined[label[p]] = true;
+    if (label[p] > 0 && near_main.data[p] > 0 && deepest[label[p]] >= kMinMaxDepth) joined[label[p]] = true;
   const double greatest = deepest[main];
 
   // 3. The front wall per level.
@@ -133,11 +119,11 @@ std::optional<Tragus> find_tragus(const Mask& head, const FaceAnatomy& anatomy, 
   std::map<int, int> wall;  // level -> row
   for (int k = 0; k < levels; ++k)
     for (int j = rows - 1; j >= 0; --j) {
-      const size_t p = static_cast<size_t>(k) * rows + j;
-      if (label[p] < 0 || !joined[label[p]] || depth.v[p] < kDeepFraction * greatest) continue;
+      const size_t p = depth.geometry.index(j, k, 0);
+      if (!joined[label[p]] || depth.data[p] < kDeepFraction * greatest) continue;
       double ahead = -std::numeric_limits<double>::infinity();
-      for (int a = 1; a <= gap && j + a < rows; ++a) ahead = std::max(ahead, reach(j + a, k));
-      if (ahead - reach(j, k) >= kWallHeight) {
+      for (int a = 1; a <= gap && j + a < rows; ++a) ahead = std::max(ahead, reach(j + a, k, 0));
+      if (ahead - reach(j, k, 0) >= kWallHeight) {
         wall[k] = j;
         break;
       }
@@ -156,7 +142,7 @@ std::optional<Tragus> find_tragus(const Mask& head, const FaceAnatomy& anatomy, 
   const int tolerance = static_cast<int>(std::lround(kWallTolerance / dy));
   const auto on_wall = [&](int k) {
     const auto it = wall.find(k);
-    return it != wall.end() && it->second >= most_anterior - tolerance && it->second + 1 < rows;
+    return it != wall.end() && it->second >= most_anterior - tolerance;
   };
   int first = lowest, last = lowest;
   while (on_wall(last + 1)) ++last;
@@ -166,7 +152,7 @@ std::optional<Tragus> find_tragus(const Mask& head, const FaceAnatomy& anatomy, 
     const int j = wall.at(k);
     const double z = g.point(0, 0, k0 + k).z();
     const double centre = anatomy.centre_at(z);
-    const double edge = reach(j + 1, k);
+    const double edge = reach(j + 1, k, 0);  // a wall has a row in front of it (step 3)
     sum_point += Eigen::Vector3d(side == 0 ? centre - edge : centre + edge, g.point(0, j0 + j, 0).y() + 0.5 * dy, z);
   }
   const Eigen::Vector3d point = sum_point / (last - first + 1);
