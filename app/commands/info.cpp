@@ -6,10 +6,10 @@
 #include "core/fields/constraint_set.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh/corner_jacobian.h"
+#include "core/mesh/ct_landmarks.h"
 #include "core/mesh/mid_sagittal_plane.h"
 #include "core/mesh/sides.h"
 #include "core/mesh/skin_points.h"
-#include "core/mesh/tragi.h"
 
 namespace facehex::cli {
 
@@ -51,17 +51,18 @@ int cmd_info(const Argv& argv) {
   if (const std::optional<Eigen::MatrixXd> skin = skin_points(m, path))
     std::cout << "  skin points " << skin->rows()
               << " (the CT's skin at the segmentation's working spacing; the landmarks are found on them)\n";
-  if (const std::optional<Tragi> tragi = facehex::tragi(m, path)) {
-    std::cout << "  tragi (from the segmentation):";
-    for (const auto& [side, name] : {std::pair{0, "right"}, std::pair{1, "left"}}) {
-      std::cout << " " << name << " ";
-      if (const std::optional<Tragus>& t = (*tragi)[side])
-        std::cout << "(" << t->point.x() << ", " << t->point.y() << ", " << t->point.z() << ") mm"
-                  << (t->estimated ? " (estimated)" : "");
+  if (const std::optional<CtLandmarks> found = ct_landmarks(m, path)) {
+    const auto print = [](const char* name, const std::optional<CtLandmark>& l) {
+      std::cout << "    " << name << " ";
+      if (l)
+        std::cout << "(" << l->point.x() << ", " << l->point.y() << ", " << l->point.z() << ") mm"
+                  << (l->estimated ? " (estimated)" : "") << "\n";
       else
-        std::cout << "unseen";
-    }
-    std::cout << "\n";
+        std::cout << "unseen\n";
+    };
+    std::cout << "  landmarks found in the CT by the segmentation:\n";
+    for (size_t side = 0; side < kTragusNames.size(); ++side) print(kTragusNames[side], found->tragi[side]);
+    for (size_t c = 0; c < kEyeCornerNames.size(); ++c) print(kEyeCornerNames[c], found->eye_corners[c]);
   }
   return 0;
 }

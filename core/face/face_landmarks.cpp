@@ -265,7 +265,7 @@ LandmarkOptions landmark_options_for(const VolumeMesh& model, const std::string&
   LandmarkOptions options;
   options.mid_sagittal_plane = mid_sagittal_plane(model, source);
   options.skin_points = skin_points(model, source);
-  options.tragi = tragi(model, source);
+  options.ct_landmarks = ct_landmarks(model, source);
   return options;
 }
 
@@ -406,12 +406,14 @@ FaceLandmarks find_on_skin(const Eigen::MatrixXd& V, const Eigen::VectorXi& side
 FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
                                   const LandmarkOptions& options) {
   FaceLandmarks l = find_on_skin(V, side_mask, options);
-  if (options.tragi)
-    for (int side = 0; side < 2; ++side)
-      if (const std::optional<Tragus>& tragus = (*options.tragi)[side]) {
-        l.points[kTragusNames[side]] = tragus->point;
-        if (tragus->estimated) l.estimated.push_back(kTragusNames[side]);
-      }
+  if (!options.ct_landmarks) return l;
+  const auto add = [&l](const char* name, const std::optional<CtLandmark>& landmark) {
+    if (!landmark) return;
+    l.points[name] = landmark->point;
+    if (landmark->estimated) l.estimated.push_back(name);
+  };
+  for (size_t side = 0; side < kTragusNames.size(); ++side) add(kTragusNames[side], options.ct_landmarks->tragi[side]);
+  for (size_t c = 0; c < kEyeCornerNames.size(); ++c) add(kEyeCornerNames[c], options.ct_landmarks->eye_corners[c]);
   return l;
 }
 
@@ -457,6 +459,10 @@ void check_plausible(const FaceLandmarks& l, const std::string& remedy) {
       fail("menton", "the lower face (subnasale - menton) is " + std::to_string(static_cast<int>(100 * ratio)) +
                          " % of the face height (nasion - menton), outside the adult 45 to 70 %");
   }
+  range("exocanthion left", "exocanthion right", 70, 120, "exocanthion");
+  range("endocanthion left", "endocanthion right", 20, 50, "endocanthion");
+  range("endocanthion left", "exocanthion left", 20, 45, "exocanthion left");
+  range("endocanthion right", "exocanthion right", 20, 45, "exocanthion right");
   for (const char* eye : {"endocanthion left", "exocanthion left", "endocanthion right", "exocanthion right"}) {
     if (!has(eye)) continue;
     for (const char* mouth : {"cheilion left", "cheilion right"})

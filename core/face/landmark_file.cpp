@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "core/mesh/tragi.h"
+#include "core/mesh/ct_landmarks.h"
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
 #include "core/util/json_errors.h"

@@ -33,7 +33,7 @@ struct NamedLandmark {
 // paired ones (patient's left, then right).
 const std::vector<std::string>& landmark_names();
 // Whether the landmark lies on a face model's skin: all but the tragi, which lie behind its posterior cut (the
-// segmentation finds them in the CT, core/mesh/tragi.h).
+// segmentation finds them in the CT, core/mesh/ct_landmarks.h).
 bool lies_on_model_skin(const std::string& name);
 
 const char* status_name(LandmarkStatus status);

@@ -49,7 +49,7 @@
 #include <string>
 
 #include "core/mesh/head_turn.h"
-#include "core/mesh/tragi.h"
+#include "core/mesh/ct_landmarks.h"
 #include "core/segment/voxel_grid.h"
 
 namespace facehex {

@@ -35,7 +35,7 @@ constexpr double kTragusBeforeAuricleEdge = 3.0;
 
 double front_of_the_ears(const FaceAnatomy& anatomy) {
   double front = -std::numeric_limits<double>::infinity();
-  for (const std::optional<Tragus>& tragus : anatomy.tragi)
+  for (const std::optional<CtLandmark>& tragus : anatomy.tragi)
     if (tragus && !tragus->estimated) front = std::max(front, tragus->point.y());
   return std::isfinite(front) ? front : anatomy.ear_front_y + kTragusBeforeAuricleEdge;
 }

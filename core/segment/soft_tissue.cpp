@@ -5,11 +5,14 @@
 #include <set>
 #include <sstream>
 
+#include "core/face/face_landmarks.h"
+#include "core/fields/constraint_set.h"
+#include "core/mesh/ct_landmarks.h"
 #include "core/mesh/mid_sagittal_plane.h"
 #include "core/mesh/side_mask.h"
 #include "core/mesh/skin_points.h"
-#include "core/mesh/tragi.h"
 #include "core/segment/distance_transform.h"
+#include "core/segment/eye_corners.h"
 #include "core/segment/face_anatomy.h"
 #include "core/segment/head_frame.h"
 #include "core/segment/iso_surface.h"
@@ -259,6 +262,22 @@ SurfaceMesh level_surface_with_cuts(const Mask& tissue, FaceCuts& cuts, const Se
                              "--bottom-cut, --posterior-cut");
 }
 
+// The eye corners found in the CT (eye_corners.h), by the face's mid-sagittal plane, nasion and pronasale on the
+// model, next to the tragi. Left out when those are not found: the transfer says why.
+void add_eye_corners(const CtVolume& ct, PatientModel& model) {
+  FaceLandmarks landmarks;
+  try {
+    landmarks = find_face_landmarks(model.mesh.V, side_mask_of(model.mesh), landmark_options_for(model.mesh, "model"));
+  } catch (const Error&) {
+    return;
+  }
+  if (!landmarks.points.count("nasion") || !landmarks.points.count("pronasale")) return;
+  CtLandmarks found = ct_landmarks(model.mesh, "model").value_or(CtLandmarks{});
+  found.eye_corners = find_eye_corners(ct.intensity, model.thresholds.skin, landmarks.plane,
+                                       landmarks.points.at("nasion"), landmarks.points.at("pronasale"));
+  set_ct_landmarks(model.mesh, found);
+}
+
 }  // namespace
 
 PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& options, const ProgressCallback& progress) {
@@ -456,11 +475,14 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
     skin.row(static_cast<Eigen::Index>(i)) = turn.to_model(surface.V.row(on_skin[i]).transpose()).transpose();
   set_skin_points(model.mesh, skin);
   if (model.cuts.anatomy) {
-    Tragi tragi = model.cuts.anatomy->tragi;
-    for (std::optional<Tragus>& tragus : tragi)
+    CtLandmarks found;
+    found.tragi = model.cuts.anatomy->tragi;
+    for (std::optional<CtLandmark>& tragus : found.tragi)
       if (tragus) tragus->point = turn.to_model(tragus->point);
-    set_tragi(model.mesh, tragi);
+    set_ct_landmarks(model.mesh, found);
   }
+  step("the eye corners", 0.93);
+  add_eye_corners(ct, model);
   model.boundary_faces = std::move(tets.boundary_faces);
   model.boundary_sides = tets.boundary_labels.array() - 1;
   step("checks", 0.95);

@@ -22,7 +22,9 @@
 //  7. TetGen with the side labels as facet markers, side_mask per vertex from the labelled boundary triangles;
 //     When that surface has tunnels (Euler characteristic other than 2; thin tissue pierced), steps 4-6 run again
 //     with min_thickness and smoothing_sigma raised, up to twice (PatientModel::repair says what was done);
-//  8. checks: one solid, boundary of Euler characteristic 2 (a ball), each of the six sides one connected patch.
+//  8. the landmarks the model's skin does not show, read in the CT and kept as field data (core/mesh/ct_landmarks.h):
+//     the tragi (tragus.h, with the cuts) and the eye corners (eye_corners.h, by the landmarks found on the model);
+//  9. checks: one solid, boundary of Euler characteristic 2 (a ball), each of the six sides one connected patch.
 #include <optional>
 #include <string>
 

@@ -60,7 +60,7 @@ Map grey(const Map& m, double radius, bool max) {
   return out;
 }
 
-std::optional<Tragus> find_tragus(const Mask& head, const FaceAnatomy& anatomy, int side) {
+std::optional<CtLandmark> find_tragus(const Mask& head, const FaceAnatomy& anatomy, int side) {
   const GridGeometry& g = head.geometry;
   const double front = anatomy.ear_fronts_y[side];
   if (!std::isfinite(front)) return std::nullopt;
@@ -157,7 +157,7 @@ std::optional<Tragus> find_tragus(const Mask& head, const FaceAnatomy& anatomy, 
   }
   const Eigen::Vector3d point = sum_point / (last - first + 1);
   if (point.y() < front - kMaxBehindAuricleEdge) return std::nullopt;
-  return Tragus{point, anatomy.ears_estimated};
+  return CtLandmark{point, anatomy.ears_estimated};
 }
 
 }  // namespace

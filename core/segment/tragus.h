@@ -18,7 +18,7 @@
 //     and the next in front, and the skin's reach in that next row: the lateral free edge of the tragus, where it
 //     overhangs the hollow. None where that lies more than kMaxBehindAuricleEdge behind the auricle's front edge (a
 //     wall inside the concha); estimated where rule 5 found no auricle standing out (its front of the widest rows).
-#include "core/mesh/tragi.h"
+#include "core/mesh/ct_landmarks.h"
 #include "core/segment/face_anatomy.h"
 #include "core/segment/voxel_grid.h"
 

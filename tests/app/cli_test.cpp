@@ -330,7 +330,9 @@ TEST_F(Cli, SegmentTakesTheCutsGivenAndRejectsBadOnes) {
   EXPECT_NE(r.output.find("mid-sagittal plane x = 100.0 mm at z = 0.0 mm, leaning 0.0 degrees"), std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("skin points "), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("tragi (from the segmentation): right ("), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("landmarks found in the CT by the segmentation:\n    tragus right ("), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("\n    exocanthion left "), std::string::npos) << r.output;
   // A turn given: the cuts are placed in the head frame turned by it, the model stays in the CT's frame and its plane
   // says how it is turned.
   r = run("segment " + ct + " --edge-length 4 --head-turn 5 -o " + path("turned.vtu"));

@@ -441,13 +441,16 @@ std::string implausibility(const FaceLandmarks& l) {
   return "";
 }
 
-TEST(FaceLandmarks, TheTragiAModelCarriesAreListedWithTheirStatusAndChecked) {
+TEST(FaceLandmarks, TheTragiAndEyeCornersAModelCarriesAreListedWithTheirStatusAndChecked) {
   const PhantomFace face;
   LandmarkOptions options;
-  Tragi tragi;
-  tragi[0] = Tragus{Eigen::Vector3d(PhantomFace::x0 - 70, -10, 0), false};
-  tragi[1] = Tragus{Eigen::Vector3d(PhantomFace::x0 + 70, -10, 0), true};
-  options.tragi = tragi;
+  CtLandmarks found;
+  Tragi& tragi = found.tragi;
+  tragi[0] = CtLandmark{Eigen::Vector3d(PhantomFace::x0 - 70, -10, 0), false};
+  tragi[1] = CtLandmark{Eigen::Vector3d(PhantomFace::x0 + 70, -10, 0), true};
+  found.eye_corners[1] = CtLandmark{Eigen::Vector3d(PhantomFace::x0 - 45, 60, 30), false};
+  found.eye_corners[3] = CtLandmark{Eigen::Vector3d(PhantomFace::x0 + 45, 60, 30), true};
+  options.ct_landmarks = found;
   const FaceLandmarks l = find_face_landmarks(face.V, face.side_mask, options);
   EXPECT_EQ(l.points.at("tragus right"), tragi[0]->point);
   EXPECT_EQ(l.points.at("tragus left"), tragi[1]->point);
@@ -459,7 +462,24 @@ TEST(FaceLandmarks, TheTragiAModelCarriesAreListedWithTheirStatusAndChecked) {
       EXPECT_EQ(n.status, LandmarkStatus::estimated);
     }
   }
+  EXPECT_EQ(l.points.at("exocanthion left"), found.eye_corners[3]->point);
+  EXPECT_FALSE(l.points.count("endocanthion left"));  // not seen
+  EXPECT_NE(std::find(l.estimated.begin(), l.estimated.end(), "exocanthion left"), l.estimated.end());
+  EXPECT_EQ(std::find(l.estimated.begin(), l.estimated.end(), "exocanthion right"), l.estimated.end());
   EXPECT_EQ(implausibility(l), "");
+  // Outer eye corners 125 mm apart (wider than any adult's), an eye 60 mm wide: errors naming the corner.
+  FaceLandmarks wide = l;
+  wide.points["exocanthion left"].x() = PhantomFace::x0 + 80;
+  EXPECT_NE(implausibility(wide).find("implausible exocanthion: the distance exocanthion left - exocanthion right is "
+                                      "125.0 mm"),
+            std::string::npos)
+      << implausibility(wide);
+  wide.points["exocanthion left"].x() = PhantomFace::x0 + 50;
+  wide.points["endocanthion left"] = Eigen::Vector3d(PhantomFace::x0 - 10, 60, 30);
+  EXPECT_NE(implausibility(wide).find("implausible exocanthion left: the distance endocanthion left - exocanthion "
+                                      "left is 60.0 mm"),
+            std::string::npos)
+      << implausibility(wide);
   // Tragi 50 mm apart (no adult head is so narrow), one above the glabella, both 140 mm further back (no head is so
   // deep): each is an error naming the tragus and the remedy.
   FaceLandmarks narrow = l;

@@ -130,8 +130,8 @@ TEST(FaceCuts, TheFrontOfTheEarsIsTheMoreAnteriorTragusFound) {
   FaceAnatomy a;
   a.ear_front_y = 60;
   EXPECT_NEAR(front_of_the_ears(a), 63, 1e-9);  // no tragus: where one would lie
-  a.tragi[0] = Tragus{Eigen::Vector3d(-70, 64.5, 90), false};
-  a.tragi[1] = Tragus{Eigen::Vector3d(70, 61.5, 90), false};
+  a.tragi[0] = CtLandmark{Eigen::Vector3d(-70, 64.5, 90), false};
+  a.tragi[1] = CtLandmark{Eigen::Vector3d(70, 61.5, 90), false};
   EXPECT_NEAR(front_of_the_ears(a), 64.5, 1e-9);
   a.tragi[0]->estimated = true;  // placed where no auricle stood out: not a tragus seen
   EXPECT_NEAR(front_of_the_ears(a), 61.5, 1e-9);

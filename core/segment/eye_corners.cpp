@@ -1,0 +1,344 @@
+#include "core/segment/eye_corners.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <optional>
+#include <vector>
+
+#include "core/mesh/head_turn.h"
+
+namespace facehex {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Rule 1: the front of the face.
+constexpr double kGrid = 0.5;           // mm: the front's grid in x and z
+constexpr double kFieldHalfWidth = 64;  // mm either side of the plane: past the widest adult exocanthion and the track
+constexpr double kBelow = 30;           // mm below the nasion: the lowest level of the slit's line
+constexpr double kAbove = 10;           // mm above the nasion: the highest
+constexpr double kFieldMargin = 6;      // mm the front reaches beyond those levels (the chord and the floor's window)
+constexpr double kRayFront = 10;        // mm in front of the pronasale where the rays start
+constexpr double kRayBack = 60;         // mm behind the nasion where they give up
+constexpr double kRayStep = 0.25;       // mm
+constexpr int kBisections = 6;          // the crossing to kRayStep / 64
+// Rule 2: the notch and the slit's line.
+constexpr double kChord = 3;       // mm: half the chord the notch depth is measured against
+constexpr double kSeedInner = 26;  // mm out: the seed's columns, on the lids between the nose and the corner
+constexpr double kSeedOuter = 34;
+constexpr double kSeedLowest = 15;  // mm below the nasion: the seed's lowest level (the nasion's height the highest)
+constexpr double kSeedColumn = 30;  // mm out: the column the line is followed from
+constexpr int kReach = 1;           // mm in z the line may move between neighbouring columns
+constexpr double kOuter = 60;       // mm out: the outer line's end
+constexpr double kInner = 5;        // mm out: the inner line's end
+// Rule 3: the slit seen.
+constexpr double kNarrowChord = 1.5;   // mm: the closed slit is 1 to 2 mm tall; wider chords see the lids' folds
+constexpr double kMinSlitDepth = 1.5;  // mm: walls steeper than 45 degrees on average
+constexpr double kExoInner = 35;       // mm out: the exocanthion's window (a biocular width of 70 to 104 mm)
+constexpr double kExoOuter = 52;
+// Rule 4: the slit's end.
+constexpr double kFloorBand = 2;  // mm either side of the line's height where the floor is looked for
+constexpr double kPitRise = 0.3;  // mm the floor rises beyond the slit's end (above a CT's noise on the front)
+constexpr double kPitReach = 3;   // mm outwards within which it does
+// Rule 5: the nose's side.
+constexpr double kWallSlope = 1;  // mm of y per mm inwards: steeper than 45 degrees
+// Rule 6: the floor's height.
+constexpr double kRefine = 4;            // mm either side of the line's height
+constexpr double kFloorTolerance = 0.1;  // mm behind the rearmost y
+// Rule 7: adult proportions (Farkas): a biocular width of about 92 mm, an intercanthal width of about 30 % of it,
+// and a canthal tilt of about 4 degrees.
+constexpr double kEstimatedExoOffset = 46;
+constexpr double kEstimatedExoDrop = 7.5;  // mm below the nasion when no line was followed
+constexpr double kEstimatedEndoFraction = 0.30;
+constexpr double kCanthalDrop = 2;
+
+// y(x, z) of the face's front in the head frame, bilinear between the grid's points; NaN where a ray met no skin.
+class FaceFront {
+ public:
+  FaceFront(const Field& ct, double threshold, const HeadTurn& frame, double x0, int nx, double z0, int nz,
+            double y_start, double y_stop)
+      : x0_(x0), z0_(z0), nx_(nx), nz_(nz), y_(static_cast<size_t>(nx) * nz, kNaN) {
+    const GridGeometry& g = ct.geometry;
+    // Outside the scan is air: a field-of-view cut is then a flat front, not the border slice repeated.
+    const auto skin = [&](double x, double y, double z) {
+      const Eigen::Vector3d p = frame.to_model(Eigen::Vector3d(x, y, z));
+      for (int a = 0; a < 3; ++a)
+        if (p(a) < g.lower(a) || p(a) > g.upper(a)) return false;
+      return sample(ct, p) >= threshold;
+    };
+    const int steps = static_cast<int>(std::floor((y_start - y_stop) / kRayStep));
+#pragma omp parallel for schedule(dynamic)
+    for (int k = 0; k < nz; ++k)
+      for (int i = 0; i < nx; ++i) {
+        const double x = x0 + i * kGrid, z = z0 + k * kGrid;
+        if (skin(x, y_start, z)) continue;  // the ray starts inside: no front
+        for (int s = 1; s <= steps; ++s) {
+          double outside = y_start - (s - 1) * kRayStep, inside = y_start - s * kRayStep;
+          if (!skin(x, inside, z)) continue;
+          for (int b = 0; b < kBisections; ++b) {
+            const double mid = 0.5 * (outside + inside);
+            (skin(x, mid, z) ? inside : outside) = mid;
+          }
+          y_[static_cast<size_t>(k) * nx + i] = 0.5 * (outside + inside);
+          break;
+        }
+      }
+  }
+
+  double operator()(double x, double z) const {
+    const double gx = (x - x0_) / kGrid, gz = (z - z0_) / kGrid;
+    if (!(gx >= 0 && gx <= nx_ - 1 && gz >= 0 && gz <= nz_ - 1)) return kNaN;
+    const int i = std::min(static_cast<int>(gx), nx_ - 2), k = std::min(static_cast<int>(gz), nz_ - 2);
+    const double fx = gx - i, fz = gz - k;
+    const auto at = [&](int a, int b) { return y_[static_cast<size_t>(k + b) * nx_ + i + a]; };
+    return at(0, 0) * (1 - fx) * (1 - fz) + at(1, 0) * fx * (1 - fz) + at(0, 1) * (1 - fx) * fz + at(1, 1) * fx * fz;
+  }
+
+ private:
+  double x0_, z0_;
+  int nx_, nz_;
+  std::vector<double> y_;
+};
+
+// The index of the largest (smallest) non-NaN value of v[lo..hi], or none.
+std::optional<int> extreme_index(const std::vector<double>& v, int lo, int hi, bool largest) {
+  std::optional<int> best;
+  for (int i = lo; i <= hi; ++i)
+    if (!std::isnan(v[i]) && (!best || (largest ? v[i] > v[*best] : v[i] < v[*best]))) best = i;
+  return best;
+}
+
+// A running mean of 3, NaN taken as 0 beyond the ends (numpy's "same" convolution).
+std::vector<double> running_mean3(const std::vector<double>& v) {
+  std::vector<double> out(v.size());
+  for (size_t i = 0; i < v.size(); ++i)
+    out[i] = ((i > 0 ? v[i - 1] : 0) + v[i] + (i + 1 < v.size() ? v[i + 1] : 0)) / 3;
+  return out;
+}
+
+struct LinePoint {
+  double offset, z, y;
+};
+
+double interpolate_z(const std::vector<LinePoint>& line, double offset) {
+  if (offset <= line.front().offset) return line.front().z;
+  for (size_t i = 1; i < line.size(); ++i)
+    if (offset <= line[i].offset) {
+      const double t = (offset - line[i - 1].offset) / (line[i].offset - line[i - 1].offset);
+      return line[i - 1].z + t * (line[i].z - line[i - 1].z);
+    }
+  return line.back().z;
+}
+
+// One side's slit, in the head frame: side -1 the right eye (-x), +1 the left.
+class Slit {
+ public:
+  Slit(const FaceFront& front, double centre, double nasion_z, int side)
+      : front_(front), centre_(centre), nasion_z_(nasion_z), side_(side) {
+    for (double z = nasion_z - kBelow; z <= nasion_z + kAbove + 1e-9; z += 1) levels_.push_back(z);
+  }
+
+  // Rules 2-7.
+  std::array<std::optional<CtLandmark>, 2> corners() {
+    const std::optional<int> seed = seed_level();
+    std::vector<LinePoint> outer, inner;
+    if (seed) {
+      outer = follow(*seed, kOuter);
+      inner = follow(*seed, kInner);
+    }
+    const bool seen = !outer.empty() && slit_seen(outer);
+    std::optional<CtLandmark> exo = seen ? slit_end(outer) : std::nullopt;
+    if (!exo) {
+      // The line, when followed, follows the lids' folds; without them it wanders, and is held to the seed's levels.
+      const double z = outer.empty()
+                           ? nasion_z_ - kEstimatedExoDrop
+                           : std::clamp(interpolate_z(outer, kEstimatedExoOffset), nasion_z_ - kSeedLowest, nasion_z_);
+      exo = on_front(kEstimatedExoOffset, z, true);
+    }
+    std::optional<CtLandmark> endo = seen ? nose_side(inner) : std::nullopt;
+    if (!endo && exo) {
+      const double offset = kEstimatedEndoFraction * std::abs(exo->point.x() - centre_);
+      endo = on_front(offset, exo->point.z() - kCanthalDrop, true);
+    }
+    return {endo, exo};
+  }
+
+ private:
+  double x_at(double offset) const { return centre_ + side_ * offset; }
+
+  std::optional<CtLandmark> on_front(double offset, double z, bool estimated) const {
+    const double x = x_at(offset), y = front_(x, z);
+    if (std::isnan(y)) return std::nullopt;
+    return CtLandmark{Eigen::Vector3d(x, y, z), estimated};
+  }
+
+  // The notch depth at each level of the column `offset` mm out (a whole number), averaged over the columns 1 mm
+  // either side.
+  const std::vector<double>& notch(int offset) {
+    auto [at, fresh] = notch_.try_emplace(offset);
+    if (!fresh) return at->second;
+    std::vector<double>& mean = at->second;
+    mean.assign(levels_.size(), 0.0);
+    for (int column = offset - 1; column <= offset + 1; ++column) {
+      const double x = x_at(column);
+      for (size_t j = 0; j < levels_.size(); ++j) {
+        const double z = levels_[j];
+        mean[j] += ((front_(x, z + kChord) + front_(x, z - kChord)) / 2 - front_(x, z)) / 3;
+      }
+    }
+    return mean;
+  }
+
+  // The level (index into levels_) the line starts from in the column kSeedColumn out.
+  std::optional<int> seed_level() {
+    const int n = static_cast<int>(levels_.size());
+    std::vector<double> mean(levels_.size(), kNaN);
+    for (int j = 0; j < n; ++j) {
+      if (levels_[j] < nasion_z_ - kSeedLowest - 1e-9 || levels_[j] > nasion_z_ + 1e-9) continue;
+      double sum = 0;
+      int count = 0;
+      for (int offset = static_cast<int>(kSeedInner); offset <= static_cast<int>(kSeedOuter); ++offset)
+        if (!std::isnan(notch(offset)[j])) {
+          sum += notch(offset)[j];
+          ++count;
+        }
+      if (count > 0) mean[j] = sum / count;
+    }
+    const std::optional<int> best = extreme_index(mean, 0, n - 1, true);
+    if (!best) return std::nullopt;
+    const int lo = std::max(*best - 2, 1), hi = std::min(*best + 2, n - 2);
+    return extreme_index(notch(static_cast<int>(kSeedColumn)), lo, hi, true).value_or(*best);
+  }
+
+  // The deepest notch followed from kSeedColumn to `end` mm out, column by column.
+  std::vector<LinePoint> follow(int level, double end) {
+    const int n = static_cast<int>(levels_.size());
+    const int step = end > kSeedColumn ? 1 : -1;
+    std::vector<LinePoint> line;
+    int j = level;
+    for (int offset = static_cast<int>(kSeedColumn); (end - offset) * step >= 0; offset += step) {
+      const std::vector<double>& d = notch(offset);
+      const int lo = std::max(j - kReach, 1), hi = std::min(j + kReach, n - 2);
+      const std::optional<int> deepest = extreme_index(d, lo, hi, true);
+      if (!deepest) break;
+      j = *deepest;
+      // The notch's peak between the levels, from the parabola through three.
+      double dz = 0;
+      if (!std::isnan(d[j - 1]) && !std::isnan(d[j + 1])) {
+        const double curvature = d[j - 1] - 2 * d[j] + d[j + 1];
+        if (curvature < 0) dz = std::clamp(0.5 * (d[j - 1] - d[j + 1]) / curvature, -0.5, 0.5);
+      }
+      const double z = levels_[j] + dz;
+      line.push_back({static_cast<double>(offset), z, front_(x_at(offset), z)});
+    }
+    return line;
+  }
+
+  bool slit_seen(const std::vector<LinePoint>& outer) const {
+    std::vector<double> depth;
+    for (const LinePoint& p : outer) {
+      const double x = x_at(p.offset);
+      const double d = (front_(x, p.z + kNarrowChord) + front_(x, p.z - kNarrowChord)) / 2 - front_(x, p.z);
+      depth.push_back(std::isnan(d) ? 0.0 : d);
+    }
+    const std::vector<double> mean = running_mean3(depth);
+    for (size_t i = 0; i < outer.size(); ++i)
+      if (outer[i].offset >= kExoInner && outer[i].offset <= kExoOuter && mean[i] >= kMinSlitDepth) return true;
+    return false;
+  }
+
+  // Rule 6.
+  double floor_height(double x, double z) const {
+    std::vector<double> zs, ys;
+    for (double dz = -kRefine; dz <= kRefine + 1e-9; dz += 0.5) {
+      zs.push_back(z + dz);
+      ys.push_back(front_(x, z + dz));
+      if (std::isnan(ys.back())) return z;
+    }
+    const int n = static_cast<int>(ys.size());
+    const int rear = static_cast<int>(std::min_element(ys.begin(), ys.end()) - ys.begin());
+    int a = rear, b = rear;
+    while (a > 0 && ys[a - 1] <= ys[rear] + kFloorTolerance) --a;
+    while (b < n - 1 && ys[b + 1] <= ys[rear] + kFloorTolerance) ++b;
+    if (a == 0 || b == n - 1) return z;
+    return 0.5 * (zs[a] + zs[b]);
+  }
+
+  // Rule 4.
+  std::optional<CtLandmark> slit_end(const std::vector<LinePoint>& outer) const {
+    std::vector<double> offsets, floor, floor_z;
+    for (double offset = kExoInner; offset <= std::min(kExoOuter + kPitReach, outer.back().offset) + 1e-9;
+         offset += 0.5) {
+      const double x = x_at(offset), z = interpolate_z(outer, offset);
+      double rear = kNaN, rear_z = z;
+      for (double dz = -kFloorBand; dz <= kFloorBand + 1e-9; dz += 0.25) {
+        const double y = front_(x, z + dz);
+        if (!std::isnan(y) && (std::isnan(rear) || y < rear)) {
+          rear = y;
+          rear_z = z + dz;
+        }
+      }
+      offsets.push_back(offset);
+      floor.push_back(rear);
+      floor_z.push_back(rear_z);
+    }
+    const int n = static_cast<int>(offsets.size());
+    if (n < 3) return std::nullopt;
+    std::vector<double> smooth = running_mean3(floor);
+    smooth.front() = floor.front();
+    smooth.back() = floor.back();
+    const int reach = static_cast<int>(std::lround(kPitReach / 0.5));
+    for (int i = 1; i < n - 1; ++i) {
+      if (offsets[i] > kExoOuter) break;
+      if (!(smooth[i] <= smooth[i - 1] && smooth[i] <= smooth[i + 1])) continue;
+      double highest = -std::numeric_limits<double>::infinity();
+      bool defined = true;
+      for (int r = i; r <= std::min(i + reach, n - 1); ++r) {
+        defined &= !std::isnan(smooth[r]);
+        highest = std::max(highest, smooth[r]);
+      }
+      if (defined && highest - smooth[i] >= kPitRise)
+        return on_front(offsets[i], floor_height(x_at(offsets[i]), floor_z[i]), false);
+    }
+    return std::nullopt;
+  }
+
+  // Rule 5.
+  std::optional<CtLandmark> nose_side(const std::vector<LinePoint>& inner) const {
+    for (size_t i = 1; i < inner.size(); ++i)
+      if (inner[i].y - inner[i - 1].y > kWallSlope * std::abs(inner[i].offset - inner[i - 1].offset))
+        return on_front(inner[i - 1].offset, floor_height(x_at(inner[i - 1].offset), inner[i - 1].z), false);
+    return std::nullopt;
+  }
+
+  const FaceFront& front_;
+  double centre_, nasion_z_;
+  int side_;
+  std::vector<double> levels_;                // mm: the levels the line moves on, 1 mm apart
+  std::map<int, std::vector<double>> notch_;  // by column offset
+};
+
+}  // namespace
+
+EyeCorners find_eye_corners(const Field& ct, double skin_threshold, const MidSagittalPlane& plane,
+                            const Eigen::Vector3d& nasion, const Eigen::Vector3d& pronasale) {
+  const HeadTurn frame = head_turn_of(plane);
+  const Eigen::Vector3d n = frame.to_head(nasion), tip = frame.to_head(pronasale);
+  const double centre = frame.to_head(plane).x_at(n.y(), n.z());
+  const double z0 = n.z() - kBelow - kFieldMargin, z1 = n.z() + kAbove + kFieldMargin;
+  const FaceFront front(ct, skin_threshold, frame, centre - kFieldHalfWidth,
+                        static_cast<int>(std::lround(2 * kFieldHalfWidth / kGrid)) + 1, z0,
+                        static_cast<int>(std::lround((z1 - z0) / kGrid)) + 1, tip.y() + kRayFront, n.y() - kRayBack);
+  EyeCorners corners;
+  for (const int side : {-1, 1}) {
+    const auto [endo, exo] = Slit(front, centre, n.z(), side).corners();
+    const int first = side < 0 ? 0 : 2;  // kEyeCornerNames: right, then left
+    for (const auto& [at, corner] : {std::pair{first, endo}, std::pair{first + 1, exo}})
+      if (corner) corners[at] = CtLandmark{frame.to_model(corner->point), corner->estimated};
+  }
+  return corners;
+}
+
+}  // namespace facehex
