@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 # Renders a labelled patient tet model (its boundary coloured by side: skin beige, top cut red, bottom cut green,
 # posterior cut blue, bone grey) with the landmarks found on it (blue found, orange estimated) and, when given, the
-# reference landmarks placed by hand (small black), for docs/img. Needs python3-vtk9 and a display (xvfb-run).
+# reference landmarks placed by hand (small black), for docs/img. A landmark at most SLIT_DEPTH behind the surface
+# seen from the camera (the eye corners and the stomion, read in the CT's slits, which the model's skin bridges) is
+# drawn over it. Needs python3-vtk9 and a display (xvfb-run).
 # Usage, from the repository root:
 #   build/bin/facehex segment CT -o /tmp/model.vtu --write-landmarks /tmp/landmarks.json
 #   xvfb-run -a python3 scripts/render_model_landmarks.py /tmp/model.vtu /tmp/landmarks.json front|side|cuts OUT.png \
@@ -52,6 +54,18 @@ actor.SetMapper(mapper)
 renderer.AddActor(actor)
 
 
+# Markers over the surface: a second layer drawn after the model, with the same camera.
+overlay = vtk.vtkRenderer()
+overlay.SetLayer(1)
+overlay.SetActiveCamera(renderer.GetActiveCamera())
+window.SetNumberOfLayers(2)
+window.AddRenderer(overlay)
+locator = vtk.vtkOBBTree()
+locator.SetDataSet(surface)
+locator.BuildLocator()
+SLIT_DEPTH = 8.0  # mm: the model's skin lies up to about 5 mm in front of a closed slit's floor
+
+
 def spheres(points, radius, colour):
     vtk_points = vtk.vtkPoints()
     for p in points:
@@ -71,14 +85,24 @@ def spheres(points, radius, colour):
     glyph_actor = vtk.vtkActor()
     glyph_actor.SetMapper(glyph_mapper)
     glyph_actor.GetProperty().SetColor(*colour)
-    renderer.AddActor(glyph_actor)
+    return glyph_actor
 
 
-found = json.load(open(landmarks_file))['landmarks']
-spheres([l['position'] for l in found if l['status'] != 'estimated'], 2.0, (0.1, 0.2, 0.9))
-spheres([l['position'] for l in found if l['status'] == 'estimated'], 2.0, (1.0, 0.55, 0.0))
-if reference_file:
-    spheres([l['position'] for l in json.load(open(reference_file))['landmarks']], 1.0, (0, 0, 0))
+def shown(points, radius, colour):
+    """Each point in front of the surface, or at most SLIT_DEPTH behind it, drawn over it; the others hidden by it."""
+    camera_at = np.array(renderer.GetActiveCamera().GetPosition())
+    over, under = [], []
+    for p in map(np.array, points):
+        towards = (camera_at - p) / np.linalg.norm(camera_at - p)
+        hits = vtk.vtkPoints()
+        locator.IntersectWithLine(p + towards * SLIT_DEPTH, camera_at, hits, None)
+        crossings = [np.array(hits.GetPoint(i)) for i in range(hits.GetNumberOfPoints())]
+        (under if crossings else over).append(p)
+    if over:
+        overlay.AddActor(spheres(over, radius, colour))
+    if under:
+        renderer.AddActor(spheres(under, radius, colour))
+
 
 bounds = surface.GetBounds()
 centre = [(bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2, (bounds[4] + bounds[5]) / 2]
@@ -93,6 +117,12 @@ else:  # 'cuts': from above and behind, where the cut sides and the bone side sh
 camera.SetViewUp(0, 0, 1)
 renderer.ResetCamera()
 camera.Zoom(1.3 if view != 'cuts' else 1.1)
+
+found = json.load(open(landmarks_file))['landmarks']
+shown([l['position'] for l in found if l['status'] != 'estimated'], 2.0, (0.1, 0.2, 0.9))
+shown([l['position'] for l in found if l['status'] == 'estimated'], 2.0, (1.0, 0.55, 0.0))
+if reference_file:
+    shown([l['position'] for l in json.load(open(reference_file))['landmarks']], 1.0, (0, 0, 0))
 text = vtk.vtkTextActor()
 text.SetInput(title)
 text.GetTextProperty().SetFontSize(18)

@@ -67,6 +67,8 @@ QStringList transferDetail(const TransferResult& r) {
   if (!r.patient_openings.empty())
     lines
         << QObject::tr("the patient model's %1 as the standard's are").arg(QString::fromStdString(r.patient_openings));
+  if (const std::string landing = feature_landing_text(r.landing); !landing.empty())
+    lines << QString::fromStdString(landing).trimmed();
   return lines;
 }
 

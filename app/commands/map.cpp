@@ -64,10 +64,11 @@ int cmd_map(const Argv& argv) {
   const TransferResult& r = t.result;
   nlohmann::json report = run_report(r.run, r.standard_quality, r.plain_mapping_quality, r.patient_quality, r.distance);
   report["skin_correspondence"] = skin_correspondence_json(r);
+  report["feature_landing"] = feature_landing_json(r.landing);
   write_with_report(args, r.patient_hex, report);
   std::cout << skin_correspondence_text(r)
             << run_summary_text(r.run, r.standard_quality, r.plain_mapping_quality, r.patient_quality, r.distance)
-            << "wrote " << args.get("output") << "\n";
+            << feature_landing_text(r.landing) << "wrote " << args.get("output") << "\n";
   return exit_code(r.patient_quality.summary);
 }
 

@@ -71,11 +71,13 @@ int cmd_run(const Argv& argv) {
       {"patient", input}, {"patient_constraints", t.patient.constraints_path}, {"standard", t.standard.name}};
   report["landmarks"] = landmarks_json(t.patient.landmarks);
   report["skin_correspondence"] = skin_correspondence_json(r);
+  report["feature_landing"] = feature_landing_json(r.landing);
   report["outputs"] = folder.completion_record(written);
   write_json((out_dir / "report.json").string(), report);
   std::cout << skin_correspondence_text(r)
             << run_summary_text(r.run, r.standard_quality, r.plain_mapping_quality, r.patient_quality, r.distance)
-            << "outputs in " << out_dir.string() << "/: patient_model.vtu, standard_hex.vtu, patient_hex.vtu";
+            << feature_landing_text(r.landing) << "outputs in " << out_dir.string()
+            << "/: patient_model.vtu, standard_hex.vtu, patient_hex.vtu";
   for (const std::string& ext : exports) std::cout << ", patient_hex." << ext;
   std::cout << ", report.json (written last: its \"outputs\" record lists every file with its SHA-256)\n";
   folder.keep();

@@ -4,27 +4,11 @@
 #include <cmath>
 #include <map>
 
-#include "core/face/face_landmarks.h"
 #include "core/fields/constraint_set.h"
-#include "core/fields/tet_domain.h"
 #include "core/mesh/sides.h"
-#include "core/standard/closed_domain.h"
+#include "core/standard/standard_features.h"
 
 namespace facehex {
-namespace {
-
-// An opening's anatomical name from where its centroid lies against the landmarks.
-std::string opening_name(const Eigen::Vector3d& c, const FaceLandmarks& lm, int index) {
-  const auto at = [&](const char* name) { return lm.points.at(name); };
-  const std::string end = c.x() < lm.plane.x ? "at -x" : "at +x";
-  if (lm.points.count("pronasale") && c.z() > at("pronasale").z() + 5) return "eye " + end;
-  if (lm.points.count("subnasale") && c.z() > at("subnasale").z() - 4) return "nostril " + end;
-  if (lm.points.count("stomion") && std::abs(c.z() - at("stomion").z()) < 12) return "mouth";
-  return "opening " + std::to_string(index + 1);
-}
-
-}  // namespace
-
 ErrorSummary summarize_errors(const Eigen::VectorXd& errors) {
   ErrorSummary s;
   s.count = static_cast<int>(errors.size());
@@ -46,33 +30,14 @@ std::vector<VertexRegion> correspondence_regions(const VolumeMesh& standard, dou
     if (mask(v) & side_bit(W1)) regions[0].vertices.push_back(v);
     if (mask(v) & side_bit(W0)) regions[1].vertices.push_back(v);
   }
-  const FaceLandmarks landmarks = find_face_landmarks(standard.V, mask);
+  StandardFeatures features = standard_features(standard);
   for (const int v : regions[0].vertices)
-    for (const auto& [name, p] : landmarks.points)
+    for (const auto& [name, p] : features.landmarks.points)
       if ((standard.V.row(v).transpose() - p).norm() <= landmark_radius) {
         regions[2].vertices.push_back(v);
         break;
       }
-  // An opening's wall may fall into several edge-connected pieces (where its rim vertices touch): pieces of the same
-  // name are one region.
-  const TetDomain domain = auxiliary_domain(standard);
-  const auto openings = sideless_boundary_pieces(domain);
-  std::map<std::string, std::vector<int>> rims;
-  for (size_t o = 0; o < openings.size(); ++o) {
-    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-    for (const auto& t : openings[o])
-      for (int k = 0; k < 3; ++k)
-        centroid += domain.V.row(t(k)).transpose() / (3.0 * static_cast<double>(openings[o].size()));
-    std::vector<int>& rim = rims["rim: " + opening_name(centroid, landmarks, static_cast<int>(o))];
-    for (const auto& t : openings[o])
-      for (int k = 0; k < 3; ++k)
-        if (domain.side_mask(t(k)) & (side_bit(W0) | side_bit(W1))) rim.push_back(t(k));
-  }
-  for (auto& [name, rim] : rims) {
-    std::sort(rim.begin(), rim.end());
-    rim.erase(std::unique(rim.begin(), rim.end()), rim.end());
-    if (!rim.empty()) regions.push_back({name, std::move(rim)});
-  }
+  for (auto& [name, rim] : features.rims) regions.push_back({"rim: " + name, std::move(rim)});
   return regions;
 }
 

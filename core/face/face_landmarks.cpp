@@ -410,10 +410,12 @@ FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorX
   const auto add = [&l](const char* name, const std::optional<CtLandmark>& landmark) {
     if (!landmark) return;
     l.points[name] = landmark->point;
+    l.estimated.erase(std::remove(l.estimated.begin(), l.estimated.end(), name), l.estimated.end());
     if (landmark->estimated) l.estimated.push_back(name);
   };
   for (size_t side = 0; side < kTragusNames.size(); ++side) add(kTragusNames[side], options.ct_landmarks->tragi[side]);
   for (size_t c = 0; c < kEyeCornerNames.size(); ++c) add(kEyeCornerNames[c], options.ct_landmarks->eye_corners[c]);
+  add(kStomionName, options.ct_landmarks->stomion);
   return l;
 }
 

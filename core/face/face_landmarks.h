@@ -37,7 +37,8 @@
 // adult proportions above the subnasale (15, 55 and 67 mm) on the cut. Placed landmarks are listed in `estimated`.
 // The mouth corners (cheilion right, left): the ends of the mouth line traced out from the plane under the upper lip
 // (core/face/mouth_corners.h); absent where the lips show no such line. The tragi and eye corners: the ones the
-// segmentation found in the CT, when the model carries them (LandmarkOptions::ct_landmarks).
+// segmentation found in the CT, when the model carries them (LandmarkOptions::ct_landmarks), and its stomion, read in
+// the lips' slit, in place of the profile's.
 // Then the plausibility check (check_plausible). Every landmark is listed with its status: found, or estimated.
 // Each feature constraint pins the chosen field on the skin (and on walls of openings, e.g. the standard's mouth
 // slit) near the landmark: v on the horizontal plane through it (horizontal in the head frame of a pitched head, whose
@@ -51,9 +52,9 @@
 
 #include "core/face/landmark_file.h"
 #include "core/fields/constraint_set.h"
+#include "core/mesh/ct_landmarks.h"
 #include "core/mesh/mesh.h"
 #include "core/mesh/mid_sagittal_plane.h"
-#include "core/mesh/ct_landmarks.h"
 
 namespace facehex {
 
@@ -80,14 +81,15 @@ struct LandmarkOptions {
   // The skin to read the face from instead of the model's skin vertices, #P x 3 in the model's frame: a segmented
   // CT's, at the segmentation's working spacing (core/mesh/skin_points.h).
   std::optional<Eigen::MatrixXd> skin_points;
-  // The tragi and eye corners the segmentation found in the CT (core/mesh/ct_landmarks.h), in the model's frame: they
-  // lie behind a model's posterior cut and in the closed eyes' slits, where the skin read does not show them.
+  // The tragi, eye corners and stomion the segmentation found in the CT (core/mesh/ct_landmarks.h), in the model's
+  // frame: they lie behind a model's posterior cut and in the closed eyes' and lips' slits, where the skin read does
+  // not show them.
   std::optional<CtLandmarks> ct_landmarks;
 };
 
 // The options for `model`: its own mid-sagittal plane, the CT's skin points and the CT's landmarks when it carries them
-// (core/mesh/mid_sagittal_plane.h, core/mesh/skin_points.h, core/mesh/ct_landmarks.h). Throws facehex::Error(source, ...) when
-// they are malformed.
+// (core/mesh/mid_sagittal_plane.h, core/mesh/skin_points.h, core/mesh/ct_landmarks.h). Throws facehex::Error(source,
+// ...) when they are malformed.
 LandmarkOptions landmark_options_for(const VolumeMesh& model, const std::string& source);
 
 // V #V x 3, side_mask #V; with options.skin_points the face is read from those points instead (V and side_mask are
@@ -99,9 +101,10 @@ FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorX
 // pronasale, subnasale, labrale superius, stomion, labrale inferius, pogonion, menton); nasion-subnasale (nose
 // height) 38-70 mm; subnasale-menton (lower face height) 45-95 mm and 0.45-0.70 of nasion-menton; glabella 3-35 mm
 // above the nasion; mouth width (cheilion to cheilion) 35-85 mm; eye corners above the mouth corners and below the
-// glabella, biocular width (exocanthia) 70-120 mm, intercanthal width 20-50 mm, each eye 20-45 mm wide; bitragion breadth 110-175 mm, nasion-tragus 80-150 mm, the tragi between the menton and the glabella in
-// height. Landmarks absent from the set are not checked. Throws facehex::Error("landmarks", ...) naming the
-// landmark and `remedy` (e.g. "give them with --landmarks FILE").
+// glabella, biocular width (exocanthia) 70-120 mm, intercanthal width 20-50 mm, each eye 20-45 mm wide; bitragion
+// breadth 110-175 mm, nasion-tragus 80-150 mm, the tragi between the menton and the glabella in height. Landmarks
+// absent from the set are not checked. Throws facehex::Error("landmarks", ...) naming the landmark and `remedy` (e.g.
+// "give them with --landmarks FILE").
 void check_plausible(const FaceLandmarks& landmarks, const std::string& remedy);
 
 // The landmarks as named points with their status (found or estimated), in landmark_names() order.

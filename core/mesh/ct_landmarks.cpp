@@ -13,7 +13,8 @@ constexpr int kRows = static_cast<int>(kCtLandmarkNames.size());
 
 // The rows in kCtLandmarkNames order.
 std::array<std::optional<CtLandmark>*, kRows> rows_of(CtLandmarks& l) {
-  return {&l.tragi[0], &l.tragi[1], &l.eye_corners[0], &l.eye_corners[1], &l.eye_corners[2], &l.eye_corners[3]};
+  return {&l.tragi[0],       &l.tragi[1],       &l.eye_corners[0], &l.eye_corners[1],
+          &l.eye_corners[2], &l.eye_corners[3], &l.stomion};
 }
 
 }  // namespace
@@ -25,9 +26,9 @@ std::optional<CtLandmarks> ct_landmarks(const VolumeMesh& mesh, const std::strin
   const auto malformed = [&](const std::string& problem) {
     std::ostringstream given;
     given << t.format(Eigen::IOFormat(Eigen::StreamPrecision, Eigen::DontAlignCols, " ", "; "));
-    throw Error(source, std::string("the field data '") + kCtLandmarksField + "' (the tragi and eye corners found " +
-                            "in the CT, 6 x 4: x, y, z mm and 1 if estimated) " + problem + ": " + given.str() +
-                            "; remove it to have them left out");
+    throw Error(source, std::string("the field data '") + kCtLandmarksField + "' (the landmarks found in the CT, " +
+                            std::to_string(kRows) + " x 4: x, y, z mm and 1 if estimated) " + problem + ": " +
+                            given.str() + "; remove it to have them left out");
   };
   if (t.rows() != kRows || t.cols() != 4)
     malformed("is " + std::to_string(t.rows()) + " x " + std::to_string(t.cols()));

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/mesh/head_turn.h"
+#include "core/segment/face_front.h"
 
 namespace facehex {
 namespace {
@@ -15,15 +16,12 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Rule 1: the front of the face.
-constexpr double kGrid = 0.5;           // mm: the front's grid in x and z
 constexpr double kFieldHalfWidth = 64;  // mm either side of the plane: past the widest adult exocanthion and the track
 constexpr double kBelow = 30;           // mm below the nasion: the lowest level of the slit's line
 constexpr double kAbove = 10;           // mm above the nasion: the highest
 constexpr double kFieldMargin = 6;      // mm the front reaches beyond those levels (the chord and the floor's window)
 constexpr double kRayFront = 10;        // mm in front of the pronasale where the rays start
 constexpr double kRayBack = 60;         // mm behind the nasion where they give up
-constexpr double kRayStep = 0.25;       // mm
-constexpr int kBisections = 6;          // the crossing to kRayStep / 64
 // Rule 2: the notch and the slit's line.
 constexpr double kChord = 3;       // mm: half the chord the notch depth is measured against
 constexpr double kSeedInner = 26;  // mm out: the seed's columns, on the lids between the nose and the corner
@@ -53,54 +51,6 @@ constexpr double kEstimatedExoOffset = 46;
 constexpr double kEstimatedExoDrop = 7.5;  // mm below the nasion when no line was followed
 constexpr double kEstimatedEndoFraction = 0.30;
 constexpr double kCanthalDrop = 2;
-
-// y(x, z) of the face's front in the head frame, bilinear between the grid's points; NaN where a ray met no skin.
-class FaceFront {
- public:
-  FaceFront(const Field& ct, double threshold, const HeadTurn& frame, double x0, int nx, double z0, int nz,
-            double y_start, double y_stop)
-      : x0_(x0), z0_(z0), nx_(nx), nz_(nz), y_(static_cast<size_t>(nx) * nz, kNaN) {
-    const GridGeometry& g = ct.geometry;
-    // Outside the scan is air: a field-of-view cut is then a flat front, not the border slice repeated.
-    const auto skin = [&](double x, double y, double z) {
-      const Eigen::Vector3d p = frame.to_model(Eigen::Vector3d(x, y, z));
-      for (int a = 0; a < 3; ++a)
-        if (p(a) < g.lower(a) || p(a) > g.upper(a)) return false;
-      return sample(ct, p) >= threshold;
-    };
-    const int steps = static_cast<int>(std::floor((y_start - y_stop) / kRayStep));
-#pragma omp parallel for schedule(dynamic)
-    for (int k = 0; k < nz; ++k)
-      for (int i = 0; i < nx; ++i) {
-        const double x = x0 + i * kGrid, z = z0 + k * kGrid;
-        if (skin(x, y_start, z)) continue;  // the ray starts inside: no front
-        for (int s = 1; s <= steps; ++s) {
-          double outside = y_start - (s - 1) * kRayStep, inside = y_start - s * kRayStep;
-          if (!skin(x, inside, z)) continue;
-          for (int b = 0; b < kBisections; ++b) {
-            const double mid = 0.5 * (outside + inside);
-            (skin(x, mid, z) ? inside : outside) = mid;
-          }
-          y_[static_cast<size_t>(k) * nx + i] = 0.5 * (outside + inside);
-          break;
-        }
-      }
-  }
-
-  double operator()(double x, double z) const {
-    const double gx = (x - x0_) / kGrid, gz = (z - z0_) / kGrid;
-    if (!(gx >= 0 && gx <= nx_ - 1 && gz >= 0 && gz <= nz_ - 1)) return kNaN;
-    const int i = std::min(static_cast<int>(gx), nx_ - 2), k = std::min(static_cast<int>(gz), nz_ - 2);
-    const double fx = gx - i, fz = gz - k;
-    const auto at = [&](int a, int b) { return y_[static_cast<size_t>(k + b) * nx_ + i + a]; };
-    return at(0, 0) * (1 - fx) * (1 - fz) + at(1, 0) * fx * (1 - fz) + at(0, 1) * (1 - fx) * fz + at(1, 1) * fx * fz;
-  }
-
- private:
-  double x0_, z0_;
-  int nx_, nz_;
-  std::vector<double> y_;
-};
 
 // The index of the largest (smallest) non-NaN value of v[lo..hi], or none.
 std::optional<int> extreme_index(const std::vector<double>& v, int lo, int hi, bool largest) {
@@ -327,10 +277,9 @@ EyeCorners find_eye_corners(const Field& ct, double skin_threshold, const MidSag
   const HeadTurn frame = head_turn_of(plane);
   const Eigen::Vector3d n = frame.to_head(nasion), tip = frame.to_head(pronasale);
   const double centre = frame.to_head(plane).x_at(n.y(), n.z());
-  const double z0 = n.z() - kBelow - kFieldMargin, z1 = n.z() + kAbove + kFieldMargin;
-  const FaceFront front(ct, skin_threshold, frame, centre - kFieldHalfWidth,
-                        static_cast<int>(std::lround(2 * kFieldHalfWidth / kGrid)) + 1, z0,
-                        static_cast<int>(std::lround((z1 - z0) / kGrid)) + 1, tip.y() + kRayFront, n.y() - kRayBack);
+  const FaceFront front(ct, skin_threshold, frame, centre - kFieldHalfWidth, centre + kFieldHalfWidth,
+                        n.z() - kBelow - kFieldMargin, n.z() + kAbove + kFieldMargin, tip.y() + kRayFront,
+                        n.y() - kRayBack);
   EyeCorners corners;
   for (const int side : {-1, 1}) {
     const auto [endo, exo] = Slit(front, centre, n.z(), side).corners();

@@ -5,9 +5,9 @@
 //
 // In the head frame of the face's mid-sagittal plane (core/mesh/head_turn.h, +x the patient's left, +y anterior, +z
 // superior), with x = c the plane at the nasion's height and "offset" the distance |x - c|, each side on its own:
-//  1. the front of the face: y(x, z), where a ray cast along -y from in front of the pronasale first meets the skin
-//     threshold (trilinear, the crossing refined by bisection), on a kGrid grid over kFieldHalfWidth either side of
-//     the plane and the levels from kBelow below to kAbove above the nasion (and kChord more);
+//  1. the front of the face (face_front.h), the rays cast from kRayFront in front of the pronasale, over
+//     kFieldHalfWidth either side of the plane and the levels from kBelow below to kAbove above the nasion (and
+//     kFieldMargin more);
 //  2. the notch depth of a point: how far y lies behind the chord between the points kChord above and below it,
 //     averaged over the columns 1 mm either side. The slit's line: from the level of deepest mean notch over the
 //     columns kSeedInner-kSeedOuter out, kSeedLowest to 0 mm below the nasion, the deepest notch followed column by

@@ -48,8 +48,8 @@
 #include <limits>
 #include <string>
 
-#include "core/mesh/head_turn.h"
 #include "core/mesh/ct_landmarks.h"
+#include "core/mesh/head_turn.h"
 #include "core/segment/voxel_grid.h"
 
 namespace facehex {

@@ -20,6 +20,7 @@
 #include "core/segment/palate_pitch.h"
 #include "core/segment/remesh.h"
 #include "core/segment/side_labels.h"
+#include "core/segment/stomion.h"
 #include "core/util/error.h"
 
 namespace facehex {
@@ -262,19 +263,25 @@ SurfaceMesh level_surface_with_cuts(const Mask& tissue, FaceCuts& cuts, const Se
                              "--bottom-cut, --posterior-cut");
 }
 
-// The eye corners found in the CT (eye_corners.h), by the face's mid-sagittal plane, nasion and pronasale on the
-// model, next to the tragi. Left out when those are not found: the transfer says why.
-void add_eye_corners(const CtVolume& ct, PatientModel& model) {
+// The landmarks read in the CT by the ones found on the model's skin (its mid-sagittal plane, nasion, pronasale and
+// labralia): the eye corners (eye_corners.h) and the stomion (stomion.h), next to the tragi. Left out when those are
+// not found: the transfer says why.
+void add_slit_landmarks(const CtVolume& ct, PatientModel& model) {
   FaceLandmarks landmarks;
   try {
     landmarks = find_face_landmarks(model.mesh.V, side_mask_of(model.mesh), landmark_options_for(model.mesh, "model"));
   } catch (const Error&) {
     return;
   }
-  if (!landmarks.points.count("nasion") || !landmarks.points.count("pronasale")) return;
+  const auto has = [&](const char* name) { return landmarks.points.count(name) > 0; };
   CtLandmarks found = ct_landmarks(model.mesh, "model").value_or(CtLandmarks{});
-  found.eye_corners = find_eye_corners(ct.intensity, model.thresholds.skin, landmarks.plane,
-                                       landmarks.points.at("nasion"), landmarks.points.at("pronasale"));
+  const double skin = model.thresholds.skin;
+  if (has("nasion") && has("pronasale"))
+    found.eye_corners = find_eye_corners(ct.intensity, skin, landmarks.plane, landmarks.points.at("nasion"),
+                                         landmarks.points.at("pronasale"));
+  if (has("labrale superius") && has("labrale inferius"))
+    found.stomion = find_stomion(ct.intensity, skin, landmarks.plane, landmarks.points.at("labrale superius"),
+                                 landmarks.points.at("labrale inferius"));
   set_ct_landmarks(model.mesh, found);
 }
 
@@ -481,8 +488,8 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
       if (tragus) tragus->point = turn.to_model(tragus->point);
     set_ct_landmarks(model.mesh, found);
   }
-  step("the eye corners", 0.93);
-  add_eye_corners(ct, model);
+  step("the eye corners and the stomion", 0.93);
+  add_slit_landmarks(ct, model);
   model.boundary_faces = std::move(tets.boundary_faces);
   model.boundary_sides = tets.boundary_labels.array() - 1;
   step("checks", 0.95);

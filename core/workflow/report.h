@@ -36,7 +36,7 @@ DistanceSummary side_vertex_distances(const TransferRun& run, const VolumeMesh& 
 // The schema of report.json, {"format": "facehex-report", "version": kRunReportVersion, ...}: a reader (the cohort
 // report, scripts) checks both. Any change of the keys or of what a value means raises it, so that a reader of one
 // version finds every key it documents (docs/cohorts.md).
-constexpr int kRunReportVersion = 3;
+constexpr int kRunReportVersion = 4;
 
 // report.json as written by `facehex run` (or `map`): throws facehex::Error(path, ...) when the file cannot be read
 // or parsed, or is not a facehex-report of version kRunReportVersion.

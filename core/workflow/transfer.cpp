@@ -7,6 +7,7 @@
 #include "core/quality/hex_quality.h"
 #include "core/standard/closed_domain.h"
 #include "core/standard/parameterization_cache.h"
+#include "core/standard/standard_features.h"
 #include "core/util/stopwatch.h"
 
 namespace facehex {
@@ -146,6 +147,13 @@ TransferResult transfer(const StandardSetup& standard, const PatientSetup& patie
   r.plain_mapping_quality = quality_report(r.run.mapped_hex, &standard.mesh);
   r.patient_quality = quality_report(r.run.patient_hex, &standard.mesh);
   r.distance = side_vertex_distances(r.run, standard.mesh);
+  if (patient_as_given.landmarks) {
+    try {
+      r.landing = feature_landing(standard_features(standard.mesh), r.patient_hex.V, *patient_as_given.landmarks);
+    } catch (const Error&) {
+      // A standard whose own landmarks are not found has no features to follow; its transfer stands.
+    }
+  }
   report_progress(progress, "quality", 1.0);
   return r;
 }

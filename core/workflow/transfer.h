@@ -4,6 +4,7 @@
 // every array the outputs carry and its quality against the standard.
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/correspondence/registered_sides.h"
 #include "core/io/mesh_io.h"
@@ -11,6 +12,7 @@
 #include "core/mesh/mesh.h"
 #include "core/quality/surface_distance.h"
 #include "core/util/progress.h"
+#include "core/workflow/feature_landing.h"
 #include "core/workflow/patient_setup.h"
 #include "core/workflow/report.h"
 #include "core/workflow/standard_setup.h"
@@ -31,6 +33,9 @@ struct TransferResult {
   // The patient model's openings closed as the standard's (transfer()), e.g. "3 of 4 openings closed by TetGen
   // plugs", or empty when it had none.
   std::string patient_openings;
+  // Where the standard's landmarks landed against the patient's (feature_landing.h); empty when the patient has no
+  // landmarks or the standard's own are not found.
+  std::vector<FeatureLanding> landing;
 };
 
 // With options.skin_correspondence registered, the sides are registered first (core/correspondence/

@@ -421,6 +421,13 @@ TEST_F(Cli, TheBundledCtMeshedAt3mmEndsWithNoInvertedCell) {
   EXPECT_EQ(report["untangle"]["inverted_after"].get<int>(), 0);
   EXPECT_EQ(report["patient_hex"]["quality"]["inverted"].get<int>(), 0);
   EXPECT_EQ(report["patient_hex"]["quality"]["degenerate"].get<int>(), 0);
+  // Where the standard's landmarks landed: the profile's, the eye and mouth corners, each against the patient's.
+  EXPECT_NE(r.output.find("anatomy: the standard's 13 landmarks land "), std::string::npos) << r.output;
+  ASSERT_EQ(report["feature_landing"]["landmarks"].size(), 13u);
+  for (const auto& l : report["feature_landing"]["landmarks"]) {
+    EXPECT_GE(l["mm"].get<double>(), 0.0);
+    EXPECT_LE(l["mm"].get<double>(), report["feature_landing"]["max_mm"].get<double>());
+  }
 }
 
 // The bundled CT stored with other voxel axes (the face towards the file's -z, the top of the head towards +y), read

@@ -441,7 +441,7 @@ std::string implausibility(const FaceLandmarks& l) {
   return "";
 }
 
-TEST(FaceLandmarks, TheTragiAndEyeCornersAModelCarriesAreListedWithTheirStatusAndChecked) {
+TEST(FaceLandmarks, TheLandmarksAModelCarriesFromItsCtAreListedWithTheirStatusAndChecked) {
   const PhantomFace face;
   LandmarkOptions options;
   CtLandmarks found;
@@ -450,6 +450,7 @@ TEST(FaceLandmarks, TheTragiAndEyeCornersAModelCarriesAreListedWithTheirStatusAn
   tragi[1] = CtLandmark{Eigen::Vector3d(PhantomFace::x0 + 70, -10, 0), true};
   found.eye_corners[1] = CtLandmark{Eigen::Vector3d(PhantomFace::x0 - 45, 60, 30), false};
   found.eye_corners[3] = CtLandmark{Eigen::Vector3d(PhantomFace::x0 + 45, 60, 30), true};
+  found.stomion = CtLandmark{Eigen::Vector3d(PhantomFace::x0, 70, -35), false};
   options.ct_landmarks = found;
   const FaceLandmarks l = find_face_landmarks(face.V, face.side_mask, options);
   EXPECT_EQ(l.points.at("tragus right"), tragi[0]->point);
@@ -463,7 +464,9 @@ TEST(FaceLandmarks, TheTragiAndEyeCornersAModelCarriesAreListedWithTheirStatusAn
     }
   }
   EXPECT_EQ(l.points.at("exocanthion left"), found.eye_corners[3]->point);
-  EXPECT_FALSE(l.points.count("endocanthion left"));  // not seen
+  EXPECT_FALSE(l.points.count("endocanthion left"));        // not seen
+  EXPECT_EQ(l.points.at("stomion"), found.stomion->point);  // the CT's in place of the skin's
+  EXPECT_NE(find_face_landmarks(face.V, face.side_mask).points.at("stomion"), found.stomion->point);
   EXPECT_NE(std::find(l.estimated.begin(), l.estimated.end(), "exocanthion left"), l.estimated.end());
   EXPECT_EQ(std::find(l.estimated.begin(), l.estimated.end(), "exocanthion right"), l.estimated.end());
   EXPECT_EQ(implausibility(l), "");

@@ -11,6 +11,7 @@
 #include "core/segment/ct_volume.h"
 #include "core/segment/thresholds.h"
 #include "core/util/resources.h"
+#include "tests/core/segment/phantom.h"
 
 namespace facehex {
 namespace {
@@ -40,28 +41,14 @@ struct EyePhantom {
     const double offset = outer ? kExo : kEndo;
     return Eigen::Vector3d(side * offset, base(offset) - depth(offset), slit_z(offset));
   }
-
-  // The CT in the model's frame, the head turned by `frame`, 0.5 mm voxels.
-  Field ct(const HeadTurn& frame) const {
-    GridGeometry g;
-    g.spacing = Eigen::Vector3d::Constant(0.5);
-    g.origin = Eigen::Vector3d(-scan_half_width, -60, -50);
-    g.dims = {static_cast<int>(2 * scan_half_width / 0.5) + 1, 241, 161};
-    Field f(g, -1000);
-    for (int k = 0; k < g.dims[2]; ++k)
-      for (int j = 0; j < g.dims[1]; ++j)
-        for (int i = 0; i < g.dims[0]; ++i) {
-          const Eigen::Vector3d q = frame.to_head(g.point(i, j, k));
-          if (q.y() < front(q.x(), q.z()) && q.y() > -50) f(i, j, k) = 1000;
-        }
-    return f;
-  }
 };
 
 const Eigen::Vector3d kNasion(0, 10, 0), kPronasale(0, 35, -30);
 
 EyeCorners corners_of(const EyePhantom& face, const MidSagittalPlane& plane) {
-  return find_eye_corners(face.ct(head_turn_of(plane)), 0, plane, head_turn_of(plane).to_model(kNasion),
+  const Field ct = testing::face_front_phantom([&face](double x, double z) { return face.front(x, z); },
+                                               head_turn_of(plane), face.scan_half_width);
+  return find_eye_corners(ct, 0, plane, head_turn_of(plane).to_model(kNasion),
                           head_turn_of(plane).to_model(kPronasale));
 }
 
@@ -140,10 +127,7 @@ void expect_near_placed(const std::string& ct_path, const std::string& placed_fi
 TEST(EyeCorners, VisibleHumanFemaleNearTheHandPlacedOnes) {
   const std::string ct = std::string(FACEHEX_SHARED_DIR) + "/data/ct/vhfemale-head.mha";
   if (!std::filesystem::exists(ct)) GTEST_SKIP() << "no shared data at " << ct;
-  MidSagittalPlane plane;  // as the segmentation finds it (tests/data/landmarks/vhfemale-head-ct-skin.xyz)
-  plane.x = 263.08327529903028;
-  plane.turn = -0.054158064087028765;
-  plane.y = 269.35853203535248;
+  const MidSagittalPlane plane = testing::visible_human_plane();
   // 2 mm, the bound, at the inner right corner; the others 2.5 mm (docs/benchmarks.md: where the slit's ends
   // are ambiguous by a millimetre or two on this face).
   expect_near_placed(

@@ -4,7 +4,9 @@
 // soft-tissue layer over the bone is `thickness` mm thick.
 #include <cmath>
 #include <cstdint>
+#include <functional>
 
+#include "core/mesh/head_turn.h"
 #include "core/segment/ct_volume.h"
 #include "core/segment/soft_tissue.h"
 
@@ -55,6 +57,35 @@ inline SegmentOptions phantom_options(const CtVolume& ct) {
   o.cuts.posterior_y = c.y();
   o.cuts.centre_x = c.x();
   return o;
+}
+
+// A face's front for the landmarks read in the CT (core/segment/face_front.h): tissue (1000) behind y = front(x, z)
+// of the head frame `frame` and in front of y = -50, air (-1000) elsewhere, on 0.5 mm voxels over x within
+// half_width of 0, y from -60 to 60 and z from -50 to 30 (the model's frame).
+inline Field face_front_phantom(const std::function<double(double, double)>& front, const HeadTurn& frame,
+                                double half_width = 70) {
+  GridGeometry g;
+  g.spacing = Eigen::Vector3d::Constant(0.5);
+  g.origin = Eigen::Vector3d(-half_width, -60, -50);
+  g.dims = {static_cast<int>(2 * half_width / 0.5) + 1, 241, 161};
+  Field f(g, -1000);
+  for (int k = 0; k < g.dims[2]; ++k)
+    for (int j = 0; j < g.dims[1]; ++j)
+      for (int i = 0; i < g.dims[0]; ++i) {
+        const Eigen::Vector3d q = frame.to_head(g.point(i, j, k));
+        if (q.y() < front(q.x(), q.z()) && q.y() > -50) f(i, j, k) = 1000;
+      }
+  return f;
+}
+
+// The mid-sagittal plane the segmentation finds on the Visible Human Female's CT (../shared, optional; the plane of
+// tests/data/landmarks/vhfemale-head-ct-skin.xyz), for reading its landmarks in the CT by the hand-placed ones.
+inline MidSagittalPlane visible_human_plane() {
+  MidSagittalPlane plane;
+  plane.x = 263.08327529903028;
+  plane.turn = -0.054158064087028765;
+  plane.y = 269.35853203535248;
+  return plane;
 }
 
 }  // namespace facehex::testing

@@ -169,6 +169,12 @@ TEST(SoftTissue, RealCtMakesASixSidedModel) {
     EXPECT_LT((found->point - placed.position).norm(), 3.0) << placed.name << " found at " << found->point.transpose();
     EXPECT_LT(found->point.y(), m.cuts.posterior_y) << placed.name;  // behind the model
   }
+  // And the stomion, read in the CT's lips' slit, within the 3 mm bound.
+  ASSERT_TRUE(found_in_ct->stomion);
+  for (const NamedLandmark& placed : read_landmark_file(std::string(FACEHEX_TEST_DATA_DIR) + "/landmarks/headsq.json"))
+    if (placed.name == "stomion") {
+      EXPECT_LT((found_in_ct->stomion->point - placed.position).norm(), 3.0);
+    }
   // And the eye corners, read in the CT: its closed slits are too shallow for its 3.2 mm slices, so all four are
   // estimated by adult proportions, as the hand-placed ones are, within the 5 mm bound of estimated landmarks.
   for (size_t c = 0; c < kEyeCornerNames.size(); ++c) {
