@@ -81,6 +81,11 @@ void add_transfer_options(Args& args) {
       .flag("hold-skin",
             "with --skin-correspondence registered: the shape relaxation keeps the standard's skin vertices at their "
             "registered correspondents instead of sliding them along the skin (correspondence before cell shape)")
+      .flag("pull-found-landmarks",
+            "with --skin-correspondence registered: the landmarks found on the patient (not estimated, the eye "
+            "corners left out) pull the registration towards the standard's, as landmarks given with --landmarks do "
+            "(the standard's mouth and profile land on the patient's at some cost in cell shape; report.json "
+            "feature_landing)")
       .option("shape-relaxation",
               "after the mapping, move vertices along the patient towards the standard's cell shapes; where the "
               "mapping distorted a cell, its target moves this fraction of that distortion towards an ideal cell (0: "
@@ -152,6 +157,7 @@ TransferOptions transfer_options(const Args& args) {
   else
     throw UsageError("--skin-correspondence", "expects registered or features, got '" + correspondence + "'");
   o.hold_registered_skin = args.has("hold-skin");
+  o.pull_found_landmarks = args.has("pull-found-landmarks");
   const std::string relaxation = args.get("shape-relaxation");
   o.shape_relaxation = relaxation != "off";
   if (o.shape_relaxation) {

@@ -5,13 +5,15 @@
 # with the date, the commit, the core count and the CPU model. Everything outside the markers is left as it is.
 #
 # Usage, from anywhere in the repository, after a Release build of facehex:
-#   scripts/regenerate-docs.sh [--only benchmarks|results|correspondence|registered|landmarks] [--keep DIR]
+#   scripts/regenerate-docs.sh [--only benchmarks|results|correspondence|registered|landmarks|landing] [--keep DIR]
 #                              [--from DIR]
-#     --only benchmarks|results|correspondence|registered|landmarks  run and write one part only (correspondence:
+#     --only benchmarks|results|correspondence|registered|landmarks|landing  run and write one part only (correspondence:
 #                                the correspondence section of docs/results.md, from `facehex bench
 #                                --correspondence`; registered: its tables of the registered skin,
 #                                --skin-correspondence registered; landmarks: the automatic landmarks against the
-#                                hand-placed ones in docs/benchmarks.md, from `facehex segment` and `constraints`)
+#                                hand-placed ones in docs/benchmarks.md, from `facehex segment` and `constraints`;
+#                                landing: where the standard's landmarks land on the real CTs' runs, with and
+#                                without --pull-found-landmarks, in docs/results.md)
 #     --keep DIR                 keep the raw JSON, logs and plots in DIR (default: a temporary folder, removed)
 #     --from DIR                 run nothing: write the pages from the JSON a previous --keep DIR left
 #   FACEHEX=path/to/facehex overrides build/bin/facehex.
@@ -34,12 +36,12 @@ while [ $# -gt 0 ]; do
     --only) only=${2:?--only needs benchmarks or results}; shift 2 ;;
     --keep) keep=${2:?--keep needs a folder}; shift 2 ;;
     --from) from=${2:?--from needs a folder}; shift 2 ;;
-    -h|--help) sed -n '2,24p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,26p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "regenerate-docs.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
-case "$only" in ""|benchmarks|results|correspondence|registered|landmarks) ;;
-  *) echo "regenerate-docs.sh: --only benchmarks|results|correspondence|registered|landmarks" >&2; exit 2 ;;
+case "$only" in ""|benchmarks|results|correspondence|registered|landmarks|landing) ;;
+  *) echo "regenerate-docs.sh: --only benchmarks|results|correspondence|registered|landmarks|landing" >&2; exit 2 ;;
 esac
 want() { [ -z "$only" ] || [ "$only" = "$1" ]; }
 
@@ -181,6 +183,18 @@ EOF
       done
     fi
     rm -f "$out"/*.vtu
+  fi
+  if want landing; then
+    # Where the standard's landmarks land on each real CT's run: the registered skin alone, and pulled by the
+    # landmarks found on the patient.
+    cts=(bundled-ct:resources/ct/headsq/headsq.mhd)
+    [ -f ../shared/data/ct/vhfemale-head.mha ] && cts+=(vhf:../shared/data/ct/vhfemale-head.mha)
+    for entry in "${cts[@]}"; do
+      IFS=: read -r key ct <<<"$entry"
+      step "landing-$key" "$facehex" run "$ct" -o "$out/landing-$key"
+      step "landing-$key-pulled" "$facehex" run "$ct" --pull-found-landmarks -o "$out/landing-$key-pulled"
+      rm -f "$out"/landing-"$key"*/*.vtu
+    done
   fi
   if want benchmarks; then
     step bench-sizes "$facehex" bench --sizes 10000,50000,200000 --json
@@ -445,6 +459,40 @@ if only in ("", "landmarks"):
         rows.append([name] + cells)
     write_blocks("docs/benchmarks.md", {
         "bench-landmarks": machine_line().split(" Wall-clock")[0] + "\n\n" + table(["landmark"] + [c[0] for c in columns], rows)})
+
+# ---- docs/results.md: where the standard's landmarks land ----
+if only in ("", "landing"):
+    runs = []
+    for key, label in (("bundled-ct", "bundled CT"), ("vhf", "Visible Human")):
+        for suffix, how in (("", "registered skin"), ("-pulled", "`--pull-found-landmarks`")):
+            path = os.path.join(out, f"landing-{key}{suffix}", "report.json")
+            if os.path.exists(path):
+                runs.append((f"{label}, {how}", json.load(open(path))))
+    names = []
+    for _, r in runs:
+        names += [l["name"] for l in r["feature_landing"]["landmarks"] if l["name"] not in names]
+    rows = []
+    for name in names:
+        cells = []
+        for _, r in runs:
+            hit = [l for l in r["feature_landing"]["landmarks"] if l["name"] == name]
+            cells.append(f"{hit[0]['mm']:.1f}" + (" (estimated)" if hit[0]["patient"] == "estimated" else "")
+                         if hit else "")
+        rows.append([name] + cells)
+
+    def found_mean(r):
+        mm = [l["mm"] for l in r["feature_landing"]["landmarks"] if l["patient"] != "estimated"]
+        return sum(mm) / len(mm)
+
+    rows.append(["**mean** (not estimated)"] + [f"{r['feature_landing']['mean_mm']:.1f} ({found_mean(r):.1f})"
+                                                 for _, r in runs])
+    q = lambda r: r["patient_hex"]["quality"]
+    rows.append(["inverted cells"] + [str(q(r)["inverted"]) for _, r in runs])
+    rows.append(["mean shape / standard's"] + [f(q(r)["shape_mean"] / r["standard"]["quality"]["shape_mean"], 3)
+                                               for _, r in runs])
+    rows.append(["dihedral change (deg)"] + [f(q(r)["dihedral_distortion"]["mean_deg"], 2) for _, r in runs])
+    write_blocks("docs/results.md", {
+        "results-landing": machine_line() + "\n\n" + table(["mm across the face"] + [c[0] for c in runs], rows)})
 
 # ---- docs/benchmarks.md ----
 if only in ("", "benchmarks"):

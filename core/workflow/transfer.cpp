@@ -1,5 +1,7 @@
 #include "core/workflow/transfer.h"
 
+#include <algorithm>
+
 #include "core/face/automatic_constraints.h"
 #include "core/io/fe_sets.h"
 #include "core/io/mesh_io.h"
@@ -41,15 +43,24 @@ ConstraintSet without_automatic_features(const PatientSetup& patient, std::vecto
   return kept;
 }
 
-// The user's landmarks paired with the standard's of the same names (found on its skin), or none.
-PointPairs given_landmark_pairs(const StandardSetup& standard, const PatientSetup& patient) {
+// The patient's landmarks paired with the standard's of the same names (standard_features.h): the user's, or with
+// pull_found the found ones but the eye corners; none otherwise.
+PointPairs landmark_pairs(const StandardSetup& standard, const PatientSetup& patient, const StandardFeatures& features,
+                          bool pull_found) {
   PointPairs pairs;
-  if (!patient.landmarks || !patient.landmarks->given) return pairs;
-  const FaceLandmarks own = find_face_landmarks(standard.mesh.V, side_mask_of(standard.mesh));
+  if (!patient.landmarks || (!patient.landmarks->given && !pull_found)) return pairs;
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> matched;
-  for (const auto& [name, point] : patient.landmarks->points) {
-    const auto it = own.points.find(name);
-    if (it != own.points.end()) matched.emplace_back(it->second, point);
+  for (const NamedLandmark& l : named_landmarks(*patient.landmarks)) {
+    if (l.status == LandmarkStatus::estimated) continue;
+    const bool eye_corner = std::find(kEyeCornerNames.begin(), kEyeCornerNames.end(), l.name) != kEyeCornerNames.end();
+    if (l.status == LandmarkStatus::found && eye_corner) continue;
+    // The standard's landmark where its finder placed it, else its vertex (the corners of its open eyes).
+    const auto point = features.landmarks.points.find(l.name);
+    const auto vertex = features.landmark_vertices.find(l.name);
+    if (point != features.landmarks.points.end())
+      matched.emplace_back(point->second, l.position);
+    else if (vertex != features.landmark_vertices.end())
+      matched.emplace_back(standard.mesh.V.row(vertex->second).transpose(), l.position);
   }
   pairs.standard.resize(static_cast<Eigen::Index>(matched.size()), 3);
   pairs.patient.resize(static_cast<Eigen::Index>(matched.size()), 3);
@@ -82,6 +93,12 @@ TransferResult transfer(const StandardSetup& standard, const PatientSetup& patie
   std::optional<PatientSetup> closed;
   if (standard.domain.closed_openings > 0) closed = with_openings_closed(patient_as_given, r.patient_openings);
   const PatientSetup& patient = closed ? *closed : patient_as_given;
+  // A standard whose own landmarks are not found has no features to pull or to follow: its transfer stands.
+  std::optional<StandardFeatures> features;
+  try {
+    features = standard_features(standard.mesh);
+  } catch (const Error&) {
+  }
   std::optional<ModelParameterization> standard_p =
       cached_parameterization(standard.path, standard.domain, standard.constraints, options.fields, &r.cache_note);
   const bool cached = standard_p.has_value();
@@ -96,7 +113,8 @@ TransferResult transfer(const StandardSetup& standard, const PatientSetup& patie
       standard_seconds = clock.lap();
     }
     try {
-      const PointPairs landmarks = given_landmark_pairs(standard, patient);
+      const PointPairs landmarks =
+          features ? landmark_pairs(standard, patient, *features, options.pull_found_landmarks) : PointPairs{};
       const RegisteredSidesOptions registration_options;
       r.registration = register_sides(standard.domain, standard_p->fields.uvw, patient.mesh, patient.source(),
                                       registration_options, &landmarks, sub_progress(progress, 0.1, 0.2));
@@ -147,13 +165,8 @@ TransferResult transfer(const StandardSetup& standard, const PatientSetup& patie
   r.plain_mapping_quality = quality_report(r.run.mapped_hex, &standard.mesh);
   r.patient_quality = quality_report(r.run.patient_hex, &standard.mesh);
   r.distance = side_vertex_distances(r.run, standard.mesh);
-  if (patient_as_given.landmarks) {
-    try {
-      r.landing = feature_landing(standard_features(standard.mesh), r.patient_hex.V, *patient_as_given.landmarks);
-    } catch (const Error&) {
-      // A standard whose own landmarks are not found has no features to follow; its transfer stands.
-    }
-  }
+  if (patient_as_given.landmarks && features)
+    r.landing = feature_landing(*features, r.patient_hex.V, *patient_as_given.landmarks);
   report_progress(progress, "quality", 1.0);
   return r;
 }
