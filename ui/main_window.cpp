@@ -250,10 +250,21 @@ void MainWindow::createActions() {
   registeredSkin_->setToolTip(
       tr("Register the standard's skin onto the patient's and give the patient's skin the standard's parameters "
          "there, in place of the feature lines found at the landmarks (the CLI's --skin-correspondence registered)"));
+  pullLandmarks_ = action(tr("&Pull the found landmarks"), QKeySequence(), [this](bool on) {
+    TransferOptions o = controller_->options();
+    o.pull_found_landmarks = on;
+    controller_->setOptions(o);
+  });
+  pullLandmarks_->setCheckable(true);
+  pullLandmarks_->setChecked(controller_->options().pull_found_landmarks);
+  pullLandmarks_->setToolTip(
+      tr("With the skins registered: the landmarks found on the patient (not estimated, not the eye corners) pull "
+         "the registration towards the standard's, so that its mouth and profile land on the patient's, at some "
+         "cost in cell shape (the CLI's --pull-found-landmarks; the transfer's message says where they landed)"));
   about_ = action(tr("&About FaceHex"), QKeySequence(), &MainWindow::about);
-  for (QAction* a :
-       {openPatient_, resegment_, openDicom_, openDemo_, loadConstraints_, mergeConstraints_, saveConstraints_, export_,
-        computeFields_, transfer_, cancel_, recover_, features_, loadLandmarks_, saveLandmarks_, registeredSkin_})
+  for (QAction* a : {openPatient_, resegment_, openDicom_, openDemo_, loadConstraints_, mergeConstraints_,
+                     saveConstraints_, export_, computeFields_, transfer_, cancel_, recover_, features_, loadLandmarks_,
+                     saveLandmarks_, registeredSkin_, pullLandmarks_})
     a->setObjectName(a->text().remove('&').remove("...").replace(' ', '_'));
 }
 
@@ -289,6 +300,7 @@ void MainWindow::createMenusAndToolbar() {
   run->addAction(allowInverted_);
   run->addAction(shapeRelaxation_);
   run->addAction(registeredSkin_);
+  run->addAction(pullLandmarks_);
   menuBar()->addMenu(tr("&Help"))->addAction(about_);
   rebuildRecentMenu();
 

@@ -106,8 +106,8 @@ class MainWindow : public QMainWindow {
 
   QAction *openPatient_, *resegment_, *openDicom_, *openDemo_, *openStandardFile_, *loadConstraints_,
       *mergeConstraints_, *saveConstraints_, *recover_, *export_, *screenshot_, *quit_, *undo_, *redo_, *computeFields_,
-      *transfer_, *cancel_, *allowInverted_, *shapeRelaxation_, *registeredSkin_, *features_, *loadLandmarks_,
-      *saveLandmarks_, *about_;
+      *transfer_, *cancel_, *allowInverted_, *shapeRelaxation_, *registeredSkin_, *pullLandmarks_, *features_,
+      *loadLandmarks_, *saveLandmarks_, *about_;
   QUndoGroup* undoGroup_ = nullptr;
   QMenu* recentMenu_ = nullptr;
   QComboBox* standardChoice_ = nullptr;

@@ -78,6 +78,7 @@ class GuiTest : public QObject {
   void computeFieldsReadsTheStandardsCache();
   void transfersTheBundledModelsAndShowsThem();
   void registeredSkinIsAnOptionOfTheTransfer();
+  void foundLandmarksCanPullTheRegistration();
   void cancelStopsTheSegmentation();
   void opensAndSegmentsTheBundledCt();
   void segmentationDialogRoundTripsItsOptions();
@@ -509,6 +510,31 @@ void GuiTest::registeredSkinIsAnOptionOfTheTransfer() {
   QCOMPARE(r->patient_quality.summary.inverted, 0);
   registered->trigger();
   QVERIFY(window_->controller()->options().skin_correspondence == SkinCorrespondence::registered);
+}
+
+void GuiTest::foundLandmarksCanPullTheRegistration() {
+  // Off by default, as in the CLI; checked, the transfer pairs the found landmarks, and its message says where the
+  // standard's landed.
+  QVERIFY2(openDemo(), qPrintable(error_));
+  auto* pull = window_->findChild<QAction*>("Pull_the_found_landmarks");
+  QVERIFY(pull && pull->isCheckable() && !pull->isChecked());
+  QVERIFY(!window_->controller()->options().pull_found_landmarks);
+  pull->trigger();
+  QVERIFY(window_->controller()->options().pull_found_landmarks);
+  QVERIFY2(runTransferAndWait(), qPrintable(error_));
+  const TransferResult* r = session()->transfer();
+  QVERIFY(r && r->registration && !r->landing.empty());
+  QCOMPARE(r->patient_quality.summary.inverted, 0);
+  MessageLog* log = window_->messageLog();
+  QTreeWidgetItem* transfer = nullptr;
+  for (int i = log->topLevelItemCount() - 1; i >= 0 && !transfer; --i)
+    if (log->topLevelItem(i)->text(1).startsWith("Transfer done")) transfer = log->topLevelItem(i);
+  QVERIFY(transfer);
+  QStringList detail;
+  for (int i = 0; i < transfer->childCount(); ++i) detail << transfer->child(i)->text(1);
+  QVERIFY2(detail.filter("anatomy: the standard's").size() == 1, qPrintable(detail.join(" | ")));
+  pull->trigger();
+  QVERIFY(!window_->controller()->options().pull_found_landmarks);
 }
 
 void GuiTest::cancelStopsTheSegmentation() {
