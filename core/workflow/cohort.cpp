@@ -43,6 +43,14 @@ Column landmark_column(const char* name, const char* heading, int CohortMesh::*c
           }};
 }
 
+// Where the standard's landmarks landed, when it was measured.
+Column landing_column(const char* name, const char* heading, double CohortMesh::*mm) {
+  return {name, heading, "%.1f", [mm](const CohortPatient& p) -> std::optional<double> {
+            if (!p.mesh || (*p.mesh).*mm < 0) return std::nullopt;
+            return (*p.mesh).*mm;
+          }};
+}
+
 const std::vector<Column>& numeric_columns() {
   static const std::vector<Column> columns = {
       mesh_column("tets", "tets", "%.0f", [](const CohortMesh& m) { return double(m.tets); }),
@@ -60,6 +68,8 @@ const std::vector<Column>& numeric_columns() {
       {"seconds", "time (s)", "%.1f", [](const CohortPatient& p) -> std::optional<double> { return p.seconds; }},
       landmark_column("landmarks_found", "landmarks found", &CohortMesh::landmarks_found),
       landmark_column("landmarks_estimated", "landmarks estimated", &CohortMesh::landmarks_estimated),
+      landing_column("landing_mean_mm", "landmarks land, mean (mm)", &CohortMesh::landing_mean_mm),
+      landing_column("landing_max_mm", "landmarks land, max (mm)", &CohortMesh::landing_max_mm),
   };
   return columns;
 }
@@ -94,6 +104,11 @@ CohortMesh read_mesh(const fs::path& folder) {
     if (!landmarks.is_null()) {
       m.landmarks_found = landmarks.at("found").get<int>();
       m.landmarks_estimated = landmarks.at("estimated").get<int>();
+    }
+    const json& landing = report.at("feature_landing");
+    if (!landing.is_null()) {
+      m.landing_mean_mm = landing.at("mean_mm").get<double>();
+      m.landing_max_mm = landing.at("max_mm").get<double>();
     }
   } catch (const json::exception& e) {
     throw Error(report_path, std::string("a key the cohort report reads is missing or of the wrong type: ") + e.what());

@@ -24,8 +24,10 @@ struct CohortMesh {
   double dihedral_change_mean_deg = 0, dihedral_change_max_deg = 0;
   double side_distance_p95_mm = 0;
   int landmarks_found = -1, landmarks_estimated = -1;  // -1: no landmarks (a constraint file was used)
-  std::vector<double> dihedral_changes;                // deg, every cell edge's against the standard
-  std::vector<double> shapes;                          // every cell's shape (cell data "shape")
+  // Where the standard's landmarks landed against the patient's (report.json feature_landing), mm; -1: not measured.
+  double landing_mean_mm = -1, landing_max_mm = -1;
+  std::vector<double> dihedral_changes;  // deg, every cell edge's against the standard
+  std::vector<double> shapes;            // every cell's shape (cell data "shape")
 };
 
 struct CohortPatient {

@@ -75,6 +75,9 @@ class CohortWorkflow(unittest.TestCase):
             self.assertEqual(patients[pid]["inverted"], 0)
             self.assertGreater(patients[pid]["tets"], 0)
             self.assertGreater(patients[pid]["landmarks_found"], 0)
+            # where the standard's landmarks landed on the patient's, measured on every run with landmarks
+            self.assertGreater(patients[pid]["landing_max_mm"], 0)
+            self.assertLessEqual(patients[pid]["landing_mean_mm"], patients[pid]["landing_max_mm"])
         c = patients["c"]
         self.assertEqual((c["status"], c["failed_step"], c["exit_code"]), ("failed", "transfer", 1))
         self.assertTrue(c["error"].startswith("error: ") and "broken.vtu" in c["error"], c["error"])
