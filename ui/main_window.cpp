@@ -223,44 +223,44 @@ void MainWindow::createActions() {
   transfer_ = action(tr("&Transfer"), QKeySequence(tr("F6")), [this] { controller_->runTransfer(); });
   transfer_->setToolTip(tr("Map the standard hex mesh onto the patient (paper 3.4)"));
   cancel_ = action(tr("&Cancel"), QKeySequence(Qt::Key_Escape), [this] { controller_->cancel(); });
-  allowInverted_ = action(tr("Continue despite &inverted tets"), QKeySequence(), [this](bool on) {
-    TransferOptions o = controller_->options();
-    o.allow_inverted_parameterization = on;
-    controller_->setOptions(o);
-  });
-  allowInverted_->setCheckable(true);
-  allowInverted_->setToolTip(tr("Map even when the patient parameterization folds (the CLI's --allow-inverted)"));
-  shapeRelaxation_ = action(tr("Keep the standard's cell &shapes"), QKeySequence(), [this](bool on) {
-    TransferOptions o = controller_->options();
-    o.shape_relaxation = on;
-    controller_->setOptions(o);
-  });
-  shapeRelaxation_->setCheckable(true);
-  shapeRelaxation_->setChecked(controller_->options().shape_relaxation);
-  shapeRelaxation_->setToolTip(
+  // A checkable option of the transfer: `set` writes it into the controller's TransferOptions, `get` reads it.
+  auto option = [this, &action](const QString& text, const QString& tip, auto set, auto get) {
+    QAction* a = action(text, QKeySequence(), [this, set](bool on) {
+      TransferOptions o = controller_->options();
+      set(o, on);
+      controller_->setOptions(o);
+    });
+    a->setCheckable(true);
+    a->setChecked(get(controller_->options()));
+    a->setToolTip(tip);
+    return a;
+  };
+  allowInverted_ = option(
+      tr("Continue despite &inverted tets"),
+      tr("Map even when the patient parameterization folds (the CLI's --allow-inverted)"),
+      [](TransferOptions& o, bool on) { o.allow_inverted_parameterization = on; },
+      [](const TransferOptions& o) { return o.allow_inverted_parameterization; });
+  shapeRelaxation_ = option(
+      tr("Keep the standard's cell &shapes"),
       tr("After the mapping, slide vertices along the patient towards the standard's cell "
-         "shapes (the CLI's --shape-relaxation; off: the paper's plain mapping)"));
-  registeredSkin_ = action(tr("&Register the skins"), QKeySequence(), [this](bool on) {
-    TransferOptions o = controller_->options();
-    o.skin_correspondence = on ? SkinCorrespondence::registered : SkinCorrespondence::features;
-    controller_->setOptions(o);
-  });
-  registeredSkin_->setCheckable(true);
-  registeredSkin_->setChecked(controller_->options().skin_correspondence == SkinCorrespondence::registered);
-  registeredSkin_->setToolTip(
+         "shapes (the CLI's --shape-relaxation; off: the paper's plain mapping)"),
+      [](TransferOptions& o, bool on) { o.shape_relaxation = on; },
+      [](const TransferOptions& o) { return o.shape_relaxation; });
+  registeredSkin_ = option(
+      tr("&Register the skins"),
       tr("Register the standard's skin onto the patient's and give the patient's skin the standard's parameters "
-         "there, in place of the feature lines found at the landmarks (the CLI's --skin-correspondence registered)"));
-  pullLandmarks_ = action(tr("&Pull the found landmarks"), QKeySequence(), [this](bool on) {
-    TransferOptions o = controller_->options();
-    o.pull_found_landmarks = on;
-    controller_->setOptions(o);
-  });
-  pullLandmarks_->setCheckable(true);
-  pullLandmarks_->setChecked(controller_->options().pull_found_landmarks);
-  pullLandmarks_->setToolTip(
+         "there, in place of the feature lines found at the landmarks (the CLI's --skin-correspondence registered)"),
+      [](TransferOptions& o, bool on) {
+        o.skin_correspondence = on ? SkinCorrespondence::registered : SkinCorrespondence::features;
+      },
+      [](const TransferOptions& o) { return o.skin_correspondence == SkinCorrespondence::registered; });
+  pullLandmarks_ = option(
+      tr("&Pull the found landmarks"),
       tr("With the skins registered: the landmarks found on the patient (not estimated, not the eye corners) pull "
          "the registration towards the standard's, so that its mouth and profile land on the patient's, at some "
-         "cost in cell shape (the CLI's --pull-found-landmarks; the transfer's message says where they landed)"));
+         "cost in cell shape (the CLI's --pull-found-landmarks; the transfer's message says where they landed)"),
+      [](TransferOptions& o, bool on) { o.pull_found_landmarks = on; },
+      [](const TransferOptions& o) { return o.pull_found_landmarks; });
   about_ = action(tr("&About FaceHex"), QKeySequence(), &MainWindow::about);
   for (QAction* a : {openPatient_, resegment_, openDicom_, openDemo_, loadConstraints_, mergeConstraints_,
                      saveConstraints_, export_, computeFields_, transfer_, cancel_, recover_, features_, loadLandmarks_,

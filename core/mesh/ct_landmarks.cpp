@@ -11,10 +11,11 @@ namespace {
 
 constexpr int kRows = static_cast<int>(kCtLandmarkNames.size());
 
-// The rows in kCtLandmarkNames order.
-std::array<std::optional<CtLandmark>*, kRows> rows_of(CtLandmarks& l) {
-  return {&l.tragi[0],       &l.tragi[1],       &l.eye_corners[0], &l.eye_corners[1],
-          &l.eye_corners[2], &l.eye_corners[3], &l.stomion};
+// The rows in kCtLandmarkNames order (pointers to const members for a const CtLandmarks).
+template <class Landmarks>
+auto rows_of(Landmarks& l) {
+  return std::array{&l.tragi[0],       &l.tragi[1],       &l.eye_corners[0], &l.eye_corners[1],
+                    &l.eye_corners[2], &l.eye_corners[3], &l.stomion};
 }
 
 }  // namespace
@@ -45,8 +46,7 @@ std::optional<CtLandmarks> ct_landmarks(const VolumeMesh& mesh, const std::strin
 
 void set_ct_landmarks(VolumeMesh& mesh, const CtLandmarks& landmarks) {
   Eigen::MatrixXd t = Eigen::MatrixXd::Constant(kRows, 4, std::numeric_limits<double>::quiet_NaN());
-  CtLandmarks copy = landmarks;
-  const auto rows = rows_of(copy);
+  const auto rows = rows_of(landmarks);
   for (int r = 0; r < kRows; ++r)
     if (*rows[r]) t.row(r) << (*rows[r])->point.transpose(), (*rows[r])->estimated ? 1.0 : 0.0;
   mesh.field_data[kCtLandmarksField] = t;

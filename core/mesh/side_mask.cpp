@@ -1,6 +1,7 @@
 #include "core/mesh/side_mask.h"
 
 #include <bitset>
+#include <limits>
 
 #include "core/mesh/cell_faces.h"
 #include "core/mesh/sides.h"
@@ -49,6 +50,17 @@ int relax_corner_quads(const VolumeMesh& mesh, Eigen::VectorXi& side_mask) {
     side_mask(v) &= ~drop(v);
   }
   return relaxed;
+}
+
+int closest_skin_vertex(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask, const Eigen::Vector3d& point) {
+  int best = -1;
+  double best_d2 = std::numeric_limits<double>::infinity();
+  for (Eigen::Index v = 0; v < side_mask.size(); ++v) {
+    if (!(side_mask(v) & side_bit(W1))) continue;
+    const double d2 = (V.row(v).transpose() - point).squaredNorm();
+    if (d2 < best_d2) best_d2 = d2, best = static_cast<int>(v);
+  }
+  return best;
 }
 
 }  // namespace facehex

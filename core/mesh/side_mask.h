@@ -21,4 +21,7 @@ int clear_opposite_sides(Eigen::VectorXi& side_mask);
 // vertices were relaxed.
 int relax_corner_quads(const VolumeMesh& mesh, Eigen::VectorXi& side_mask);
 
+// The vertex on the skin (side w1 of side_mask #V) closest to `point`, or -1 when none is. V is #V x 3.
+int closest_skin_vertex(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask, const Eigen::Vector3d& point);
+
 }  // namespace facehex

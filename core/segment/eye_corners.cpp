@@ -52,15 +52,15 @@ constexpr double kEstimatedExoDrop = 7.5;  // mm below the nasion when no line w
 constexpr double kEstimatedEndoFraction = 0.30;
 constexpr double kCanthalDrop = 2;
 
-// The index of the largest (smallest) non-NaN value of v[lo..hi], or none.
-std::optional<int> extreme_index(const std::vector<double>& v, int lo, int hi, bool largest) {
+// The index of the largest non-NaN value of v[lo..hi] (the first of equals), or none.
+std::optional<int> largest_index(const std::vector<double>& v, int lo, int hi) {
   std::optional<int> best;
   for (int i = lo; i <= hi; ++i)
-    if (!std::isnan(v[i]) && (!best || (largest ? v[i] > v[*best] : v[i] < v[*best]))) best = i;
+    if (!std::isnan(v[i]) && (!best || v[i] > v[*best])) best = i;
   return best;
 }
 
-// A running mean of 3, NaN taken as 0 beyond the ends (numpy's "same" convolution).
+// A running mean of 3, the values beyond the ends taken as 0 (numpy's "same" convolution).
 std::vector<double> running_mean3(const std::vector<double>& v) {
   std::vector<double> out(v.size());
   for (size_t i = 0; i < v.size(); ++i)
@@ -156,10 +156,10 @@ class Slit {
         }
       if (count > 0) mean[j] = sum / count;
     }
-    const std::optional<int> best = extreme_index(mean, 0, n - 1, true);
+    const std::optional<int> best = largest_index(mean, 0, n - 1);
     if (!best) return std::nullopt;
     const int lo = std::max(*best - 2, 1), hi = std::min(*best + 2, n - 2);
-    return extreme_index(notch(static_cast<int>(kSeedColumn)), lo, hi, true).value_or(*best);
+    return largest_index(notch(static_cast<int>(kSeedColumn)), lo, hi).value_or(*best);
   }
 
   // The deepest notch followed from kSeedColumn to `end` mm out, column by column.
@@ -171,7 +171,7 @@ class Slit {
     for (int offset = static_cast<int>(kSeedColumn); (end - offset) * step >= 0; offset += step) {
       const std::vector<double>& d = notch(offset);
       const int lo = std::max(j - kReach, 1), hi = std::min(j + kReach, n - 2);
-      const std::optional<int> deepest = extreme_index(d, lo, hi, true);
+      const std::optional<int> deepest = largest_index(d, lo, hi);
       if (!deepest) break;
       j = *deepest;
       // The notch's peak between the levels, from the parabola through three.

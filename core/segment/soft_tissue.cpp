@@ -264,17 +264,16 @@ SurfaceMesh level_surface_with_cuts(const Mask& tissue, FaceCuts& cuts, const Se
 }
 
 // The landmarks read in the CT by the ones found on the model's skin (its mid-sagittal plane, nasion, pronasale and
-// labralia): the eye corners (eye_corners.h) and the stomion (stomion.h), next to the tragi. Left out when those are
-// not found: the transfer says why.
-void add_slit_landmarks(const CtVolume& ct, PatientModel& model) {
+// labralia) into `found`: the eye corners (eye_corners.h) and the stomion (stomion.h). False, and none read, when
+// those are not found: the transfer says why.
+bool read_slit_landmarks(const CtVolume& ct, const PatientModel& model, CtLandmarks& found) {
   FaceLandmarks landmarks;
   try {
     landmarks = find_face_landmarks(model.mesh.V, side_mask_of(model.mesh), landmark_options_for(model.mesh, "model"));
   } catch (const Error&) {
-    return;
+    return false;
   }
   const auto has = [&](const char* name) { return landmarks.points.count(name) > 0; };
-  CtLandmarks found = ct_landmarks(model.mesh, "model").value_or(CtLandmarks{});
   const double skin = model.thresholds.skin;
   if (has("nasion") && has("pronasale"))
     found.eye_corners = find_eye_corners(ct.intensity, skin, landmarks.plane, landmarks.points.at("nasion"),
@@ -282,7 +281,7 @@ void add_slit_landmarks(const CtVolume& ct, PatientModel& model) {
   if (has("labrale superius") && has("labrale inferius"))
     found.stomion = find_stomion(ct.intensity, skin, landmarks.plane, landmarks.points.at("labrale superius"),
                                  landmarks.points.at("labrale inferius"));
-  set_ct_landmarks(model.mesh, found);
+  return true;
 }
 
 }  // namespace
@@ -481,15 +480,14 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   for (size_t i = 0; i < on_skin.size(); ++i)
     skin.row(static_cast<Eigen::Index>(i)) = turn.to_model(surface.V.row(on_skin[i]).transpose()).transpose();
   set_skin_points(model.mesh, skin);
+  CtLandmarks found;
   if (model.cuts.anatomy) {
-    CtLandmarks found;
     found.tragi = model.cuts.anatomy->tragi;
     for (std::optional<CtLandmark>& tragus : found.tragi)
       if (tragus) tragus->point = turn.to_model(tragus->point);
-    set_ct_landmarks(model.mesh, found);
   }
   step("the eye corners and the stomion", 0.93);
-  add_slit_landmarks(ct, model);
+  if (read_slit_landmarks(ct, model, found) || model.cuts.anatomy) set_ct_landmarks(model.mesh, found);
   model.boundary_faces = std::move(tets.boundary_faces);
   model.boundary_sides = tets.boundary_labels.array() - 1;
   step("checks", 0.95);

@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <map>
 
 #include "core/fields/constraint_set.h"
 #include "core/fields/tet_domain.h"
+#include "core/mesh/side_mask.h"
 #include "core/mesh/sides.h"
 #include "core/standard/closed_domain.h"
 
@@ -28,16 +28,8 @@ StandardFeatures standard_features(const VolumeMesh& standard) {
   StandardFeatures f;
   const Eigen::VectorXi mask = side_mask_of(standard);
   f.landmarks = find_face_landmarks(standard.V, mask);
-  std::vector<int> skin;
-  for (int v = 0; v < standard.num_vertices(); ++v)
-    if (mask(v) & side_bit(W1)) skin.push_back(v);
-  for (const auto& [name, p] : f.landmarks.points) {
-    int nearest = -1;
-    double best = std::numeric_limits<double>::infinity();
-    for (const int v : skin)
-      if (const double d = (standard.V.row(v).transpose() - p).squaredNorm(); d < best) best = d, nearest = v;
-    if (nearest >= 0) f.landmark_vertices[name] = nearest;
-  }
+  for (const auto& [name, p] : f.landmarks.points)
+    if (const int nearest = closest_skin_vertex(standard.V, mask, p); nearest >= 0) f.landmark_vertices[name] = nearest;
   // An opening's wall may fall into several edge-connected pieces (where its rim vertices touch): pieces of the same
   // name are one rim.
   const TetDomain domain = auxiliary_domain(standard);
@@ -51,7 +43,6 @@ StandardFeatures standard_features(const VolumeMesh& standard) {
     const std::string name = opening_name(centroid, f.landmarks, static_cast<int>(o));
     if (!largest.count(name) || openings[o].size() > openings[largest[name]].size()) largest[name] = o;
     std::vector<int>& rim = f.rims[name];
-
     for (const auto& t : openings[o])
       for (int k = 0; k < 3; ++k)
         if (domain.side_mask(t(k)) & (side_bit(W0) | side_bit(W1))) rim.push_back(t(k));
@@ -67,15 +58,14 @@ StandardFeatures standard_features(const VolumeMesh& standard) {
   const auto corners = [&](const char* opening, const char* at_minus_x, const char* at_plus_x) {
     const auto piece = largest.find(opening);
     if (piece == largest.end()) return;
-    std::vector<int> rim;
-    for (const auto& t : openings[piece->second])
-      for (int k = 0; k < 3; ++k) rim.push_back(t(k));
     int lo = -1, hi = -1;
-    for (const int v : rim) {
-      if (!(domain.side_mask(v) & side_bit(W1))) continue;
-      if (lo < 0 || standard.V(v, 0) < standard.V(lo, 0)) lo = v;
-      if (hi < 0 || standard.V(v, 0) > standard.V(hi, 0)) hi = v;
-    }
+    for (const auto& t : openings[piece->second])
+      for (int k = 0; k < 3; ++k) {
+        const int v = t(k);
+        if (!(domain.side_mask(v) & side_bit(W1))) continue;
+        if (lo < 0 || standard.V(v, 0) < standard.V(lo, 0)) lo = v;
+        if (hi < 0 || standard.V(v, 0) > standard.V(hi, 0)) hi = v;
+      }
     if (lo < 0) return;
     f.landmark_vertices[at_minus_x] = lo;
     f.landmark_vertices[at_plus_x] = hi;

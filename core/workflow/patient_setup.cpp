@@ -1,12 +1,11 @@
 #include "core/workflow/patient_setup.h"
 
 #include <filesystem>
-#include <limits>
 #include <optional>
 
 #include "core/face/automatic_constraints.h"
 #include "core/mesh/mesh_check.h"
-#include "core/mesh/sides.h"
+#include "core/mesh/side_mask.h"
 #include "core/mesh/synthetic_shell.h"
 #include "core/segment/ct_volume.h"
 #include "core/tetgen/tetrahedralize.h"
@@ -60,13 +59,7 @@ void choose_constraints(PatientSetup& patient, const std::string& constraints_fi
 
 Eigen::Vector3d closest_skin_point(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
                                    const Eigen::Vector3d& point) {
-  int best = -1;
-  double best_d2 = std::numeric_limits<double>::infinity();
-  for (Eigen::Index v = 0; v < side_mask.size(); ++v) {
-    if (!(side_mask(v) & side_bit(W1))) continue;
-    const double d2 = (V.row(v).transpose() - point).squaredNorm();
-    if (d2 < best_d2) best_d2 = d2, best = static_cast<int>(v);
-  }
+  const int best = closest_skin_vertex(V, side_mask, point);
   if (best < 0) throw Error("landmarks", "the model has no skin (side w1) to place a landmark on");
   return V.row(best).transpose();
 }
