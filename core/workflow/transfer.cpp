@@ -225,12 +225,14 @@ VolumeMesh standard_with_fields(const VolumeMesh& standard, const ModelParameter
 VolumeMesh parameterized_tet_mesh(const ModelParameterization& p, const VolumeMesh* source) {
   VolumeMesh m = VolumeMesh::from_tets(p.V, p.T);
   const Eigen::Index n = source ? source->num_vertices() : 0;
-  if (source && n <= p.V.rows() && p.V.topRows(n) == source->V)
+  if (source && n <= p.V.rows() && p.V.topRows(n) == source->V) {
     for (const auto& [name, values] : source->point_data) {
       Eigen::MatrixXd padded = Eigen::MatrixXd::Zero(p.V.rows(), values.cols());
       padded.topRows(n) = values;
       m.point_data[name] = padded;
     }
+    m.field_data = source->field_data;
+  }
   attach_fields(m, p);
   for (int f = 0; f < 3; ++f) {
     m.cell_data[std::string("grad_") + kFieldNames[f]] = p.fields.gradients[f];

@@ -74,9 +74,11 @@ VolumeMesh with_quality(VolumeMesh mesh);
 VolumeMesh standard_with_fields(const VolumeMesh& standard, const ModelParameterization& p);
 
 // A parameterized tet model (the patient's) with its fields and per-tet gradients before and after the
-// orthogonality improvement (cell data grad_u, grad_u_initial, ...); `source`'s point data is kept when its vertices
-// are the first of the model's (all of them, or all but the inner vertices of the plugs transfer() closed its
-// openings with, whose rows are 0: on no side). Write it with parameterized_model_writing().
+// orthogonality improvement (cell data grad_u, grad_u_initial, ...); `source`'s point data and field data (the
+// landmarks a segmentation read in the CT: ct_landmarks.h) are kept when its vertices are the first of the model's
+// (all of them, or all but the inner vertices of the plugs transfer() closed its openings with, whose rows are 0: on
+// no side), so that the written model, run again, finds the same landmarks. Write it with
+// parameterized_model_writing().
 VolumeMesh parameterized_tet_mesh(const ModelParameterization& p, const VolumeMesh* source);
 
 // The writing options of a parameterized tet model: its gradients as 32-bit floats (they are for display).

@@ -5,6 +5,7 @@
 
 #include "core/face/automatic_constraints.h"
 #include "core/io/mesh_io.h"
+#include "core/mesh/ct_landmarks.h"
 #include "core/mesh/hex_to_tets.h"
 #include "core/mesh/sides.h"
 #include "core/standard/closed_domain.h"
@@ -116,8 +117,10 @@ TEST_F(Workflow, ATetModelIsItsOwnDomainWithAllItsVerticesAsModelVertices) {
 // vertices on no side.
 TEST_F(Workflow, TheParameterizedModelKeepsTheModelsPointDataWithItsPlugs) {
   // A tunnel from back to front through the middle column of the box.
-  const VolumeMesh model =
-      test::tet_box_without(3, 2, 3, 30, 10, 30, [](int i, int, int k) { return i == 1 && k == 1; });
+  VolumeMesh model = test::tet_box_without(3, 2, 3, 30, 10, 30, [](int i, int, int k) { return i == 1 && k == 1; });
+  CtLandmarks found;
+  found.stomion = CtLandmark{Eigen::Vector3d(15, 10, 12), false};
+  set_ct_landmarks(model, found);
   const TetDomain closed = close_openings(own_domain(model), "the model's own tets");
   ASSERT_EQ(closed.closed_openings, 1);
   const ModelParameterization p =
@@ -128,10 +131,16 @@ TEST_F(Workflow, TheParameterizedModelKeepsTheModelsPointDataWithItsPlugs) {
   ASSERT_EQ(mask.rows(), closed.V.rows());
   EXPECT_EQ(mask.topRows(model.num_vertices()), model.point_data.at(kSideMaskArray));
   EXPECT_TRUE(mask.bottomRows(closed.V.rows() - model.num_vertices()).isZero());
+  // The landmarks read in the CT go with the model, so that running the written model finds them again.
+  const std::optional<CtLandmarks> kept = ct_landmarks(written, "written");
+  ASSERT_TRUE(kept.has_value());
+  ASSERT_TRUE(kept->stomion.has_value());
+  EXPECT_EQ(kept->stomion->point, found.stomion->point);
   // A model of other vertices lends none.
   VolumeMesh other = model;
   other.V.array() += 1;
   EXPECT_EQ(parameterized_tet_mesh(p, &other).point_data.count(kSideMaskArray), 0u);
+  EXPECT_TRUE(parameterized_tet_mesh(p, &other).field_data.empty());
 }
 
 TEST_F(Workflow, AStandardMustBeHexDominantAndItsDomainKindKnown) {
