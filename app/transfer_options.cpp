@@ -81,11 +81,13 @@ void add_transfer_options(Args& args) {
       .flag("hold-skin",
             "with --skin-correspondence registered: the shape relaxation keeps the standard's skin vertices at their "
             "registered correspondents instead of sliding them along the skin (correspondence before cell shape)")
-      .flag("pull-found-landmarks",
-            "with --skin-correspondence registered: the landmarks found on the patient (not estimated, the eye "
-            "corners left out) pull the registration towards the standard's, as landmarks given with --landmarks do "
-            "(the standard's mouth and profile land on the patient's at some cost in cell shape; report.json "
-            "feature_landing)")
+      .option("pull-found-landmarks",
+              "with --skin-correspondence registered: on: the landmarks found (or estimated) on the patient pull the "
+              "registration towards the standard's, as landmarks given with --landmarks do, and the shape relaxation "
+              "keeps the standard's landmarks where the mapping put them, so that its eyes, nose and mouth land on the "
+              "patient's (report.json feature_landing); off: the registration follows the skin's shape alone (cells "
+              "closer to the standard's shape where the patient's proportions differ from it)",
+              "on")
       .option("shape-relaxation",
               "after the mapping, move vertices along the patient towards the standard's cell shapes; where the "
               "mapping distorted a cell, its target moves this fraction of that distortion towards an ideal cell (0: "
@@ -157,7 +159,10 @@ TransferOptions transfer_options(const Args& args) {
   else
     throw UsageError("--skin-correspondence", "expects registered or features, got '" + correspondence + "'");
   o.hold_registered_skin = args.has("hold-skin");
-  o.pull_found_landmarks = args.has("pull-found-landmarks");
+  const std::string pull = args.get("pull-found-landmarks");
+  if (pull != "on" && pull != "off")
+    throw UsageError("--pull-found-landmarks", "expects on or off, got '" + pull + "'");
+  o.pull_found_landmarks = pull == "on";
   const std::string relaxation = args.get("shape-relaxation");
   o.shape_relaxation = relaxation != "off";
   if (o.shape_relaxation) {

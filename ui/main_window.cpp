@@ -256,9 +256,10 @@ void MainWindow::createActions() {
       [](const TransferOptions& o) { return o.skin_correspondence == SkinCorrespondence::registered; });
   pullLandmarks_ = option(
       tr("&Pull the found landmarks"),
-      tr("With the skins registered: the landmarks found on the patient (not estimated, not the eye corners) pull "
-         "the registration towards the standard's, so that its mouth and profile land on the patient's, at some "
-         "cost in cell shape (the CLI's --pull-found-landmarks; the transfer's message says where they landed)"),
+      tr("With the skins registered: the landmarks found (or estimated) on the patient pull the registration towards "
+         "the standard's and the standard's landmarks are kept where the mapping put them, so that its eyes, nose and "
+         "mouth land on the patient's (the CLI's --pull-found-landmarks on|off; the transfer's message says where "
+         "they landed)"),
       [](TransferOptions& o, bool on) { o.pull_found_landmarks = on; },
       [](const TransferOptions& o) { return o.pull_found_landmarks; });
   about_ = action(tr("&About FaceHex"), QKeySequence(), &MainWindow::about);

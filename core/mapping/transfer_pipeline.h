@@ -29,10 +29,11 @@ struct TransferOptions {
   // With the registered skin: the shape relaxation holds the standard's skin vertices at their registered
   // correspondents (correspondence before cell shape) instead of sliding them along the skin with the rest.
   bool hold_registered_skin = false;
-  // With the registered skin: the patient's found landmarks (not estimated; the eye corners left out, whose open rim
-  // on the standard lies elsewhere than a closed slit's corner) pull the registration towards the standard's of the
-  // same names, as given landmarks always do (core/workflow/transfer.h).
-  bool pull_found_landmarks = false;
+  // With the registered skin: the patient's found and estimated landmarks pull the registration towards the
+  // standard's of the same names, as given landmarks always do (core/workflow/transfer.h): the registration of the
+  // whole skin alone follows its shape, not its features, and leaves a mouth or eyes of other proportions than the
+  // standard's several millimetres off (docs/results.md).
+  bool pull_found_landmarks = true;
   // A parameterization with inverted tets is not a bijection. Local folds (at most max_inverted_fraction of the
   // patient's tets) are reported and their effect on the hex mesh repaired by the untangler; more stop the run with
   // an error, unless allow_inverted_parameterization.

@@ -14,9 +14,9 @@ std::vector<FeatureLanding> feature_landing(const StandardFeatures& standard, co
   for (const NamedLandmark& l : named_landmarks(patient)) {
     const auto vertex = standard.landmark_vertices.find(l.name);
     if (vertex == standard.landmark_vertices.end() || vertex->second >= transferred.rows()) continue;
-    const Eigen::Vector3d apart =
-        frame.to_head(transferred.row(vertex->second).transpose()) - frame.to_head(l.position);
-    out.push_back({l.name, std::hypot(apart.x(), apart.z()), l.status});
+    const Eigen::Vector3d landed = transferred.row(vertex->second).transpose();
+    const Eigen::Vector3d apart = frame.to_head(landed) - frame.to_head(l.position);
+    out.push_back({l.name, std::hypot(apart.x(), apart.z()), l.status, landed, l.position});
   }
   return out;
 }
@@ -48,7 +48,11 @@ nlohmann::json feature_landing_json(const std::vector<FeatureLanding>& landing) 
   const Totals t = totals(landing);
   nlohmann::json list = nlohmann::json::array();
   for (const FeatureLanding& l : landing)
-    list.push_back({{"name", l.name}, {"mm", l.distance}, {"patient", status_name(l.patient_status)}});
+    list.push_back({{"name", l.name},
+                    {"mm", l.distance},
+                    {"patient", status_name(l.patient_status)},
+                    {"landed", {l.landed.x(), l.landed.y(), l.landed.z()}},
+                    {"patient_at", {l.patient.x(), l.patient.y(), l.patient.z()}}});
   return {{"mean_mm", t.mean}, {"max_mm", t.max}, {"landmarks", list}};
 }
 

@@ -43,32 +43,49 @@ ConstraintSet without_automatic_features(const PatientSetup& patient, std::vecto
   return kept;
 }
 
-// The patient's landmarks paired with the standard's of the same names (standard_features.h): the user's, or with
-// pull_found the found ones but the eye corners; none otherwise.
-PointPairs landmark_pairs(const StandardSetup& standard, const PatientSetup& patient, const StandardFeatures& features,
-                          bool pull_found) {
+// The patient's landmarks (found, estimated or given) paired with the standard's of the same names
+// (standard_features.h) when the user gave them or with pull_found; none otherwise. The standard's side is its landmark
+// vertex, the point feature_landing measures (its open eyes' and mouth's corners are its rims' ends), else where its
+// finder placed the landmark.
+struct LandmarkPull {
   PointPairs pairs;
-  if (!patient.landmarks || (!patient.landmarks->given && !pull_found)) return pairs;
+  std::vector<int> standard_vertices;  // the paired landmark vertices
+};
+
+LandmarkPull landmark_pull(const StandardSetup& standard, const PatientSetup& patient, const StandardFeatures& features,
+                           bool pull_found) {
+  LandmarkPull pull;
+  if (!patient.landmarks || (!patient.landmarks->given && !pull_found)) return pull;
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> matched;
   for (const NamedLandmark& l : named_landmarks(*patient.landmarks)) {
-    if (l.status == LandmarkStatus::estimated) continue;
-    const bool eye_corner = std::find(kEyeCornerNames.begin(), kEyeCornerNames.end(), l.name) != kEyeCornerNames.end();
-    if (l.status == LandmarkStatus::found && eye_corner) continue;
-    // The standard's landmark where its finder placed it, else its vertex (the corners of its open eyes).
-    const auto point = features.landmarks.points.find(l.name);
     const auto vertex = features.landmark_vertices.find(l.name);
-    if (point != features.landmarks.points.end())
-      matched.emplace_back(point->second, l.position);
-    else if (vertex != features.landmark_vertices.end())
+    const auto point = features.landmarks.points.find(l.name);
+    if (vertex != features.landmark_vertices.end()) {
       matched.emplace_back(standard.mesh.V.row(vertex->second).transpose(), l.position);
+      pull.standard_vertices.push_back(vertex->second);
+    } else if (point != features.landmarks.points.end()) {
+      matched.emplace_back(point->second, l.position);
+    }
   }
-  pairs.standard.resize(static_cast<Eigen::Index>(matched.size()), 3);
-  pairs.patient.resize(static_cast<Eigen::Index>(matched.size()), 3);
+  pull.pairs.standard.resize(static_cast<Eigen::Index>(matched.size()), 3);
+  pull.pairs.patient.resize(static_cast<Eigen::Index>(matched.size()), 3);
   for (size_t i = 0; i < matched.size(); ++i) {
-    pairs.standard.row(static_cast<Eigen::Index>(i)) = matched[i].first.transpose();
-    pairs.patient.row(static_cast<Eigen::Index>(i)) = matched[i].second.transpose();
+    pull.pairs.standard.row(static_cast<Eigen::Index>(i)) = matched[i].first.transpose();
+    pull.pairs.patient.row(static_cast<Eigen::Index>(i)) = matched[i].second.transpose();
   }
-  return pairs;
+  return pull;
+}
+
+// The standard's vertices the shape relaxation and the repair keep at their registered (u, v): the landmark vertices
+// that pulled the registration, which the relaxation would otherwise slide along the skin (by several millimetres)
+// off the patient's landmarks, and with hold_registered_skin every skin vertex the registration matched.
+std::vector<char> held_vertices(const RegisteredSides& registration, const LandmarkPull& pull,
+                                const TransferOptions& options) {
+  std::vector<char> held = options.hold_registered_skin ? registration.standard_matched
+                                                        : std::vector<char>(registration.standard_matched.size(), 0);
+  for (int v : pull.standard_vertices)
+    if (v < static_cast<int>(held.size())) held[static_cast<size_t>(v)] = 1;
+  return held;
 }
 
 // The patient with its model's openings closed (close_openings on its domain, the model's own tets), and what was
@@ -113,13 +130,12 @@ TransferResult transfer(const StandardSetup& standard, const PatientSetup& patie
       standard_seconds = clock.lap();
     }
     try {
-      const PointPairs landmarks =
-          features ? landmark_pairs(standard, patient, *features, options.pull_found_landmarks) : PointPairs{};
+      const LandmarkPull pull =
+          features ? landmark_pull(standard, patient, *features, options.pull_found_landmarks) : LandmarkPull{};
       const RegisteredSidesOptions registration_options;
       r.registration = register_sides(standard.domain, standard_p->fields.uvw, patient.mesh, patient.source(),
-                                      registration_options, &landmarks, sub_progress(progress, 0.1, 0.2));
-      const SideConditions sides{r.registration->conditions,
-                                 options.hold_registered_skin ? r.registration->standard_matched : std::vector<char>()};
+                                      registration_options, &pull.pairs, sub_progress(progress, 0.1, 0.2));
+      const SideConditions sides{r.registration->conditions, held_vertices(*r.registration, pull, options)};
       // Only a healthy registered parameterization is taken, whatever allow_inverted_parameterization says: that
       // option is for the map the user cannot do without, and the feature lines remain.
       TransferOptions healthy = options;

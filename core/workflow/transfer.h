@@ -41,8 +41,9 @@ struct TransferResult {
 // With options.skin_correspondence registered, the sides are registered first (core/correspondence/
 // registered_sides.h): the patient's constraints from a file are kept whole; of those placed by the constraint
 // policy, the feature constraints are left out (the registration places the skin; user-given landmarks, and with
-// options.pull_found_landmarks the found ones, pull it as landmark pairs). When that transfer fails (the registration
-// left the skins apart and the fields fold beyond options.max_inverted_fraction, even with
+// options.pull_found_landmarks the found and estimated ones, pull it as landmark pairs, and the shape relaxation and
+// the repair keep the standard's landmark vertices where the mapping put them). When that transfer fails (the
+// registration left the skins apart and the fields fold beyond options.max_inverted_fraction, even with
 // allow_inverted_parameterization, or the repair diverged), it runs again with the feature constraints, and
 // registered_failure says why; when the policy could not place them either (patient.features_problem), that is an error
 // naming both. When the standard's domain has openings closed by plugs (core/standard/closed_domain.h), a patient model

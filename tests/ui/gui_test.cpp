@@ -45,6 +45,7 @@
 #include "core/quality/hex_quality.h"
 #include "core/segment/patient_input.h"
 #include "core/standard/parameterization_cache.h"
+#include "core/standard/standard_features.h"
 #include "core/util/error.h"
 #include "core/util/resources.h"
 #include "tests/core/test_meshes.h"
@@ -513,18 +514,25 @@ void GuiTest::registeredSkinIsAnOptionOfTheTransfer() {
 }
 
 void GuiTest::foundLandmarksCanPullTheRegistration() {
-  // Off by default, as in the CLI; checked, the transfer pairs the found landmarks, and its message says where the
-  // standard's landed.
+  // On by default, as in the CLI: the transfer pairs the found landmarks, keeps the standard's landmark vertices where
+  // the mapping put them, and its message says where they landed; unchecked, the registration is not pulled.
   QVERIFY2(openDemo(), qPrintable(error_));
   auto* pull = window_->findChild<QAction*>("Pull_the_found_landmarks");
-  QVERIFY(pull && pull->isCheckable() && !pull->isChecked());
-  QVERIFY(!window_->controller()->options().pull_found_landmarks);
-  pull->trigger();
+  QVERIFY(pull && pull->isCheckable() && pull->isChecked());
   QVERIFY(window_->controller()->options().pull_found_landmarks);
   QVERIFY2(runTransferAndWait(), qPrintable(error_));
   const TransferResult* r = session()->transfer();
   QVERIFY(r && r->registration && !r->landing.empty());
   QCOMPARE(r->patient_quality.summary.inverted, 0);
+  const StandardFeatures features = standard_features(session()->model(Role::Standard).mesh);
+  QVERIFY(features.landmark_vertices.size() >= 9);
+  int kept = 0;
+  for (const auto& [name, v] : features.landmark_vertices)
+    kept += r->run.patient_hex.V.row(v) == r->run.mapped_hex.V.row(v);
+  QVERIFY2(kept + r->run.untangle.released_feature_vertices >= static_cast<int>(features.landmark_vertices.size()),
+           qPrintable(QString("%1 of %2 landmark vertices kept").arg(kept).arg(features.landmark_vertices.size())));
+  double pulled_mean = 0;
+  for (const FeatureLanding& l : r->landing) pulled_mean += l.distance / static_cast<double>(r->landing.size());
   MessageLog* log = window_->messageLog();
   QTreeWidgetItem* transfer = nullptr;
   for (int i = log->topLevelItemCount() - 1; i >= 0 && !transfer; --i)
@@ -535,6 +543,13 @@ void GuiTest::foundLandmarksCanPullTheRegistration() {
   QVERIFY2(detail.filter("anatomy: the standard's").size() == 1, qPrintable(detail.join(" | ")));
   pull->trigger();
   QVERIFY(!window_->controller()->options().pull_found_landmarks);
+  QVERIFY2(runTransferAndWait(), qPrintable(error_));
+  double free_mean = 0;
+  for (const FeatureLanding& l : session()->transfer()->landing)
+    free_mean += l.distance / static_cast<double>(session()->transfer()->landing.size());
+  QVERIFY2(pulled_mean < 0.5 * free_mean, qPrintable(QString("%1 against %2 mm").arg(pulled_mean).arg(free_mean)));
+  pull->trigger();
+  QVERIFY(window_->controller()->options().pull_found_landmarks);
 }
 
 void GuiTest::cancelStopsTheSegmentation() {

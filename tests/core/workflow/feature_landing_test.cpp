@@ -40,6 +40,8 @@ TEST(FeatureLanding, TheDistanceAcrossTheFaceOfEachTransferredLandmarkFromThePat
   EXPECT_NEAR(j["mean_mm"].get<double>(), 4.0, 1e-12);
   EXPECT_NEAR(j["max_mm"].get<double>(), 5.0, 1e-12);
   EXPECT_EQ(j["landmarks"][1]["patient"], "estimated");
+  EXPECT_EQ(j["landmarks"][1]["landed"], nlohmann::json({-21.0, 70.0, 9.0}));
+  EXPECT_EQ(j["landmarks"][1]["patient_at"], nlohmann::json({-25.0, 70.0, 12.0}));
   EXPECT_EQ(feature_landing_text(landing),
             "anatomy: the standard's 2 landmarks land 4.0 mm across the face from the patient's on average (3.0 mm "
             "at the 1 not estimated), farthest cheilion right 5.0 mm\n");
