@@ -92,7 +92,7 @@ void add_transfer_options(Args& args) {
               "after the mapping, move vertices along the patient towards the standard's cell shapes; where the "
               "mapping distorted a cell, its target moves this fraction of that distortion towards an ideal cell (0: "
               "the standard's own shapes); off: the paper's plain mapping",
-              "0.5");
+              "1");
   add_field_options(args);
   add_segment_options(args);
 }

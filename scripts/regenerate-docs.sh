@@ -12,8 +12,8 @@
 #                                --correspondence`; registered: its tables of the registered skin,
 #                                --skin-correspondence registered; landmarks: the automatic landmarks against the
 #                                hand-placed ones in docs/benchmarks.md, from `facehex segment` and `constraints`;
-#                                landing: where the standard's landmarks land on the real CTs' runs, with and
-#                                without --pull-found-landmarks, in docs/results.md)
+#                                landing: where the standard's landmarks land on the real CTs' runs, by default and
+#                                with --pull-found-landmarks off, in docs/results.md)
 #     --keep DIR                 keep the raw JSON, logs and plots in DIR (default: a temporary folder, removed)
 #     --from DIR                 run nothing: write the pages from the JSON a previous --keep DIR left
 #   FACEHEX=path/to/facehex overrides build/bin/facehex.
@@ -95,7 +95,7 @@ EOF
   if want results; then
     # The bundled standard and patient; the default transfer, the paper's plain mapping, and two other blends of
     # the shape relaxation (docs/method.md section 6c).
-    for relax in default off 0 1; do
+    for relax in default off 0 0.5; do
       args=()
       [ "$relax" = default ] || args=(--shape-relaxation "$relax")
       step "compare-$relax" "$facehex" compare -o "$out/compare-$relax" "${args[@]}"
@@ -185,14 +185,14 @@ EOF
     rm -f "$out"/*.vtu
   fi
   if want landing; then
-    # Where the standard's landmarks land on each real CT's run: the registered skin alone, and pulled by the
-    # landmarks found on the patient.
+    # Where the standard's landmarks land on each real CT's run: pulled by the landmarks found on the patient (the
+    # default), and the registered skin alone.
     cts=(bundled-ct:resources/ct/headsq/headsq.mhd)
     [ -f ../shared/data/ct/vhfemale-head.mha ] && cts+=(vhf:../shared/data/ct/vhfemale-head.mha)
     for entry in "${cts[@]}"; do
       IFS=: read -r key ct <<<"$entry"
       step "landing-$key" "$facehex" run "$ct" -o "$out/landing-$key"
-      step "landing-$key-pulled" "$facehex" run "$ct" --pull-found-landmarks -o "$out/landing-$key-pulled"
+      step "landing-$key-free" "$facehex" run "$ct" --pull-found-landmarks off -o "$out/landing-$key-free"
       rm -f "$out"/landing-"$key"*/*.vtu
     done
   fi
@@ -206,7 +206,7 @@ fi
 
 # JSON to Markdown, written between the markers.
 python3 - "$out" "$root" "$only" <<'EOF'
-import json, os, re, shutil, sys
+import json, math, os, re, shutil, sys
 
 out, root, only = sys.argv[1], sys.argv[2], sys.argv[3]
 
@@ -335,7 +335,7 @@ if only in ("", "results"):
 
     rows = []
     for key, label in (("off", "off (the paper's plain mapping, then the repair)"), ("0", "0 (the standard's shapes)"),
-                       ("default", "0.5 (default)"), ("1", "1")):
+                       ("0.5", "0.5"), ("default", "1 (default)")):
         m = reports[key]["patients"][0]["methods"]["harmonic"]
         rows.append([label, f(m["dihedral_mean"], 2), f(m["dihedral_bins_percent"][0] + m["dihedral_bins_percent"][1], 1),
                      f(m["shape_mean"], 3), f(m["scaled_jacobian_min"], 3), m["inverted_before_repair"], m["inverted"],
@@ -420,8 +420,6 @@ if only in ("", "registered"):
 
 # ---- docs/benchmarks.md: the landmarks against the hand-placed ones ----
 if only in ("", "landmarks"):
-    import math
-
     def landmarks(name):
         path = os.path.join(out, f"landmarks-{name}.json")
         return {l["name"]: l for l in json.load(open(path))["landmarks"]} if os.path.exists(path) else None
@@ -463,18 +461,19 @@ if only in ("", "landmarks"):
 # ---- docs/results.md: where the standard's landmarks land ----
 if only in ("", "landing"):
     runs = []
+    references = {"bundled-ct": "tests/data/landmarks/headsq.json", "vhf": "tests/data/landmarks/vhfemale-head.json"}
     for key, label in (("bundled-ct", "bundled CT"), ("vhf", "Visible Human")):
-        for suffix, how in (("", "registered skin"), ("-pulled", "`--pull-found-landmarks`")):
+        for suffix, how in (("", "default"), ("-free", "`--pull-found-landmarks off`")):
             path = os.path.join(out, f"landing-{key}{suffix}", "report.json")
             if os.path.exists(path):
-                runs.append((f"{label}, {how}", json.load(open(path))))
+                runs.append((f"{label}, {how}", json.load(open(path)), key))
     names = []
-    for _, r in runs:
+    for _, r, _ in runs:
         names += [l["name"] for l in r["feature_landing"]["landmarks"] if l["name"] not in names]
     rows = []
     for name in names:
         cells = []
-        for _, r in runs:
+        for _, r, _ in runs:
             hit = [l for l in r["feature_landing"]["landmarks"] if l["name"] == name]
             cells.append(f"{hit[0]['mm']:.1f}" + (" (estimated)" if hit[0]["patient"] == "estimated" else "")
                          if hit else "")
@@ -485,14 +484,38 @@ if only in ("", "landing"):
         return sum(mm) / len(mm)
 
     rows.append(["**mean** (not estimated)"] + [f"{r['feature_landing']['mean_mm']:.1f} ({found_mean(r):.1f})"
-                                                 for _, r in runs])
+                                                 for _, r, _ in runs])
     q = lambda r: r["patient_hex"]["quality"]
-    rows.append(["inverted cells"] + [str(q(r)["inverted"]) for _, r in runs])
+    rows.append(["inverted cells"] + [str(q(r)["inverted"]) for _, r, _ in runs])
     rows.append(["mean shape / standard's"] + [f(q(r)["shape_mean"] / r["standard"]["quality"]["shape_mean"], 3)
-                                               for _, r in runs])
-    rows.append(["dihedral change (deg)"] + [f(q(r)["dihedral_distortion"]["mean_deg"], 2) for _, r in runs])
+                                               for _, r, _ in runs])
+    rows.append(["dihedral change (deg)"] + [f(q(r)["dihedral_distortion"]["mean_deg"], 2) for _, r, _ in runs])
+
+    # The same landings against the landmarks placed by hand (x and z of the CT's frame).
+    def hand_placed(key):
+        return {l["name"]: l["position"] for l in json.load(open(references[key]))["landmarks"]}
+
+    hand_rows = []
+    for name in names:
+        cells = []
+        for _, r, key in runs:
+            ref = hand_placed(key)
+            hit = [l for l in r["feature_landing"]["landmarks"] if l["name"] == name]
+            cells.append(f"{math.hypot(hit[0]['landed'][0] - ref[name][0], hit[0]['landed'][2] - ref[name][2]):.1f}"
+                         if hit and name in ref else "")
+        hand_rows.append([name] + cells)
+
+    def hand_mean(r, key):
+        ref = hand_placed(key)
+        mm = [math.hypot(l["landed"][0] - ref[l["name"]][0], l["landed"][2] - ref[l["name"]][2])
+              for l in r["feature_landing"]["landmarks"] if l["name"] in ref]
+        return f"{sum(mm) / len(mm):.1f} (max {max(mm):.1f})"
+
+    hand_rows.append(["**mean**"] + [hand_mean(r, key) for _, r, key in runs])
     write_blocks("docs/results.md", {
-        "results-landing": machine_line() + "\n\n" + table(["mm across the face"] + [c[0] for c in runs], rows)})
+        "results-landing": machine_line() + "\n\n" + table(["mm across the face"] + [c[0] for c in runs], rows),
+        "results-landing-hand-placed": table(["mm from the hand-placed landmark"] + [c[0] for c in runs],
+                                             hand_rows)})
 
 # ---- docs/benchmarks.md ----
 if only in ("", "benchmarks"):
@@ -516,7 +539,6 @@ if only in ("", "benchmarks"):
             + [f(r["stages"]["io_write_read_vtu"], 3)] for r in sizes]
     synthetic = table(["tets", "vertices", "total (s)", "peak memory (MB)"] + [c for _, c in cols] + ["VTU write+read"], rows)
     if len(sizes) >= 2:
-        import math
         a, b = sizes[0], sizes[-1]
         ratio = math.log(b["tets"] / a["tets"])
         def k(x, y):

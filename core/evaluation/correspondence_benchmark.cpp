@@ -11,6 +11,7 @@
 #include "core/mesh/sides.h"
 #include "core/quality/surface_distance.h"
 #include "core/segment/ct_volume.h"
+#include "core/standard/standard_features.h"
 #include "core/util/error.h"
 #include "core/util/stopwatch.h"
 #include "core/workflow/transfer.h"
@@ -87,9 +88,10 @@ CorrespondenceCaseResult measure(const StandardSetup& standard, const PatientSet
 
 // The standard's landmarks as its own constraint set places its features (each feature plane's point is its
 // landmark), so that "true landmarks" put a model's features where the standard's are, whatever the finder does; the
-// finder's points where the set has no such plane.
+// finder's points where the set has no such plane (standard_features.h: the corners of its open eyes and mouth at
+// their rims' ends).
 FaceLandmarks standard_feature_landmarks(const StandardSetup& standard) {
-  FaceLandmarks l = find_face_landmarks(standard.mesh.V, side_mask_of(standard.mesh));
+  FaceLandmarks l = standard_features(standard.mesh).landmarks;
   for (const FeatureSpec& spec : feature_specs())
     for (const Constraint& c : standard.constraints.constraints)
       if (c.name == spec.name && c.select.plane) {

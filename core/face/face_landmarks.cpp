@@ -272,6 +272,31 @@ LandmarkOptions landmark_options_for(const VolumeMesh& model, const std::string&
 namespace {
 
 // find_face_landmarks on a model whose given plane, if any, is not turned.
+// The corners of the open mouth and eyes among the openings (LandmarkOptions::opening_rims): of the largest rim of
+// each name, its skin vertices furthest towards -x and +x.
+void take_opening_corners(const std::vector<Eigen::MatrixXd>& rims, FaceLandmarks& l) {
+  std::map<std::string, const Eigen::MatrixXd*> largest;
+  for (size_t i = 0; i < rims.size(); ++i) {
+    if (rims[i].rows() == 0) continue;
+    const std::string name = opening_name(rims[i].colwise().mean().transpose(), l, static_cast<int>(i));
+    if (!largest.count(name) || rims[i].rows() > largest[name]->rows()) largest[name] = &rims[i];
+  }
+  const auto corners = [&](const char* opening, const char* at_minus_x, const char* at_plus_x) {
+    const auto rim = largest.find(opening);
+    if (rim == largest.end()) return;
+    Eigen::Index lo = 0, hi = 0;
+    rim->second->col(0).minCoeff(&lo);
+    rim->second->col(0).maxCoeff(&hi);
+    for (const auto& [name, row] : {std::pair<const char*, Eigen::Index>{at_minus_x, lo}, {at_plus_x, hi}}) {
+      l.points[name] = rim->second->row(row).transpose();
+      l.estimated.erase(std::remove(l.estimated.begin(), l.estimated.end(), name), l.estimated.end());
+    }
+  };
+  corners("eye at -x", "exocanthion right", "endocanthion right");
+  corners("eye at +x", "endocanthion left", "exocanthion left");
+  corners("mouth", "cheilion right", "cheilion left");
+}
+
 FaceLandmarks find_in_head_frame(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
                                  const LandmarkOptions& options) {
   if (side_mask.size() != V.rows()) throw Error("landmarks", "the model has no side labels (side_mask)");
@@ -372,6 +397,7 @@ FaceLandmarks find_in_head_frame(const Eigen::MatrixXd& V, const Eigen::VectorXi
     l.points["cheilion right"] = corners->first;
     l.points["cheilion left"] = corners->second;
   }
+  take_opening_corners(options.opening_rims, l);
   return l;
 }
 
@@ -395,6 +421,8 @@ FaceLandmarks find_on_skin(const Eigen::MatrixXd& V, const Eigen::VectorXi& side
   for (int v = 0; v < V.rows(); ++v) head.row(v) = turn.to_head(V.row(v).transpose()).transpose();
   LandmarkOptions in_head = options;
   in_head.mid_sagittal_plane = turn.to_head(*options.mid_sagittal_plane);
+  for (Eigen::MatrixXd& rim : in_head.opening_rims)
+    for (Eigen::Index r = 0; r < rim.rows(); ++r) rim.row(r) = turn.to_head(rim.row(r).transpose()).transpose();
   FaceLandmarks l = find_in_head_frame(head, side_mask, in_head);
   for (auto& [name, p] : l.points) p = turn.to_model(p);
   l.plane = *options.mid_sagittal_plane;
@@ -402,6 +430,15 @@ FaceLandmarks find_on_skin(const Eigen::MatrixXd& V, const Eigen::VectorXi& side
 }
 
 }  // namespace
+
+std::string opening_name(const Eigen::Vector3d& centroid, const FaceLandmarks& landmarks, int index) {
+  const auto at = [&](const char* name) { return landmarks.points.at(name); };
+  const std::string end = centroid.x() < landmarks.plane.x ? "at -x" : "at +x";
+  if (landmarks.points.count("pronasale") && centroid.z() > at("pronasale").z() + 5) return "eye " + end;
+  if (landmarks.points.count("subnasale") && centroid.z() > at("subnasale").z() - 4) return "nostril " + end;
+  if (landmarks.points.count("stomion") && std::abs(centroid.z() - at("stomion").z()) < 12) return "mouth";
+  return "opening " + std::to_string(index + 1);
+}
 
 FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
                                   const LandmarkOptions& options) {

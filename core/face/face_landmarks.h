@@ -85,7 +85,18 @@ struct LandmarkOptions {
   // frame: they lie behind a model's posterior cut and in the closed eyes' and lips' slits, where the skin read does
   // not show them.
   std::optional<CtLandmarks> ct_landmarks;
+  // The skin vertices on the rim of each opening of the model (walls on no side: open eyes, nostrils or a mouth, as a
+  // hex standard or a face model has them), #R x 3 each, in the model's frame. The mouth's and the eyes' corners are
+  // then the ends of the largest such opening of that name (opening_name), as the standard's are
+  // (core/standard/standard_features.h), rather than read on the skin beside it, where an open or a plugged mouth
+  // misleads the mouth line; the CT's eye corners still win.
+  std::vector<Eigen::MatrixXd> opening_rims;
 };
+
+// The name of an opening whose rim's centroid is `centroid`, from where it lies against the landmarks: "eye at -x"
+// and "eye at +x" 5 mm and more above the pronasale, "nostril at -x" and "nostril at +x" down to 4 mm below the
+// subnasale, "mouth" within 12 mm of the stomion's height, "opening N" (index + 1) otherwise.
+std::string opening_name(const Eigen::Vector3d& centroid, const FaceLandmarks& landmarks, int index);
 
 // The options for `model`: its own mid-sagittal plane, the CT's skin points and the CT's landmarks when it carries them
 // (core/mesh/mid_sagittal_plane.h, core/mesh/skin_points.h, core/mesh/ct_landmarks.h). Throws facehex::Error(source,

@@ -52,7 +52,7 @@ struct TransferOptions {
   // distortion in the mapped mesh (UntangleOptions::target_towards_ideal): 0 keeps the standard's angles best but
   // leaves cells less well shaped than the standard's; 1 shapes them better at some cost in angles (the trade-off is
   // measured in docs/benchmarks.md).
-  double relaxation_towards_ideal = 0.5;
+  double relaxation_towards_ideal = 1;
   // The relaxation (and the repair after it) aims at the ideal cells instead of the standard's: for a template grid,
   // whose cells in parameter space are no shape to keep.
   bool ideal_cell_targets = false;

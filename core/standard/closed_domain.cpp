@@ -267,4 +267,17 @@ SurfaceMesh domain_surface(const TetDomain& d) {
   return s;
 }
 
+std::vector<std::vector<int>> opening_rims(const TetDomain& domain,
+                                           const std::vector<std::vector<Eigen::Vector3i>>& pieces, int side_bits) {
+  std::vector<std::vector<int>> rims(pieces.size());
+  for (size_t o = 0; o < pieces.size(); ++o) {
+    for (const Eigen::Vector3i& t : pieces[o])
+      for (int k = 0; k < 3; ++k)
+        if (domain.side_mask(t(k)) & side_bits) rims[o].push_back(t(k));
+    std::sort(rims[o].begin(), rims[o].end());
+    rims[o].erase(std::unique(rims[o].begin(), rims[o].end()), rims[o].end());
+  }
+  return rims;
+}
+
 }  // namespace facehex

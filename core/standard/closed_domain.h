@@ -32,6 +32,11 @@ TetDomain close_openings(TetDomain domain, const std::string& kind);
 // where sides meet), in pieces connected through shared edges, each piece's triangles in boundary order.
 std::vector<std::vector<Eigen::Vector3i>> sideless_boundary_pieces(const TetDomain& domain);
 
+// Of each piece of sideless_boundary_pieces (same order), the vertices of its triangles on any side of `side_bits`
+// (e.g. side_bit(W1): the rim on the skin), sorted, each once.
+std::vector<std::vector<int>> opening_rims(const TetDomain& domain,
+                                           const std::vector<std::vector<Eigen::Vector3i>>& pieces, int side_bits);
+
 // A domain's boundary as a closed surface on the domain's boundary vertices (renumbered), each triangle labelled
 // Side + 1 with the side its three vertices share (0: none, the walls of an opening left open; tetrahedralize.h's
 // convention).

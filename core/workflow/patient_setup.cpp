@@ -6,8 +6,10 @@
 #include "core/face/automatic_constraints.h"
 #include "core/mesh/mesh_check.h"
 #include "core/mesh/side_mask.h"
+#include "core/mesh/sides.h"
 #include "core/mesh/synthetic_shell.h"
 #include "core/segment/ct_volume.h"
+#include "core/standard/closed_domain.h"
 #include "core/tetgen/tetrahedralize.h"
 #include "core/util/error.h"
 #include "core/util/resources.h"
@@ -45,9 +47,14 @@ void choose_constraints(PatientSetup& patient, const std::string& constraints_fi
         landmarks_file.empty()
             ? std::nullopt
             : std::optional<FaceLandmarks>(landmarks_from(read_landmark_file(landmarks_file), landmarks_file));
-    patient.constraints = automatic_constraints(patient.domain.V, patient.domain.side_mask,
-                                                landmark_options_for(patient.mesh, patient.path), *feature_values,
-                                                kFeatureBand, &landmarks, given ? &*given : nullptr);
+    // A model with open eyes or an open mouth (a face model, a standard's re-meshing) has its corners read at its
+    // openings' ends, as the standard's are.
+    LandmarkOptions landmark_options = landmark_options_for(patient.mesh, patient.path);
+    for (const std::vector<int>& rim :
+         opening_rims(patient.domain, sideless_boundary_pieces(patient.domain), side_bit(W1)))
+      landmark_options.opening_rims.push_back(patient.domain.V(rim, Eigen::all));
+    patient.constraints = automatic_constraints(patient.domain.V, patient.domain.side_mask, landmark_options,
+                                                *feature_values, kFeatureBand, &landmarks, given ? &*given : nullptr);
     patient.landmarks = landmarks;
     patient.constraints_note = "automatic constraints: six sides and " + std::to_string(feature_specs().size()) +
                                " features at the landmarks" + (landmarks_file.empty() ? "" : " of " + landmarks_file);

@@ -387,6 +387,69 @@ TEST(FaceLandmarks, MouthCornersAreWhereTheLipsEnd) {
   EXPECT_FALSE(find_face_landmarks(flat.V, flat.side_mask).points.count("cheilion left"));
 }
 
+// A model with an open mouth and open eyes (rims of walls on no side, LandmarkOptions::opening_rims): their corners
+// are the rims' ends towards -x and +x, as the standard's are, found (not estimated), instead of the mouth line read
+// beside the opening; the largest rim of a name is the opening, and a rim elsewhere names no landmark. Turned with the
+// head, the ends are taken in its head frame.
+TEST(FaceLandmarks, TheCornersOfOpenEyesAndAnOpenMouthAreTheirRimsEnds) {
+  const PhantomFace upright;
+  const FaceLandmarks found = find_face_landmarks(upright.V, upright.side_mask);
+  const double x0 = PhantomFace::x0;
+  const Eigen::Vector3d stomion = found.points.at("stomion"), pronasale = found.points.at("pronasale");
+  // An ellipse of points about `centre` in the x-z plane, half widths a (x) and b (z): its ends are centre -+ a x.
+  const auto rim = [](const Eigen::Vector3d& centre, double a, double b, int n) {
+    Eigen::MatrixXd points(n, 3);
+    for (int i = 0; i < n; ++i) {
+      const double t = 2 * M_PI * (i + 0.25) / n;  // no sample exactly at an end but the two placed below
+      points.row(i) = (centre + Eigen::Vector3d(a * std::cos(t), -1, b * std::sin(t))).transpose();
+    }
+    points.row(0) = (centre - Eigen::Vector3d(a, 0, 0)).transpose();
+    points.row(1) = (centre + Eigen::Vector3d(a, 0, 0)).transpose();
+    return points;
+  };
+  const Eigen::Vector3d mouth = stomion + Eigen::Vector3d(0, -2, 0);
+  const Eigen::Vector3d right_eye = pronasale + Eigen::Vector3d(-32, -20, 25),
+                        left_eye = right_eye + Eigen::Vector3d(64, 0, 0);
+  LandmarkOptions options;
+  options.opening_rims = {rim(mouth, 24, 4, 40),
+                          rim(mouth + Eigen::Vector3d(0, 0, 1), 5, 2, 10),  // and a smaller piece
+                          rim(right_eye, 14, 4, 30), rim(left_eye, 14, 4, 30),
+                          rim(pronasale + Eigen::Vector3d(0, 0, -200), 30, 5, 30)};  // far below: no landmark
+  const FaceLandmarks l = find_face_landmarks(upright.V, upright.side_mask, options);
+  const std::map<std::string, Eigen::Vector3d> ends = {{"cheilion right", mouth - Eigen::Vector3d(24, 0, 0)},
+                                                       {"cheilion left", mouth + Eigen::Vector3d(24, 0, 0)},
+                                                       {"exocanthion right", right_eye - Eigen::Vector3d(14, 0, 0)},
+                                                       {"endocanthion right", right_eye + Eigen::Vector3d(14, 0, 0)},
+                                                       {"endocanthion left", left_eye - Eigen::Vector3d(14, 0, 0)},
+                                                       {"exocanthion left", left_eye + Eigen::Vector3d(14, 0, 0)}};
+  for (const auto& [name, end] : ends) {
+    ASSERT_TRUE(l.points.count(name)) << name;
+    EXPECT_LT((l.points.at(name) - end).norm(), 1e-9) << name;
+    EXPECT_EQ(std::count(l.estimated.begin(), l.estimated.end(), name), 0) << name;
+  }
+  EXPECT_EQ(l.points.at("stomion"), stomion);  // the profile is read as without openings
+  // Turned by 15 degrees about the vertical through x0, y 60, with the openings: the same ends, turned.
+  HeadTurn turn;
+  turn.degrees = 15;
+  turn.axis = Eigen::Vector2d(x0, 60);
+  PhantomFace face;
+  for (Eigen::Index v = 0; v < face.V.rows(); ++v)
+    face.V.row(v) = turn.to_model(upright.V.row(v).transpose()).transpose();
+  LandmarkOptions turned = options;
+  for (Eigen::MatrixXd& r : turned.opening_rims)
+    for (Eigen::Index i = 0; i < r.rows(); ++i) r.row(i) = turn.to_model(r.row(i).transpose()).transpose();
+  MidSagittalPlane plane;
+  plane.x = x0;
+  plane.y = 60;
+  plane.turn = std::tan(15 * M_PI / 180);
+  turned.mid_sagittal_plane = plane;
+  const FaceLandmarks t = find_face_landmarks(face.V, face.side_mask, turned);
+  for (const auto& [name, end] : ends) {
+    ASSERT_TRUE(t.points.count(name)) << name;
+    EXPECT_LT((t.points.at(name) - turn.to_model(end)).norm(), 1e-9) << name;
+  }
+}
+
 TEST(FaceLandmarks, FeatureConstraintsSitOnTheLandmarks) {
   const PhantomFace face;
   const FaceLandmarks l = find_face_landmarks(face.V, face.side_mask);
