@@ -272,13 +272,28 @@ LandmarkOptions landmark_options_for(const VolumeMesh& model, const std::string&
 namespace {
 
 // find_face_landmarks on a model whose given plane, if any, is not turned.
+// True when a rim named `name` (opening_name) has the width and place of an open eye or mouth: an eye 15-50 mm wide
+// with its centre 10-60 mm beside the mid-sagittal plane, a mouth 25-90 mm wide centred within 10 mm of it, either
+// less than 50 mm behind the pronasale. Other walls on no side (patches where a model's sides meet at its cuts) are
+// not openings of the face.
+bool is_face_opening(const std::string& name, const Eigen::MatrixXd& rim, const FaceLandmarks& l) {
+  const Eigen::Vector3d centre = rim.colwise().mean().transpose();
+  const double width = rim.col(0).maxCoeff() - rim.col(0).minCoeff(), off_plane = std::abs(centre.x() - l.plane.x);
+  if (!l.points.count("pronasale") || centre.y() < l.points.at("pronasale").y() - 50) return false;
+  if (name == "mouth") return width >= 25 && width <= 90 && off_plane <= 10;
+  if (name == "eye at -x" || name == "eye at +x")
+    return width >= 15 && width <= 50 && off_plane >= 10 && off_plane <= 60;
+  return false;
+}
+
 // The corners of the open mouth and eyes among the openings (LandmarkOptions::opening_rims): of the largest rim of
-// each name, its skin vertices furthest towards -x and +x.
+// each name that is_face_opening, its skin vertices furthest towards -x and +x.
 void take_opening_corners(const std::vector<Eigen::MatrixXd>& rims, FaceLandmarks& l) {
   std::map<std::string, const Eigen::MatrixXd*> largest;
   for (size_t i = 0; i < rims.size(); ++i) {
     if (rims[i].rows() == 0) continue;
     const std::string name = opening_name(rims[i].colwise().mean().transpose(), l, static_cast<int>(i));
+    if (!is_face_opening(name, rims[i], l)) continue;
     if (!largest.count(name) || rims[i].rows() > largest[name]->rows()) largest[name] = &rims[i];
   }
   const auto corners = [&](const char* opening, const char* at_minus_x, const char* at_plus_x) {

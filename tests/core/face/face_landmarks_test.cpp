@@ -389,7 +389,8 @@ TEST(FaceLandmarks, MouthCornersAreWhereTheLipsEnd) {
 
 // A model with an open mouth and open eyes (rims of walls on no side, LandmarkOptions::opening_rims): their corners
 // are the rims' ends towards -x and +x, as the standard's are, found (not estimated), instead of the mouth line read
-// beside the opening; the largest rim of a name is the opening, and a rim elsewhere names no landmark. Turned with the
+// beside the opening; the largest rim of a name with an eye's or a mouth's width and place is the opening, and a rim
+// elsewhere names no landmark. Turned with the
 // head, the ends are taken in its head frame.
 TEST(FaceLandmarks, TheCornersOfOpenEyesAndAnOpenMouthAreTheirRimsEnds) {
   const PhantomFace upright;
@@ -414,7 +415,10 @@ TEST(FaceLandmarks, TheCornersOfOpenEyesAndAnOpenMouthAreTheirRimsEnds) {
   options.opening_rims = {rim(mouth, 24, 4, 40),
                           rim(mouth + Eigen::Vector3d(0, 0, 1), 5, 2, 10),  // and a smaller piece
                           rim(right_eye, 14, 4, 30), rim(left_eye, 14, 4, 30),
-                          rim(pronasale + Eigen::Vector3d(0, 0, -200), 30, 5, 30)};  // far below: no landmark
+                          rim(pronasale + Eigen::Vector3d(0, 0, -200), 30, 5, 30),  // far below: no landmark
+                          // where a model's sides meet at its top cut, beside the right eye: more rim vertices than the
+                          // eye's, but neither an eye's width nor its place
+                          rim(pronasale + Eigen::Vector3d(-72, -80, 60), 0.4, 0.5, 40)};
   const FaceLandmarks l = find_face_landmarks(upright.V, upright.side_mask, options);
   const std::map<std::string, Eigen::Vector3d> ends = {{"cheilion right", mouth - Eigen::Vector3d(24, 0, 0)},
                                                        {"cheilion left", mouth + Eigen::Vector3d(24, 0, 0)},
