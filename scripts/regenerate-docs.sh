@@ -263,7 +263,7 @@ def write_blocks(page, blocks):
 
 # ---- docs/results.md ----
 if only in ("", "results"):
-    reports = {k: load(f"compare-{k}/report.json") for k in ("default", "off", "0", "1")}
+    reports = {k: load(f"compare-{k}/report.json") for k in ("default", "off", "0", "0.5")}
     rep = reports["default"]
     patient = rep["patients"][0]
     h = patient["methods"]["harmonic"]
