@@ -271,7 +271,13 @@ LandmarkOptions landmark_options_for(const VolumeMesh& model, const std::string&
 
 namespace {
 
-// find_face_landmarks on a model whose given plane, if any, is not turned.
+// Places landmark `name` at `point`, found or estimated, in place of any placed before.
+void place(FaceLandmarks& l, const std::string& name, const Eigen::Vector3d& point, bool estimated) {
+  l.points[name] = point;
+  l.estimated.erase(std::remove(l.estimated.begin(), l.estimated.end(), name), l.estimated.end());
+  if (estimated) l.estimated.push_back(name);
+}
+
 // True when a rim named `name` (opening_name) has the width and place of an open eye or mouth: an eye 15-50 mm wide
 // with its centre 10-60 mm beside the mid-sagittal plane, a mouth 25-90 mm wide centred within 10 mm of it, either
 // less than 50 mm behind the pronasale. Other walls on no side (patches where a model's sides meet at its cuts) are
@@ -302,16 +308,15 @@ void take_opening_corners(const std::vector<Eigen::MatrixXd>& rims, FaceLandmark
     Eigen::Index lo = 0, hi = 0;
     rim->second->col(0).minCoeff(&lo);
     rim->second->col(0).maxCoeff(&hi);
-    for (const auto& [name, row] : {std::pair<const char*, Eigen::Index>{at_minus_x, lo}, {at_plus_x, hi}}) {
-      l.points[name] = rim->second->row(row).transpose();
-      l.estimated.erase(std::remove(l.estimated.begin(), l.estimated.end(), name), l.estimated.end());
-    }
+    place(l, at_minus_x, rim->second->row(lo).transpose(), false);
+    place(l, at_plus_x, rim->second->row(hi).transpose(), false);
   };
   corners("eye at -x", "exocanthion right", "endocanthion right");
   corners("eye at +x", "endocanthion left", "exocanthion left");
   corners("mouth", "cheilion right", "cheilion left");
 }
 
+// find_face_landmarks on a model whose given plane, if any, is not turned.
 FaceLandmarks find_in_head_frame(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
                                  const LandmarkOptions& options) {
   if (side_mask.size() != V.rows()) throw Error("landmarks", "the model has no side labels (side_mask)");
@@ -460,10 +465,7 @@ FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorX
   FaceLandmarks l = find_on_skin(V, side_mask, options);
   if (!options.ct_landmarks) return l;
   const auto add = [&l](const char* name, const std::optional<CtLandmark>& landmark) {
-    if (!landmark) return;
-    l.points[name] = landmark->point;
-    l.estimated.erase(std::remove(l.estimated.begin(), l.estimated.end(), name), l.estimated.end());
-    if (landmark->estimated) l.estimated.push_back(name);
+    if (landmark) place(l, name, landmark->point, landmark->estimated);
   };
   for (size_t side = 0; side < kTragusNames.size(); ++side) add(kTragusNames[side], options.ct_landmarks->tragi[side]);
   for (size_t c = 0; c < kEyeCornerNames.size(); ++c) add(kEyeCornerNames[c], options.ct_landmarks->eye_corners[c]);

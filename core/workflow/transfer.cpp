@@ -43,15 +43,16 @@ ConstraintSet without_automatic_features(const PatientSetup& patient, std::vecto
   return kept;
 }
 
-// The patient's landmarks (found, estimated or given) paired with the standard's of the same names
-// (standard_features.h) when the user gave them or with pull_found; none otherwise. The standard's side is its landmark
-// vertex, the point feature_landing measures (its open eyes' and mouth's corners are its rims' ends), else where its
-// finder placed the landmark.
+// Landmark pairs that pull the skin registration, and the standard's vertices among them.
 struct LandmarkPull {
   PointPairs pairs;
   std::vector<int> standard_vertices;  // the paired landmark vertices
 };
 
+// The patient's landmarks (found, estimated or given) paired with the standard's of the same names
+// (standard_features.h) when the user gave them or with pull_found; none otherwise. The standard's side is its landmark
+// vertex, the point feature_landing measures (its open eyes' and mouth's corners are its rims' ends), else where its
+// finder placed the landmark.
 LandmarkPull landmark_pull(const StandardSetup& standard, const PatientSetup& patient, const StandardFeatures& features,
                            bool pull_found) {
   LandmarkPull pull;
