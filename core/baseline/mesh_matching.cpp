@@ -9,6 +9,7 @@
 #include <memory>
 #include <unordered_map>
 
+#include "core/baseline/landmark_snap.h"
 #include "core/baseline/thin_plate_spline.h"
 #include "core/fields/constraint_set.h"
 #include "core/mesh/cell_faces.h"
@@ -358,6 +359,8 @@ MeshMatchingResult mesh_matching(const VolumeMesh& standard, const std::string& 
   // 3. Every node.
   result.hex = standard;
   result.hex.V = spline(aligned);
+  if (known.snap_radius > 0 && known.standard.rows() > 0)
+    result.hex.V = landmark_snap(result.hex.V, spline(aligned_landmarks), known.patient, known.snap_radius);
   result.seconds["apply"] = clock.lap();
   report_progress(progress, "mesh matching: done", 1.0);
   return result;

@@ -12,7 +12,7 @@
 //  2. Thin-plate spline (thin_plate_spline.h) on about `control_points` control points spread over the standard's
 //     labelled boundary, fitted to the closest-point pairs, iterated with a stiffness decreasing step by step (a
 //     coarse-to-fine elastic registration).
-//  3. Every standard node x -> spline(similarity(x)).
+//  3. Every standard node x -> spline(similarity(x)), then snapped onto the landmarks if any (PointPairs).
 //
 // Correspondences are symmetric and side-aware: a standard boundary vertex is paired with the closest point of the
 // patient's boundary triangles of the same side (skin to skin, bone to bone, each cut to the same cut), and a patient
@@ -45,10 +45,13 @@ struct MeshMatchingOptions {
 };
 
 // Points known to correspond on the two models (e.g. facial landmarks), standard -> patient, #L x 3 each: each
-// iteration pulls them together with `weight`, a share of the total weight of all pairs.
+// iteration pulls them together with `weight`, a share of the total weight of all pairs; then, with snap_radius > 0,
+// a local displacement of that support (landmark_snap.h) carries each registered standard point exactly onto its
+// patient point (the spline, fitted to thousands of surface pairs as well, leaves them a millimetre or a few apart).
 struct PointPairs {
   Eigen::MatrixXd standard, patient;
   double weight = 0.25;
+  double snap_radius = 25;  // mm; 0: the pairs only pull
 };
 
 struct MeshMatchingIteration {

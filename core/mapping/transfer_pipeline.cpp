@@ -235,14 +235,19 @@ class Repair {
   void run(VertexPlacement& placement) {
     run_.untangle = pass(placement, pass_);
     widen_and_release(placement);
-    last_resort();
-    return_to_sides();
+    last_resort(false);
+    if (remaining() > 0) last_resort(true);
+    return_to_pins();
     polish();
     report_progress(progress_, "", 1.0);
   }
 
  private:
   int remaining() const { return unusable_after(run_.untangle); }
+  // Pinned in all three parameters: where a feature line meets a side or two sides meet one, and the landmarks held
+  // where the mapping put them (SideConditions::held). A fold can nearly always be untangled around them, and moving
+  // one in space moves the anatomy it marks.
+  bool anchored(int v) const { return run_.standard.fixed.row(v).all(); }
   bool on_side(int v) const {
     return pinned_to_side(run_, uvw_, v, 0) || pinned_to_side(run_, uvw_, v, 1) || pinned_to_side(run_, uvw_, v, 2);
   }
@@ -301,7 +306,8 @@ class Repair {
   // element matters more than an exact boundary there. Side vertices are never spread: spreading them too moves
   // many of them by millimetres on a longer face, for no fewer inverted cells. Each spread starts the untangling from
   // another configuration, so a pass can end with more folds than the one before; the best state is kept.
-  void last_resort() {
+  // Anchored vertices (anchored()) stay where they are unless move_anchors: run() first tries without moving them.
+  void last_resort(bool move_anchors) {
     constexpr int kLastResortPasses = 8, kFirstFreePass = 5;
     const int nv = standard_.num_vertices();
     Eigen::MatrixXd best_V = run_.patient_hex.V;
@@ -316,7 +322,7 @@ class Repair {
       std::vector<char> fixed(nv);
       int released = 0;
       for (int v = 0; v < nv; ++v) {
-        fixed[v] = !free[v] || (!free_pass && on_side(v) && !in_cell[v]);
+        fixed[v] = !free[v] || (!free_pass && on_side(v) && !in_cell[v]) || (!move_anchors && anchored(v));
         released += !fixed[v] && on_side(v);
       }
       run_.untangle.released_side_vertices = std::max(run_.untangle.released_side_vertices, released);
@@ -342,15 +348,16 @@ class Repair {
     }
   }
 
-  // Side vertices the last resort's free passes moved off their sides step back towards them: towards the patient's
-  // point with the vertex's own parameters but for those its sides pin (which places it exactly on them), as far of
-  // the way (all, half, a quarter, an eighth) as keeps every cell around it usable and no cell at or above the
-  // relaxation's floor below it. A vertex whose fold is still in the way stays where it is. Three rounds: a vertex
-  // that has stepped back can make room for its neighbour.
-  void return_to_sides() {
-    if (!freed_sides_) return;
+  // Vertices the repair moved off what pins them (a side, a feature line, a landmark held where the mapping put it:
+  // the passes after the first release feature pins, the last resort's free passes side pins) step back towards
+  // it: towards the patient's point with the vertex's own parameters but for those pinned (which places it exactly
+  // on its sides, feature and landmark), as far of the way (all, half, a quarter, an eighth) as keeps every cell
+  // around it usable and no cell at or above the relaxation's floor below it. A vertex whose fold is still in the way
+  // stays where it is. Three rounds: a vertex that has stepped back can make room for its neighbour.
+  void return_to_pins() {
+    if (!freed_sides_ && run_.untangle.released_feature_vertices == 0) return;
     constexpr int kRounds = 3;
-    constexpr double kOnSide = 1e-6;     // mm
+    constexpr double kOnPins = 1e-6;     // mm
     constexpr double kShapeFloor = 0.3;  // no cell's shape (cell_shape) drops below this, or below its own if lower
     const double floor = relaxation_options(pass_).keep_above;
     const int nv = standard_.num_vertices();
@@ -363,16 +370,16 @@ class Repair {
     for (int round = 0; round < kRounds; ++round) {
       int moved = 0;
       for (int v = 0; v < nv; ++v) {
-        if (!on_side(v)) continue;
+        if (!run_.standard.fixed.row(v).any()) continue;
         const Eigen::Vector3d x = mesh.V.row(v).transpose();
         const ParamLocator::Hit hit = in_space.locate(x);
         if (hit.tet < 0) continue;
         Eigen::Vector3d q = Eigen::Vector3d::Zero();
         for (int k = 0; k < 4; ++k) q += hit.bary(k) * patient_uvw.row(run_.patient.T(hit.tet, k)).transpose();
         for (int f = 0; f < 3; ++f)
-          if (pinned_to_side(run_, uvw_, v, f)) q(f) = uvw_(v, f);
+          if (run_.standard.fixed(v, f)) q(f) = uvw_(v, f);
         const PatientMap::Placement on = patient_map_.place(q.cwiseMax(0).cwiseMin(1), run_.transfer.tet(v));
-        if (on.violation > 0 || (on.x - x).norm() <= kOnSide) continue;
+        if (on.violation > 0 || (on.x - x).norm() <= kOnPins) continue;
         // What each cell around v may not fall below: its scaled Jacobian and shape where it is, or the floors.
         std::vector<std::pair<double, double>> least;
         for (int c : cells_of[v]) {

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 
+#include "core/correspondence/side_correspondence.h"
 #include "core/face/automatic_constraints.h"
 #include "core/io/fe_sets.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh/sides.h"
 #include "core/quality/hex_quality.h"
+#include "core/quality/surface_distance.h"
 #include "core/standard/closed_domain.h"
 #include "core/standard/parameterization_cache.h"
 #include "core/standard/standard_features.h"
@@ -52,7 +54,9 @@ struct LandmarkPull {
 // The patient's landmarks (found, estimated or given) paired with the standard's of the same names
 // (standard_features.h) when the user gave them or with pull_found; none otherwise. The standard's side is its landmark
 // vertex, the point feature_landing measures (its open eyes' and mouth's corners are its rims' ends), else where its
-// finder placed the landmark.
+// finder placed the landmark. The patient's side is the landmark's closest point on the model's skin: a corner of a
+// closed eye or mouth read in the CT lies in a slit the model's skin bridges, and the registration snaps the standard
+// onto these points (PointPairs), which must lie on the surface it is registered to.
 LandmarkPull landmark_pull(const StandardSetup& standard, const PatientSetup& patient, const StandardFeatures& features,
                            bool pull_found) {
   LandmarkPull pull;
@@ -68,12 +72,15 @@ LandmarkPull landmark_pull(const StandardSetup& standard, const PatientSetup& pa
       matched.emplace_back(point->second, l.position);
     }
   }
+  if (matched.empty()) return pull;
   pull.pairs.standard.resize(static_cast<Eigen::Index>(matched.size()), 3);
-  pull.pairs.patient.resize(static_cast<Eigen::Index>(matched.size()), 3);
+  Eigen::MatrixXd at(static_cast<Eigen::Index>(matched.size()), 3);
   for (size_t i = 0; i < matched.size(); ++i) {
     pull.pairs.standard.row(static_cast<Eigen::Index>(i)) = matched[i].first.transpose();
-    pull.pairs.patient.row(static_cast<Eigen::Index>(i)) = matched[i].second.transpose();
+    at.row(static_cast<Eigen::Index>(i)) = matched[i].second.transpose();
   }
+  const Eigen::MatrixXi skin = side_triangles(patient.mesh.tets(), side_mask_of(patient.mesh), W1);
+  pull.pairs.patient = skin.rows() > 0 ? SurfaceLocator(patient.mesh.V, skin).closest(at).point : at;
   return pull;
 }
 

@@ -422,13 +422,16 @@ TEST_F(Cli, TheBundledCtMeshedAt3mmEndsWithNoInvertedCell) {
   EXPECT_EQ(report["untangle"]["inverted_after"].get<int>(), 0);
   EXPECT_EQ(report["patient_hex"]["quality"]["inverted"].get<int>(), 0);
   EXPECT_EQ(report["patient_hex"]["quality"]["degenerate"].get<int>(), 0);
-  // Where the standard's landmarks landed: the profile's, the eye and mouth corners, each against the patient's.
+  // Where the standard's landmarks landed: the profile's, the eye and mouth corners, each against the patient's. The
+  // registration snaps them onto the patient's, and the repair untangles the folds around them (the clipped nose's
+  // pronasale is in one here) without moving them: every one within 1.5 mm.
   EXPECT_NE(r.output.find("anatomy: the standard's 13 landmarks land "), std::string::npos) << r.output;
   ASSERT_EQ(report["feature_landing"]["landmarks"].size(), 13u);
   for (const auto& l : report["feature_landing"]["landmarks"]) {
     EXPECT_GE(l["mm"].get<double>(), 0.0);
     EXPECT_LE(l["mm"].get<double>(), report["feature_landing"]["max_mm"].get<double>());
   }
+  EXPECT_LT(report["feature_landing"]["max_mm"].get<double>(), 1.5) << r.output;
   // Pulled by the landmarks found on the patient (the default), the standard's land on them: the stomion and the mouth
   // corners, which the registered skin alone leaves several millimetres off, and the found ones on average by half.
   // Against the hand-placed landmarks (tests/data/landmarks), where the standard's landed is within 2.5 mm on average.

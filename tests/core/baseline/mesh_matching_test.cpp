@@ -110,9 +110,9 @@ TEST(ThinPlateSpline, SingularFitIsAnError) {
   EXPECT_THROW(spline.fit(P, P, w, 0.0), Error);
 }
 
-// Landmark pairs that agree with the surfaces change nothing; pairs that disagree pull the map towards them; pairs of
-// unequal lengths are refused.
-TEST(MeshMatching, LandmarkPairsPullTheRegistration) {
+// Landmark pairs that agree with the surfaces change nothing; pairs that disagree pull the map towards them, and the
+// snap (the default) carries the standard's landmark exactly onto the patient's; pairs of unequal lengths are refused.
+TEST(MeshMatching, LandmarkPairsPullTheRegistrationAndSnapOntoThePatients) {
   const BoxCase b = box_case();
   PointPairs pairs;
   pairs.standard.resize(2, 3);
@@ -122,20 +122,35 @@ TEST(MeshMatching, LandmarkPairsPullTheRegistration) {
   const MeshMatchingResult agreeing =
       mesh_matching(b.standard, "standard box", b.patient, "patient box", {}, {}, &pairs);
   EXPECT_LT((agreeing.hex.V - affine(b.standard.V)).rowwise().norm().maxCoeff(), 0.2) << "mm";
-  // The patient's landmarks 6 mm (before the 2.5x frame scale) to the side: the standard's skin point near them
-  // follows part of the way, where without the pairs it stays.
+  // The patient's landmarks 6 mm (before the 2.5x frame scale) to the side: without the snap, the standard's skin
+  // point at the landmark follows, where without the pairs it stays.
   PointPairs sideways = pairs;
   sideways.patient = affine(pairs.standard.rowwise() + Eigen::RowVector3d(6, 0, 0));
   sideways.weight = 0.5;
+  sideways.snap_radius = 0;
   const MeshMatchingResult pulled =
       mesh_matching(b.standard, "standard box", b.patient, "patient box", {}, {}, &sideways);
-  int near = -1;
+  int at = -1;
   for (int v = 0; v < b.standard.num_vertices(); ++v)
-    if ((b.standard.V.row(v) - Eigen::RowVector3d(30, 15, 40)).norm() < 1e-9) near = v;
-  ASSERT_GE(near, 0);
-  const Eigen::RowVector3d plain = affine(b.standard.V.row(near)), wanted = affine(Eigen::RowVector3d(36, 15, 40));
-  const double moved = (pulled.hex.V.row(near) - plain).dot((wanted - plain).normalized());
+    if ((b.standard.V.row(v) - Eigen::RowVector3d(30, 15, 40)).norm() < 1e-9) at = v;
+  ASSERT_GE(at, 0);
+  const Eigen::RowVector3d plain = affine(b.standard.V.row(at)), wanted = affine(Eigen::RowVector3d(36, 15, 40));
+  const double moved = (pulled.hex.V.row(at) - plain).dot((wanted - plain).normalized());
   EXPECT_GT(moved, 0.3 * (wanted - plain).norm()) << "mm towards the landmark";
+  // Snapped: exactly on it; vertices farther than the radius from both registered landmarks as without the snap (up to
+  // the spline's round-off from run to run).
+  sideways.snap_radius = 25;
+  const MeshMatchingResult snapped =
+      mesh_matching(b.standard, "standard box", b.patient, "patient box", {}, {}, &sideways);
+  EXPECT_LT((snapped.hex.V.row(at) - wanted).norm(), 1e-9);
+  int far = 0;
+  for (int v = 0; v < b.standard.num_vertices(); ++v) {
+    const Eigen::RowVector3d x = pulled.hex.V.row(v);
+    if ((x - pulled.hex.V.row(at)).norm() < 30 || (x - affine(Eigen::RowVector3d(30, 15, 70))).norm() < 40) continue;
+    EXPECT_LT((snapped.hex.V.row(v) - pulled.hex.V.row(v)).norm(), 1e-5);
+    ++far;
+  }
+  EXPECT_GT(far, 0);
   PointPairs unequal = pairs;
   unequal.patient.conservativeResize(1, 3);
   EXPECT_THROW(mesh_matching(b.standard, "standard box", b.patient, "patient box", {}, {}, &unequal), Error);
