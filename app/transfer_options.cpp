@@ -92,7 +92,12 @@ void add_transfer_options(Args& args) {
               "after the mapping, move vertices along the patient towards the standard's cell shapes; where the "
               "mapping distorted a cell, its target moves this fraction of that distortion towards an ideal cell (0: "
               "the standard's own shapes); off: the paper's plain mapping",
-              "1");
+              "1")
+      .option("shape-tether",
+              "with the shape relaxation: how strongly each vertex is held where the mapping put it (the registered "
+              "skin's and the landmarks' correspondence): sliding one edge length along the patient costs this much "
+              "of a corner's shape energy; 0: vertices slide freely towards the standard's shapes",
+              "0.2");
   add_field_options(args);
   add_segment_options(args);
 }
@@ -170,6 +175,7 @@ TransferOptions transfer_options(const Args& args) {
     if (!(o.relaxation_towards_ideal >= 0 && o.relaxation_towards_ideal <= 1))
       throw UsageError("--shape-relaxation", "expects off or a fraction from 0 to 1, got '" + relaxation + "'");
   }
+  o.relaxation_tether = args.number("shape-tether", 0, 1000);
   return o;
 }
 

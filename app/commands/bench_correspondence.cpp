@@ -269,7 +269,8 @@ int correspondence_bench(const Args& args) {
 
   const std::string setting =
       (args.has("mapping-only") ? std::string("`--mapping-only`")
-                                : "`--shape-relaxation " + args.get("shape-relaxation") + "`") +
+                                : "`--shape-relaxation " + args.get("shape-relaxation") + "`, `--shape-tether " +
+                                      args.get("shape-tether") + "`") +
       ", `--skin-correspondence " + args.get("skin-correspondence") + "`" +
       (options.true_landmarks ? ", `--true-landmarks`" : "") + ", `--standard-domain " + args.get("standard-domain") +
       "`, standard " + standard.name + " with " +
@@ -277,6 +278,7 @@ int correspondence_bench(const Args& args) {
                                         : std::string("its bundled constraints"));
   json report = {{"standard", standard.name},
                  {"shape_relaxation", args.get("shape-relaxation")},
+                 {"shape_tether", args.get("shape-tether")},
                  {"skin_correspondence", args.get("skin-correspondence")},
                  {"standard_domain", args.get("standard-domain")},
                  {"standard_constraints", standard.constraints_path},

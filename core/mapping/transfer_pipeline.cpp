@@ -454,6 +454,10 @@ void map_parameterized(TransferRun& run, const VolumeMesh& standard, const std::
   if (options.shape_relaxation) {
     shape.target = options.ideal_cell_targets ? nullptr : &standard;
     shape.target_towards_ideal = options.relaxation_towards_ideal;
+    if (options.relaxation_tether > 0) {
+      shape.tether = run.mapped_hex.V;
+      shape.tether_weight = options.relaxation_tether;
+    }
     UntangleOptions relax = relaxation_options(shape);
     relax.progress = sub_progress(progress, 0.05, 0.8, "shape relaxation");
     run.relaxation = untangle(run.patient_hex, placement, relax);

@@ -53,6 +53,11 @@ struct TransferOptions {
   // leaves cells less well shaped than the standard's; 1 shapes them better at some cost in angles (the trade-off is
   // measured in docs/benchmarks.md).
   double relaxation_towards_ideal = 1;
+  // The relaxation (and the repair after it) holds each vertex near where the mapping put it, where the registered
+  // skin and the landmarks' pull made the correspondence (UntangleOptions::tether_weight: a slide of one edge length
+  // costs this much): sliding freely, vertices move millimetres along the skin for shapes the tethered relaxation
+  // nearly matches (the trade-off is measured in docs/results.md). 0: they slide freely.
+  double relaxation_tether = 0.2;
   // The relaxation (and the repair after it) aims at the ideal cells instead of the standard's: for a template grid,
   // whose cells in parameter space are no shape to keep.
   bool ideal_cell_targets = false;

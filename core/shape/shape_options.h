@@ -29,6 +29,12 @@ struct UntangleOptions {
   // identity); where it was forced far from it (a patient unlike the standard), the aim is a better-shaped corner
   // rather than a copy of a poor one.
   double target_towards_ideal = 0;
+  // Optional, #V x 3: where each vertex should stay (the mapping's result, whose positions carry the correspondence).
+  // The energy adds tether_weight * |x - tether|^2 / h^2 per vertex, h its mean edge length in the mesh as given: a
+  // relaxation that slides a vertex one edge along the skin for a better shape pays tether_weight for it, so shape
+  // and correspondence are traded by one number (0: no tether).
+  Eigen::MatrixXd tether;
+  double tether_weight = 0;
   // Every movable vertex may move, not only those near bad cells (shape relaxation of the whole mesh).
   bool whole_mesh = false;
   int rings = 2;

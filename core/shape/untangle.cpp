@@ -57,6 +57,13 @@ class LocalShapeSolver {
     threads_ = options.threads > 0 ? options.threads : std::min(omp_get_max_threads(), idle_cores());
     select_free_vertices();
     gather_corners();
+    if (options_.tether_weight > 0 && options_.tether.rows() == mesh_.num_vertices()) {
+      tether_scale_.assign(mesh_.num_vertices(), 0);
+      for (int v : free_vertices_) {
+        const double h = mean_edge(v);
+        tether_scale_[v] = h > 0 ? options_.tether_weight / (h * h) : 0;
+      }
+    }
   }
 
   int free_vertex_count() const { return static_cast<int>(free_vertices_.size()); }
@@ -221,6 +228,14 @@ class LocalShapeSolver {
       *gradient += g;
       *hessian += H;
     }
+    if (!tether_scale_.empty() && tether_scale_[v] > 0) {
+      const Eigen::Vector3d d = (mesh_.V.row(v) - options_.tether.row(v)).transpose();
+      e += tether_scale_[v] * d.squaredNorm();
+      if (gradient) {
+        *gradient += 2 * tether_scale_[v] * d;
+        hessian->diagonal().array() += 2 * tether_scale_[v];
+      }
+    }
     return e;
   }
 
@@ -341,6 +356,7 @@ class LocalShapeSolver {
   std::vector<CellState> cell_state_;  // #C, current for the touched cells
   std::vector<double> sigma_;          // per touched corner, its last normalized determinant
   std::vector<char> active_;           // #V: vertices the next sweep visits
+  std::vector<double> tether_scale_;   // #V: tether_weight / h^2 of each free vertex, or empty without a tether
 };
 
 }  // namespace

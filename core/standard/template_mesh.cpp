@@ -216,11 +216,13 @@ TemplateResult build_template(const VolumeMesh& reference, const ConstraintSet& 
   run.standard = parameterize_model(domain.V, domain.T, domain.side_mask, grid_constraints(result.grid, reference_set),
                                     "template grid", transfer.fields);
   report_progress(progress, "mapping the grid onto the reference", 0.7);
-  // The grid's coordinates are parameters, not a shape to keep: the relaxation slides the vertices along the
-  // reference towards ideal cells, and the repair weighs the worst corners most (TemplateOptions).
+  // The grid's coordinates are parameters, not a shape or a correspondence to keep: the relaxation slides the
+  // vertices freely along the reference towards ideal cells, and the repair weighs the worst corners most
+  // (TemplateOptions).
   TransferOptions grid_transfer = transfer;
   grid_transfer.shape_relaxation = options.relax;
   grid_transfer.ideal_cell_targets = true;
+  grid_transfer.relaxation_tether = 0;
   grid_transfer.untangle_options.corner_power = kRepairCornerPower;
   grid_transfer.polish_moves_sides = options.cut_sharp_corners;
   map_parameterized(run, grid, source, grid_transfer);

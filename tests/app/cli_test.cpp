@@ -880,6 +880,12 @@ TEST_F(Cli, CompareAndMapRejectBadInputsWithOneLineErrors) {
     EXPECT_EQ(nonempty_lines(r.output), 1) << r.output;
     EXPECT_FALSE(fs::exists(path("m.vtu")));
   }
+  for (const char* value : {"-1", "heavy"}) {
+    r = run("map --shape-tether " + std::string(value) + " --patient " + path("box.vtu") + " -o " + path("m.vtu"));
+    EXPECT_EQ(r.status, 2) << value;
+    EXPECT_NE(r.output.find("--shape-tether expects a number"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(path("m.vtu")));
+  }
   r = run("run " + path("box.vtu") + " --shape-relaxation 2 -o " + path("run_out"));
   EXPECT_NE(r.status, 0);
   EXPECT_FALSE(fs::exists(path("run_out")));  // not even an empty folder

@@ -180,6 +180,50 @@ TEST(ShapeRelaxation, ReturnsAPerturbedMeshToItsTargetShape) {
   EXPECT_GT((ideal.V - target.V).cwiseAbs().maxCoeff(), 0.1);
 }
 
+// A tether to the start trades the target's shape for staying put, by its weight: the heavier, the less the
+// vertices move and the farther they stay from the target's shape; weight 0 is no tether at all; a tether at the
+// target's own positions does not keep the mesh from reaching it.
+TEST(ShapeRelaxation, ATetherTradesTheTargetsShapeForStayingWhereTheMappingPutTheVertices) {
+  VolumeMesh target = test::hex_box(4, 4, 4, 4, 4, 4);
+  test::jitter_interior(target, 0.25);
+  VolumeMesh start = target;
+  test::jitter_interior(start, 0.2, 11);
+  UntangleOptions relax;
+  relax.target = &target;
+  relax.whole_mesh = true;
+  relax.max_sweeps = 200;
+  const auto relaxed = [&](const UntangleOptions& o) {
+    VolumeMesh moved = start;
+    VertexPlacement placement = spatial_placement(moved.V, boundary_fixed(moved));
+    untangle(moved, placement, o);
+    return moved.V;
+  };
+  const auto mean_distance = [](const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+    return (a - b).rowwise().norm().mean();
+  };
+  const Eigen::MatrixXd free = relaxed(relax);
+  double last_moved = 1e9, last_off_target = -1;
+  for (const double weight : {0.0, 0.2, 2.0, 20.0, 1000.0}) {
+    UntangleOptions tethered = relax;
+    tethered.tether = start.V;
+    tethered.tether_weight = weight;
+    const Eigen::MatrixXd V = relaxed(tethered);
+    if (weight == 0) {
+      EXPECT_EQ(V, free);
+    }
+    const double moved = mean_distance(V, start.V), off_target = mean_distance(V, target.V);
+    EXPECT_LT(moved, last_moved) << "weight " << weight;
+    EXPECT_GT(off_target, last_off_target) << "weight " << weight;
+    last_moved = moved;
+    last_off_target = off_target;
+  }
+  EXPECT_LT(last_moved, 0.1 * mean_distance(free, start.V));
+  UntangleOptions at_target = relax;
+  at_target.tether = target.V;
+  at_target.tether_weight = 2;
+  EXPECT_LT((relaxed(at_target) - target.V).cwiseAbs().maxCoeff(), 1e-3 * 4);
+}
+
 TEST(ShapeRelaxation, GivesTheSameMeshOnOneThreadAndOnTwo) {
   // Long in x, so that the free vertices are cut into several slabs that step in parallel.
   VolumeMesh target = test::hex_box(16, 6, 6, 16, 6, 6);
