@@ -42,6 +42,9 @@ struct RegisteredSides {
   // (parts one model has and the other not, or a registration that went wrong); and how many were too far.
   DistanceSummary distance;
   int vertices_too_far = 0;
+  // Landmarks whose patient skin triangle takes values that put the standard's landmark vertex exactly on them
+  // (snapped landmarks only: PointPairs::snap_radius).
+  int pinned_landmarks = 0;
   double seconds = 0;
 };
 

@@ -62,6 +62,34 @@ SurfaceLocator::Hits SurfaceLocator::closest(const Eigen::MatrixXd& points) cons
   return hits;
 }
 
+SurfaceLocator::Hits SurfaceLocator::along(const Eigen::MatrixXd& points, const Eigen::Vector3d& direction,
+                                           double reach) const {
+  Hits hits;
+  hits.point = points;
+  hits.face = Eigen::VectorXi::Constant(points.rows(), -1);
+  hits.distance = Eigen::VectorXd::Constant(points.rows(), std::numeric_limits<double>::infinity());
+  if (impl_->empty || !(direction.norm() > 0)) return hits;
+  const Eigen::Vector3d d = direction.normalized();
+  vtkNew<vtkGenericCell> cell;
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    const Eigen::Vector3d p = points.row(i).transpose();
+    for (const double sign : {1.0, -1.0}) {  // the first hit from p each way; the nearer one wins
+      const Eigen::Vector3d end = p + sign * reach * d;
+      double a[3] = {p.x(), p.y(), p.z()}, b[3] = {end.x(), end.y(), end.z()}, x[3], pcoords[3], t = 0;
+      int sub_id = 0;
+      vtkIdType cell_id = -1;
+      if (!impl_->locator->IntersectWithLine(a, b, 0.0, t, x, pcoords, sub_id, cell_id, cell)) continue;
+      const double distance = t * reach;
+      if (distance < hits.distance(i)) {
+        hits.point.row(i) << x[0], x[1], x[2];
+        hits.face(i) = static_cast<int>(cell_id);
+        hits.distance(i) = distance;
+      }
+    }
+  }
+  return hits;
+}
+
 Eigen::Vector3d triangle_barycentric(const Eigen::RowVector3d& p, const Eigen::RowVector3d& a,
                                      const Eigen::RowVector3d& b, const Eigen::RowVector3d& c) {
   const Eigen::RowVector3d e0 = b - a, e1 = c - a, d = p - a;

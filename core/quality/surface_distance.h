@@ -26,6 +26,9 @@ class SurfaceLocator {
     Eigen::VectorXd distance;  // #P
   };
   Hits closest(const Eigen::MatrixXd& points) const;  // points #P x 3
+  // The nearest point where the line through each point along `direction` meets the surface, within `reach` either
+  // way; where it meets nothing, face -1, distance infinite and the point itself.
+  Hits along(const Eigen::MatrixXd& points, const Eigen::Vector3d& direction, double reach) const;
 
  private:
   struct Impl;

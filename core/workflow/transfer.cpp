@@ -45,6 +45,8 @@ ConstraintSet without_automatic_features(const PatientSetup& patient, std::vecto
   return kept;
 }
 
+constexpr double kSlitDepth = 10;  // mm: how far in front of or behind a landmark the skin is looked for
+
 // Landmark pairs that pull the skin registration, and the standard's vertices among them.
 struct LandmarkPull {
   PointPairs pairs;
@@ -54,9 +56,11 @@ struct LandmarkPull {
 // The patient's landmarks (found, estimated or given) paired with the standard's of the same names
 // (standard_features.h) when the user gave them or with pull_found; none otherwise. The standard's side is its landmark
 // vertex, the point feature_landing measures (its open eyes' and mouth's corners are its rims' ends), else where its
-// finder placed the landmark. The patient's side is the landmark's closest point on the model's skin: a corner of a
-// closed eye or mouth read in the CT lies in a slit the model's skin bridges, and the registration snaps the standard
-// onto these points (PointPairs), which must lie on the surface it is registered to.
+// finder placed the landmark. The patient's side is the landmark's point on the model's skin: a corner of a closed eye
+// or mouth read in the CT lies in a slit the model's skin bridges, and the registration snaps the standard onto these
+// points (PointPairs), which must lie on the surface it is registered to. That point is the skin in front of the
+// landmark or behind it (along the face's anterior axis, +y: where the landmark is seen from the front, as the
+// landing is measured), else its closest point.
 LandmarkPull landmark_pull(const StandardSetup& standard, const PatientSetup& patient, const StandardFeatures& features,
                            bool pull_found) {
   LandmarkPull pull;
@@ -80,7 +84,13 @@ LandmarkPull landmark_pull(const StandardSetup& standard, const PatientSetup& pa
     at.row(static_cast<Eigen::Index>(i)) = matched[i].second.transpose();
   }
   const Eigen::MatrixXi skin = side_triangles(patient.mesh.tets(), side_mask_of(patient.mesh), W1);
-  pull.pairs.patient = skin.rows() > 0 ? SurfaceLocator(patient.mesh.V, skin).closest(at).point : at;
+  pull.pairs.patient = at;
+  if (skin.rows() == 0) return pull;
+  const SurfaceLocator locator(patient.mesh.V, skin);
+  const SurfaceLocator::Hits ahead = locator.along(at, Eigen::Vector3d::UnitY(), kSlitDepth);
+  const SurfaceLocator::Hits closest = locator.closest(at);
+  for (Eigen::Index i = 0; i < at.rows(); ++i)
+    pull.pairs.patient.row(i) = ahead.face(i) >= 0 ? ahead.point.row(i) : closest.point.row(i);
   return pull;
 }
 
@@ -202,6 +212,7 @@ nlohmann::json skin_correspondence_json(const TransferResult& result) {
   return {{"mode", "registered"},
           {"vertices", g.conditions[0].vertices.size()},
           {"too_far", g.vertices_too_far},
+          {"pinned_landmarks", g.pinned_landmarks},
           {"distance_mm", {{"mean", d.mean}, {"p95", d.p95}, {"max", d.max}}},
           {"left_out_constraints", result.left_out_constraints},
           {"seconds", g.seconds}};

@@ -4,10 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "core/correspondence/registered_sides.h"
 #include "core/fields/constraint_set.h"
 #include "core/fields/tet_domain.h"
 #include "core/mesh/hex_to_tets.h"
+#include "core/quality/surface_distance.h"
 #include "core/util/error.h"
 #include "tests/core/test_meshes.h"
 
@@ -93,6 +96,47 @@ TEST(RegisteredSides, FollowAStretchOfTheSameBox) {
   for (Eigen::Index v = 0; v < without_skin.size(); ++v) without_skin(v) &= ~side_bit(W1);
   no_skin.point_data[kSideMaskArray] = without_skin.cast<double>();
   EXPECT_THROW(register_sides(standard, uvw, no_skin, "box without skin", options), Error);
+}
+
+// A landmark pair snapped onto the patient (PointPairs::snap_radius): the patient's skin triangle under the landmark
+// takes values whose interpolation there is the standard's landmark vertex's (u, v), exactly, so that the fields put
+// that vertex on the landmark; without the snap no triangle is pinned.
+TEST(RegisteredSides, PinTheStandardsLandmarkVertexOntoTheSnappedLandmark) {
+  const TetDomain standard = box_domain(4, 40);
+  const Eigen::MatrixXd uvw = linear_uvw(standard.V, 40);
+  VolumeMesh patient = test::hex_box(6, 6, 6, 40, 40, 40);
+  patient.V.col(0) *= 1.15;
+  const TetDomain patient_tets = auxiliary_domain(patient);
+  VolumeMesh patient_model = VolumeMesh::from_tets(patient_tets.V, patient_tets.T);
+  patient_model.point_data[kSideMaskArray] = patient_tets.side_mask.cast<double>();
+  Eigen::Index vertex = -1;
+  (standard.V.rowwise() - Eigen::RowVector3d(20, 40, 20)).rowwise().squaredNorm().minCoeff(&vertex);
+  ASSERT_LT((standard.V.row(vertex) - Eigen::RowVector3d(20, 40, 20)).norm(), 1e-9);
+  PointPairs pair;
+  pair.standard = standard.V.row(vertex);
+  pair.patient.resize(1, 3);
+  pair.patient << 1.15 * 20 + 4.1, 40, 23.3;  // on the skin, 4 mm beside where the stretch puts the vertex
+  const RegisteredSidesOptions options;
+  const RegisteredSides r = register_sides(standard, uvw, patient_model, "stretched box", options, &pair);
+  EXPECT_EQ(r.pinned_landmarks, 1);
+  const Eigen::MatrixXi skin = side_triangles(patient_tets.T, patient_tets.side_mask, W1);
+  const SurfaceLocator::Hits hit = SurfaceLocator(patient_tets.V, skin).closest(pair.patient);
+  const Eigen::Vector3i tri = skin.row(hit.face(0)).transpose();
+  const Eigen::Vector3d b = triangle_barycentric(pair.patient, patient_tets.V.row(tri(0)), patient_tets.V.row(tri(1)),
+                                                 patient_tets.V.row(tri(2)));
+  for (int f = 0; f < 2; ++f) {
+    double at = 0;
+    for (int k = 0; k < 3; ++k) {
+      const auto& c = r.conditions[f];
+      const auto it = std::find(c.vertices.begin(), c.vertices.end(), tri(k));
+      ASSERT_NE(it, c.vertices.end());
+      EXPECT_EQ(std::count(c.vertices.begin(), c.vertices.end(), tri(k)), 1);
+      at += b(k) * c.values[static_cast<size_t>(it - c.vertices.begin())];
+    }
+    EXPECT_NEAR(at, uvw(vertex, f), 1e-9) << "field " << f;
+  }
+  pair.snap_radius = 0;
+  EXPECT_EQ(register_sides(standard, uvw, patient_model, "stretched box", options, &pair).pinned_landmarks, 0);
 }
 
 }  // namespace
