@@ -18,15 +18,15 @@ namespace {
 // landmarks were pinned: those whose standard point is a domain vertex and whose triangle's vertices all have a
 // correspondent (c).
 int pin_landmarks(const PointPairs& landmarks, const Eigen::MatrixXd& standard_V, const Eigen::MatrixXd& standard_uvw,
-                  const Eigen::MatrixXd& patient_V, const Eigen::MatrixXi& patient_F, const SideCorrespondence& c,
-                  FieldConditions& conditions) {
+                  const Eigen::MatrixXd& patient_V, const Eigen::MatrixXi& patient_F,
+                  const SurfaceLocator& patient_side, const SideCorrespondence& c, FieldConditions& conditions) {
   if (landmarks.patient.rows() == 0 || patient_F.rows() == 0) return 0;
   std::unordered_map<int, Eigen::Index> row_of;  // patient vertex -> its row in c
   for (size_t i = 0; i < c.vertices.size(); ++i) row_of[c.vertices[i]] = static_cast<Eigen::Index>(i);
   std::array<std::unordered_map<int, size_t>, 2> condition_of;
   for (int f = 0; f < 2; ++f)
     for (size_t k = 0; k < conditions[f].vertices.size(); ++k) condition_of[f][conditions[f].vertices[k]] = k;
-  const SurfaceLocator::Hits hits = SurfaceLocator(patient_V, patient_F).closest(landmarks.patient);
+  const SurfaceLocator::Hits hits = patient_side.closest(landmarks.patient);
   int pinned = 0;
   for (Eigen::Index l = 0; l < landmarks.patient.rows(); ++l) {
     Eigen::Index vertex = -1;
@@ -104,8 +104,9 @@ RegisteredSides register_sides(const TetDomain& standard, const Eigen::MatrixXd&
         r.conditions[f].values.push_back(c.uvw(static_cast<Eigen::Index>(i), f));
       }
     }
-    if (landmarks && landmarks->snap_radius > 0)
-      r.pinned_landmarks += pin_landmarks(*landmarks, standard.V, standard_uvw, patient.V, patient_F, c, r.conditions);
+    if (side == W1 && landmarks && landmarks->snap_radius > 0)  // facial landmarks lie on the skin
+      r.pinned_landmarks +=
+          pin_landmarks(*landmarks, standard.V, standard_uvw, patient.V, patient_F, patient_side, c, r.conditions);
   }
   r.distance = summarize_distances(
       Eigen::Map<const Eigen::VectorXd>(distances.data(), static_cast<Eigen::Index>(distances.size())));

@@ -43,7 +43,7 @@ struct RegisteredSides {
   DistanceSummary distance;
   int vertices_too_far = 0;
   // Landmarks whose patient skin triangle takes values that put the standard's landmark vertex exactly on them
-  // (snapped landmarks only: PointPairs::snap_radius).
+  // (snapped landmarks only: PointPairs::snap_radius; on the skin side W1, where facial landmarks lie).
   int pinned_landmarks = 0;
   double seconds = 0;
 };
