@@ -70,6 +70,7 @@ void SessionModel::setModel(Role role, LoadedModel model) {
   results_.transfer.reset();
   setAside_.clear();
   const bool highlighted = std::exchange(highlight_, std::nullopt).has_value();  // it named the old model
+  if (role == activeRole_) planeSelection_.clear();  // so did the plane's selection, until it is made again below
   emit modelChanged(role);
   emit resultsChanged();
   emit constraintsChanged(role);

@@ -85,6 +85,7 @@ class GuiTest : public QObject {
   void segmentationDialogRoundTripsItsOptions();
   void segmentAgainStartsFromWhatWasFoundAndTakesACut();
   void opensModelsFromFiles();
+  void aSmallerModelReplacingALargerOneKeepsThePlaneSelectionValid();
   void computesTheFields();
   void scriptedFieldStatesShowTheModels();
   void transfersExportsAndReloads();
@@ -603,6 +604,7 @@ void GuiTest::segmentationDialogRoundTripsItsOptions() {
   SegmentOptions o = dialog.options();  // opens with the CLI's defaults: everything automatic
   QCOMPARE(o.tets.target_edge_length, defaults.tets.target_edge_length);
   QCOMPARE(o.coarsen_above_tets, defaults.coarsen_above_tets);
+  QVERIFY(o.follow_scan_spacing && defaults.follow_scan_spacing);
   QVERIFY(!o.skin_threshold && !o.bone_threshold && !o.cuts.top_z && !o.cuts.bottom_z && !o.cuts.posterior_y &&
           !o.cuts.centre_x && !o.cuts.head_turn && !o.cuts.head_pitch);
   QVERIFY(o.orientation.anterior.empty() && o.orientation.superior.empty());
@@ -611,6 +613,7 @@ void GuiTest::segmentationDialogRoundTripsItsOptions() {
   SegmentOptions given;
   given.tets.target_edge_length = 3.5;
   given.coarsen_above_tets = 0;  // the edge length as given
+  given.follow_scan_spacing = false;
   given.skin_threshold = 600;
   given.cuts.top_z = 120;
   given.cuts.centre_x = -4.5;
@@ -622,6 +625,7 @@ void GuiTest::segmentationDialogRoundTripsItsOptions() {
   o = dialog.options();
   QCOMPARE(o.tets.target_edge_length, 3.5);
   QCOMPARE(o.coarsen_above_tets, 0.0);
+  QVERIFY(!o.follow_scan_spacing);
   QVERIFY(!dialog.findChild<QCheckBox*>("segmentCoarsenLargeFaces")->isChecked());
   QCOMPARE(*o.skin_threshold, 600.0);
   QVERIFY(!o.bone_threshold);
@@ -700,6 +704,32 @@ void GuiTest::segmentAgainStartsFromWhatWasFoundAndTakesACut() {
   const QString status = finished.first().first().toString();
   QVERIFY2(status.contains(QString("posterior y %1").arg(found.posterior_y + 8, 0, 'f', 1)), qPrintable(status));
   QCOMPARE(window_->statusBar()->toolTip(), status);  // the whole line, which the status bar cuts
+}
+
+void GuiTest::aSmallerModelReplacingALargerOneKeepsThePlaneSelectionValid() {
+  // The bundled demo's patient, then a box of a few hundred vertices, with the plane shown: the views rebuilt on the
+  // new model must not be handed the old model's selected vertices.
+  QVERIFY2(openDemo(), qPrintable(error_));
+  QVERIFY(session()->display().showPlane);
+  QVERIFY(!session()->planeSelection().empty());
+  const VolumeMesh box = test::hex_box(4, 2, 3, 40, 12, 30);
+  VolumeMesh tets = VolumeMesh::from_tets(box.V, split_into_tets(box).T);
+  tets.point_data = box.point_data;
+  const QString small = dir_.filePath("small.vtu");
+  write_volume_mesh(small.toStdString(), tets);
+  int stale = 0;
+  const auto check = [this, &stale] {
+    const Eigen::Index n = session()->model(Role::Patient).domain.V.rows();
+    for (int v : session()->planeSelection()) stale += v >= n;
+  };
+  const QMetaObject::Connection changed = connect(session(), &SessionModel::modelChanged, this, check);
+  const QString error = openPatient(small);
+  disconnect(changed);
+  QVERIFY2(error.isEmpty(), qPrintable(error));
+  QCOMPARE(session()->model(Role::Patient).domain.V.rows(), Eigen::Index(tets.num_vertices()));
+  QCOMPARE(stale, 0);
+  check();
+  QCOMPARE(stale, 0);
 }
 
 void GuiTest::opensModelsFromFiles() {
