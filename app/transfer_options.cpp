@@ -121,6 +121,7 @@ SegmentOptions segment_options(const Args& args) {
   if (args.has("edge-length")) {
     o.tets.target_edge_length = args.number("edge-length", kLeastEdgeLength, kMostEdgeLength);
     o.coarsen_above_tets = 0;
+    o.follow_scan_spacing = false;
   }
   const auto finite = [&](const std::string& name) {
     const double x = args.number(name);

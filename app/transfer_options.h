@@ -10,7 +10,7 @@ namespace facehex::cli {
 
 // What --edge-length is when not given, for the help of run, map, compare, bench and segment (SegmentOptions).
 inline constexpr const char* kDefaultEdgeLengthHelp =
-    "2, or coarser for a CT whose model would have more than 700000 tets at 2";
+    "2, or a CT's coarsest voxel spacing up to 4, or coarser for a CT whose model would have more than 700000 tets";
 // The range --edge-length accepts (mm): below it a head has tens of millions of tets, above it no face is left.
 constexpr double kLeastEdgeLength = 0.5, kMostEdgeLength = 50;
 

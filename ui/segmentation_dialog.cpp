@@ -61,11 +61,13 @@ SegmentationDialog::SegmentationDialog(QWidget* parent) : QDialog(parent) {
   edgeLength_ = spinBox(0.5, 20, tr(" mm"), "segmentEdgeLength", this);
   edgeLength_->setToolTip(tr("Target mean edge length of the tets (the paper: about 2 mm). Coarser is faster."));
   form->addRow(tr("Tet edge length"), edgeLength_);
-  coarsenLargeFaces_ = new QCheckBox(tr("coarser for a large face"), this);
+  coarsenLargeFaces_ = new QCheckBox(tr("coarser for a coarse scan or a large face"), this);
   coarsenLargeFaces_->setObjectName("segmentCoarsenLargeFaces");
   coarsenLargeFaces_->setToolTip(
-      tr("A face whose model would have more tets than the transfer gains from (a fine CT showing the face and neck) "
-         "is meshed with longer edges (docs/segmentation.md). Untick to keep the edge length as given."));
+      tr("The edges are at least the CT's coarsest voxel spacing (up to %1 mm), and a face whose model would have "
+         "more tets than the transfer gains from (a fine CT showing the face and neck) is meshed with longer edges "
+         "(docs/segmentation.md). Untick to keep the edge length as given.")
+          .arg(kMostScanEdgeLength));
   form->addRow(QString(), coarsenLargeFaces_);
   anterior_ = axisChoice("segmentAnterior", "+y", this);
   superior_ = axisChoice("segmentSuperior", "+z", this);
@@ -141,7 +143,7 @@ void SegmentationDialog::setCt(const QString& path) {
 
 void SegmentationDialog::setOptions(const SegmentOptions& o) {
   edgeLength_->setValue(o.tets.target_edge_length);
-  coarsenLargeFaces_->setChecked(o.coarsen_above_tets > 0);
+  coarsenLargeFaces_->setChecked(o.coarsen_above_tets > 0 || o.follow_scan_spacing);
   selectAxis(anterior_, o.orientation.anterior);
   selectAxis(superior_, o.orientation.superior);
   numbers_[Skin].set(o.skin_threshold);
@@ -160,7 +162,10 @@ void SegmentationDialog::setOptions(const SegmentOptions& o) {
 SegmentOptions SegmentationDialog::options() const {
   SegmentOptions o;
   o.tets.target_edge_length = edgeLength_->value();
-  if (!coarsenLargeFaces_->isChecked()) o.coarsen_above_tets = 0;
+  if (!coarsenLargeFaces_->isChecked()) {
+    o.coarsen_above_tets = 0;
+    o.follow_scan_spacing = false;
+  }
   o.orientation.anterior = anterior_->currentData().toString().toStdString();
   o.orientation.superior = superior_->currentData().toString().toStdString();
   o.skin_threshold = numbers_[Skin].get();

@@ -19,7 +19,8 @@ struct CtSegmentation {
   SegmentOptions options;
   TissueThresholds thresholds;
   FaceCuts cuts;
-  std::string repair;  // PatientModel::repair, and the second segmentation of a pitched head
+  std::string repair;            // PatientModel::repair, and the second segmentation of a pitched head
+  std::string edge_length_rule;  // PatientModel::edge_length_rule
 };
 
 struct PatientTetModel {

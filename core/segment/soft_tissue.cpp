@@ -286,6 +286,10 @@ bool read_slit_landmarks(const CtVolume& ct, const PatientModel& model, CtLandma
 
 }  // namespace
 
+double scan_edge_length(const Eigen::Vector3d& spacing, double target_edge_length) {
+  return std::max(target_edge_length, std::min(spacing.maxCoeff(), kMostScanEdgeLength));
+}
+
 PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& options, const ProgressCallback& progress) {
   if (!(options.working_spacing > 0) || !(options.tets.target_edge_length > 0) || !(options.max_depth > 0))
     throw Error("segment", "working_spacing, target_edge_length and max_depth must be positive");
@@ -443,10 +447,19 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   // an edge length 3 % shorter, then 3 % longer, which places the vertices differently.
   // A vertex where skin touches bone at a zero-thickness rim is left free in w (tetrahedralize_with_sides).
   TetrahedralizeOptions tet_options = options.tets;
-  if (options.coarsen_above_tets > 0)
-    tet_options.target_edge_length = std::max(
-        tet_options.target_edge_length,
-        edge_length_for_tet_count(std::abs(enclosed_volume(surface)), options.coarsen_above_tets, tet_options));
+  if (options.follow_scan_spacing) {
+    const double scan = scan_edge_length(ct.intensity.geometry.spacing, tet_options.target_edge_length);
+    if (scan > tet_options.target_edge_length) model.edge_length_rule = "the CT's coarsest voxel spacing";
+    tet_options.target_edge_length = scan;
+  }
+  if (options.coarsen_above_tets > 0) {
+    const double coarse =
+        edge_length_for_tet_count(std::abs(enclosed_volume(surface)), options.coarsen_above_tets, tet_options);
+    if (coarse > tet_options.target_edge_length) {
+      model.edge_length_rule = "coarsened for the face's size";
+      tet_options.target_edge_length = coarse;
+    }
+  }
   model.edge_length = tet_options.target_edge_length;
   TetrahedralizeResult tets;
   for (const double scale : {1.0, 0.97, 1.03}) {

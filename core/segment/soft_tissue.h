@@ -48,6 +48,14 @@ inline TetrahedralizeOptions patient_tet_options() {
 
 // Each setting below is an option of the command line (app/transfer_options.cpp: --skin, --bone, --min-thickness,
 // --bone-gap, --cavity-closing, --smoothing, --max-depth, the cut options, --edge-length), named in the errors.
+// The longest edge the scan's spacing sets (SegmentOptions::follow_scan_spacing): a face's thin parts (the lips, the
+// nose's tip) keep a few tets across.
+constexpr double kMostScanEdgeLength = 4.0;
+
+// The tets' edge length of a model segmented from a scan whose voxels are `spacing` (mm) apart, for the given target
+// edge length, as SegmentOptions::follow_scan_spacing sets it.
+double scan_edge_length(const Eigen::Vector3d& spacing, double target_edge_length);
+
 struct SegmentOptions {
   std::optional<double> skin_threshold, bone_threshold;  // file units; estimated from the histogram when unset
   double working_spacing = 1.0;                          // mm, isotropic grid the CT is resampled to
@@ -64,6 +72,10 @@ struct SegmentOptions {
   // tets than the transfer gains from, while the time and memory of every later stage follow their count; a face of
   // the bundled CT's size keeps 2 mm. The command line sets 0 when --edge-length is given.
   double coarsen_above_tets = 700000;
+  // The tets' edge length is at least the scan's coarsest voxel spacing, up to kMostScanEdgeLength: the model's surface
+  // holds no shape finer than the scan resolves, so shorter edges only cost time (a CT of 3 mm slices meshes at 3 mm).
+  // The command line sets false when --edge-length is given.
+  bool follow_scan_spacing = true;
   CtOrientation orientation;  // only used when reading a file
 };
 
@@ -73,7 +85,8 @@ struct PatientModel {
   Eigen::VectorXi boundary_sides;  // #B side (Side) of each boundary triangle
   TissueThresholds thresholds;     // as used
   FaceCuts cuts;                   // as used
-  double edge_length = 0;          // mm, the tets' target edge length as used (SegmentOptions::coarsen_above_tets)
+  double edge_length = 0;          // mm, the tets' target edge length as used
+  std::string edge_length_rule;    // why longer than SegmentOptions::tets asked (the scan, the face's size), or empty
   SegmentOptions options;          // as used: min_thickness and smoothing_sigma raised by a tunnel repair
   std::string repair;              // the tunnel repair made, the head pitched back, or empty
 };

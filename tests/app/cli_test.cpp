@@ -208,6 +208,10 @@ TEST_F(Cli, DemoRunsTheWholeChainFromTheBundledCt) {
             std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("found: mid-sagittal plane x 98.4"), std::string::npos) << r.output;
+  // Its voxels are 3.2 mm wide: the tets are no finer (docs/segmentation.md step 8).
+  EXPECT_NE(r.output.find("tets of edge length 3.2 mm (the CT's coarsest voxel spacing; --edge-length sets it)"),
+            std::string::npos)
+      << r.output;
   EXPECT_TRUE(fs::exists(path("demo/landmarks.json")));
   // The standard's parameterization came from its cache.
   const std::string source = report["standard"]["parameterization_source"].get<std::string>();

@@ -137,7 +137,9 @@ TEST(SoftTissue, RealCtMakesASixSidedModel) {
   // The data's README: skin at about 500, bone at about 1150 (file units).
   EXPECT_NEAR(m.thresholds.skin, 550, 150);
   EXPECT_NEAR(m.thresholds.bone, 1150, 100);
-  EXPECT_EQ(m.edge_length, 2.0);  // a face of this size keeps the paper's edge length
+  // Its slices are 3.2 mm apart in x and y: the tets follow the scan (a face of this size would keep the paper's 2 mm).
+  EXPECT_NEAR(m.edge_length, 3.2, 1e-6);
+  EXPECT_EQ(m.edge_length_rule, "the CT's coarsest voxel spacing");
   expect_valid_patient(m);
   // The model carries the CT's mid-sagittal plane, for the landmark finder.
   const std::optional<MidSagittalPlane> plane = mid_sagittal_plane(m.mesh, "model");
@@ -145,7 +147,7 @@ TEST(SoftTissue, RealCtMakesASixSidedModel) {
   EXPECT_EQ(plane->x, m.cuts.centre_x);
   EXPECT_LT(std::abs(m.cuts.anatomy->roll_degrees), 5.0);  // upright: the plane is vertical
   EXPECT_EQ(plane->slope, 0.0);
-  // And the skin at the working spacing (1 mm here, the model's edges 2 mm): several times as many points as the
+  // And the skin at the working spacing (1 mm here, the model's edges 3.2 mm): several times as many points as the
   // model has skin vertices, over the same extent.
   const std::optional<Eigen::MatrixXd> skin = skin_points(m.mesh, "model");
   ASSERT_TRUE(skin);
@@ -330,6 +332,26 @@ TEST(SoftTissue, ALargeModelIsMeshedCoarserUnlessTheEdgeLengthIsGiven) {
   // A goal the model is below already leaves the edge length as given.
   o.coarsen_above_tets = 10.0 * given.mesh.num_cells();
   EXPECT_EQ(build_patient_model(ct, o).edge_length, 3.0);
+}
+
+TEST(SoftTissue, ACoarseScanIsMeshedAtItsVoxelSpacingUnlessTheEdgeLengthIsGiven) {
+  const CtVolume ct = testing::ellipsoid_phantom(3.5);
+  SegmentOptions o = testing::phantom_options(ct);
+  o.coarsen_above_tets = 0;
+  const PatientModel coarse = build_patient_model(ct, o);
+  EXPECT_EQ(coarse.edge_length, 3.5);
+  EXPECT_EQ(coarse.edge_length_rule, "the CT's coarsest voxel spacing");
+  expect_valid_patient(coarse);
+  o.follow_scan_spacing = false;
+  const PatientModel given = build_patient_model(ct, o);
+  EXPECT_EQ(given.edge_length, 3.0);
+  EXPECT_EQ(given.edge_length_rule, "");
+  EXPECT_GT(given.mesh.num_cells(), coarse.mesh.num_cells());
+  // The coarsest axis counts; a longer target wins; the scan sets at most kMostScanEdgeLength.
+  EXPECT_EQ(scan_edge_length(Eigen::Vector3d(0.5, 0.5, 0.6), 2.0), 2.0);
+  EXPECT_EQ(scan_edge_length(Eigen::Vector3d(0.5, 0.5, 3.0), 2.0), 3.0);
+  EXPECT_EQ(scan_edge_length(Eigen::Vector3d(1.0, 1.0, 1.0), 4.5), 4.5);
+  EXPECT_EQ(scan_edge_length(Eigen::Vector3d(5.0, 5.0, 7.0), 2.0), kMostScanEdgeLength);
 }
 
 void expect_error(const std::function<void()>& run, const std::string& subject, const std::string& words) {
