@@ -101,9 +101,26 @@ void find_jaw_cut(const Mask& model, double clearance, FaceCuts& cuts) {
   }
 }
 
+namespace {
+
+// How far the line between the two tragi found leans from level, as the plane's lean is measured (a head tilted
+// towards its left shoulder raises its right tragus); none unless both were found.
+std::optional<double> tragi_roll_degrees(const Tragi& tragi) {
+  const std::optional<CtLandmark>&right = tragi[0], &left = tragi[1];
+  if (!right || !left || right->estimated || left->estimated) return std::nullopt;
+  const Eigen::Vector3d d = left->point - right->point;
+  if (!(d.x() > 0)) return std::nullopt;
+  return std::atan2(-d.z(), d.x()) * 180 / M_PI;
+}
+
+}  // namespace
+
 MidSagittalPlane landmark_plane(const FaceCuts& cuts, const FaceCutOptions& given) {
-  if (cuts.anatomy && !given.centre_x && std::abs(cuts.anatomy->roll_degrees) > kLandmarkPlaneMinLean)
-    return {cuts.anatomy->centre_x, cuts.anatomy->roll_slope, cuts.anatomy->roll_z};
+  if (cuts.anatomy && !given.centre_x && std::abs(cuts.anatomy->roll_degrees) > kLandmarkPlaneMinLean) {
+    const std::optional<double> tragi = tragi_roll_degrees(cuts.anatomy->tragi);
+    if (!tragi || std::abs(*tragi - cuts.anatomy->roll_degrees) <= kLandmarkPlaneLeanAgreement)
+      return {cuts.anatomy->centre_x, cuts.anatomy->roll_slope, cuts.anatomy->roll_z};
+  }
   return {cuts.centre_x, 0, 0};
 }
 

@@ -100,10 +100,13 @@ FaceCuts find_face_cuts(const Mask& head, const Mask& without_ears, const Mask& 
                         const std::optional<ScanSlab>& slab = std::nullopt);
 
 // The mid-sagittal plane the landmarks are read on (core/mesh/mid_sagittal_plane.h), stored with the model: the cuts'
-// plane, leaning as the head does when the symmetry's fit leans more than kLandmarkPlaneMinLean, else vertical through
+// plane, leaning as the head does when the symmetry's fit leans more than kLandmarkPlaneMinLean and the line between
+// the two tragi, where both were found, leans within kLandmarkPlaneLeanAgreement of it; else vertical through
 // centre_x (as a plane given with --mid-plane is). On upright heads the fit leans by a few degrees through the neck and
-// skull, and the face's profile is read better on the vertical (docs/benchmarks.md).
-constexpr double kLandmarkPlaneMinLean = 5.0;  // degrees
+// skull, and the face's profile is read better on the vertical (docs/benchmarks.md); an uneven shape (a warp's bumps,
+// a clipped face) can lean the fit further on a head the level tragi show upright.
+constexpr double kLandmarkPlaneMinLean = 5.0;        // degrees
+constexpr double kLandmarkPlaneLeanAgreement = 5.0;  // degrees
 MidSagittalPlane landmark_plane(const FaceCuts& cuts, const FaceCutOptions& given);
 
 // Sets cuts.jaw_z from the model mask (before the cuts are applied): `clearance` mm above the highest model voxel in

@@ -197,6 +197,20 @@ TEST(FaceCuts, ATiltedHeadKeepsItsMidPlaneAndLandmarks) {
   const MidSagittalPlane plane = landmark_plane(tilted, FaceCutOptions());
   EXPECT_EQ(plane.slope, tilted.anatomy->roll_slope);
   EXPECT_NEAR(plane.x_at(prn.y(), prn.z()), prn.x(), 2.0);
+  // Tragi found level contradict the lean: the head is upright and the plane vertical. Tragi tilted with the head (the
+  // right one higher when the plane's top leans to +x) agree with it, and so does a pair with one estimated.
+  const auto with_tragi = [&](double right_z, double left_z, bool estimated) {
+    FaceCuts cuts = tilted;
+    cuts.anatomy->tragi = {CtLandmark{Eigen::Vector3d(0, 60, right_z), estimated},
+                           CtLandmark{Eigen::Vector3d(120, 60, left_z), false}};
+    return landmark_plane(cuts, FaceCutOptions());
+  };
+  EXPECT_EQ(with_tragi(90, 90, false).slope, 0.0);
+  EXPECT_EQ(with_tragi(90, 90, false).x, tilted.centre_x);
+  const double rise = 120 * std::tan(tilted.anatomy->roll_degrees * M_PI / 180);
+  EXPECT_EQ(with_tragi(90 + rise / 2, 90 - rise / 2, false).slope, tilted.anatomy->roll_slope);
+  EXPECT_EQ(with_tragi(90 - rise / 2, 90 + rise / 2, false).slope, 0.0);  // tilted the other way
+  EXPECT_EQ(with_tragi(90, 90, true).slope, tilted.anatomy->roll_slope);
   const Head upright(Eigen::Matrix3d::Identity(), false);
   const FaceCuts straight = cuts_of(upright.head, upright.bone, FaceCutOptions());
   EXPECT_EQ(landmark_plane(straight, FaceCutOptions()).slope, 0.0);
