@@ -1,8 +1,10 @@
 #include "app/transfer_options.h"
 
 #include <cmath>
+#include <iomanip>
 #include <iostream>
 #include <set>
+#include <sstream>
 
 #include "app/terminal_progress.h"
 #include "core/face/automatic_constraints.h"
@@ -68,7 +70,7 @@ void add_transfer_options(Args& args) {
               "fields (default: the one bundled with it)")
       .option("edge-length",
               std::string("target edge length (mm) when the patient is a closed surface or a CT (default: ") +
-                  kDefaultEdgeLengthHelp + ")")
+                  default_edge_length_help() + ")")
       .option("standard-domain",
               "tet domain of the standard: closed (openings filled) or auxiliary (paper: split hexes only)", "closed")
       .flag("allow-inverted", "continue even if the patient parameterization has inverted tets")
@@ -100,6 +102,15 @@ void add_transfer_options(Args& args) {
               "0.2");
   add_field_options(args);
   add_segment_options(args);
+}
+
+std::string default_edge_length_help() {
+  const SegmentOptions defaults;
+  std::ostringstream text;
+  text << defaults.tets.target_edge_length << ", or a CT's coarsest voxel spacing up to " << kMostScanEdgeLength
+       << ", or coarser for a CT whose model would have more than " << std::fixed << std::setprecision(0)
+       << defaults.coarsen_above_tets << " tets";
+  return text.str();
 }
 
 HarmonicFieldsOptions field_options(const Args& args) {

@@ -8,9 +8,8 @@
 
 namespace facehex::cli {
 
-// What --edge-length is when not given, for the help of run, map, compare, bench and segment (SegmentOptions).
-inline constexpr const char* kDefaultEdgeLengthHelp =
-    "2, or a CT's coarsest voxel spacing up to 4, or coarser for a CT whose model would have more than 700000 tets";
+// What --edge-length is when not given, for the help of run, map, compare, bench and segment (from SegmentOptions).
+std::string default_edge_length_help();
 // The range --edge-length accepts (mm): below it a head has tens of millions of tets, above it no face is left.
 constexpr double kLeastEdgeLength = 0.5, kMostEdgeLength = 50;
 

@@ -22,7 +22,7 @@ int cmd_segment(const Argv& argv) {
             "and in front of the ears, six sides labelled (point data side_mask). See docs/segmentation.md.");
   args.positional("CT", "CT volume file or DICOM folder").option("output", "output tet model (.vtu)");
   args.option("edge-length",
-              std::string("target mean edge length of the tets (mm; default: ") + kDefaultEdgeLengthHelp + ")");
+              std::string("target mean edge length of the tets (mm; default: ") + default_edge_length_help() + ")");
   args.option("write-landmarks",
               "find the facial landmarks on the model's skin, check them, and write them to this file (.json, or 3D "
               "Slicer .mrk.json)");

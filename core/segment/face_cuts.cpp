@@ -18,6 +18,16 @@ std::string mm(double v) {
   return s.str();
 }
 
+// How far the line between the two tragi found leans from level, as the plane's lean is measured (a head tilted
+// towards its left shoulder raises its right tragus); none unless both were found.
+std::optional<double> tragi_roll_degrees(const Tragi& tragi) {
+  const std::optional<CtLandmark>&right = tragi[0], &left = tragi[1];
+  if (!right || !left || right->estimated || left->estimated) return std::nullopt;
+  const Eigen::Vector3d d = left->point - right->point;
+  if (!(d.x() > 0)) return std::nullopt;
+  return std::atan2(-d.z(), d.x()) * 180 / M_PI;
+}
+
 }  // namespace
 
 std::vector<CutPlane> FaceCuts::planes() const {
@@ -100,20 +110,6 @@ void find_jaw_cut(const Mask& model, double clearance, FaceCuts& cuts) {
       }
   }
 }
-
-namespace {
-
-// How far the line between the two tragi found leans from level, as the plane's lean is measured (a head tilted
-// towards its left shoulder raises its right tragus); none unless both were found.
-std::optional<double> tragi_roll_degrees(const Tragi& tragi) {
-  const std::optional<CtLandmark>&right = tragi[0], &left = tragi[1];
-  if (!right || !left || right->estimated || left->estimated) return std::nullopt;
-  const Eigen::Vector3d d = left->point - right->point;
-  if (!(d.x() > 0)) return std::nullopt;
-  return std::atan2(-d.z(), d.x()) * 180 / M_PI;
-}
-
-}  // namespace
 
 MidSagittalPlane landmark_plane(const FaceCuts& cuts, const FaceCutOptions& given) {
   if (cuts.anatomy && !given.centre_x && std::abs(cuts.anatomy->roll_degrees) > kLandmarkPlaneMinLean) {

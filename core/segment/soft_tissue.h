@@ -46,8 +46,6 @@ inline TetrahedralizeOptions patient_tet_options() {
   return o;
 }
 
-// Each setting below is an option of the command line (app/transfer_options.cpp: --skin, --bone, --min-thickness,
-// --bone-gap, --cavity-closing, --smoothing, --max-depth, the cut options, --edge-length), named in the errors.
 // The longest edge the scan's spacing sets (SegmentOptions::follow_scan_spacing): a face's thin parts (the lips, the
 // nose's tip) keep a few tets across.
 constexpr double kMostScanEdgeLength = 4.0;
@@ -56,6 +54,8 @@ constexpr double kMostScanEdgeLength = 4.0;
 // edge length, as SegmentOptions::follow_scan_spacing sets it.
 double scan_edge_length(const Eigen::Vector3d& spacing, double target_edge_length);
 
+// Each setting below is an option of the command line (app/transfer_options.cpp: --skin, --bone, --min-thickness,
+// --bone-gap, --cavity-closing, --smoothing, --max-depth, the cut options, --edge-length), named in the errors.
 struct SegmentOptions {
   std::optional<double> skin_threshold, bone_threshold;  // file units; estimated from the histogram when unset
   double working_spacing = 1.0;                          // mm, isotropic grid the CT is resampled to

@@ -18,6 +18,21 @@ std::vector<char> boundary_fixed(const VolumeMesh& m) {
   return fixed;
 }
 
+// Untangles or relaxes `m` with its boundary held (each vertex moves in space, the sides' vertices not at all).
+UntangleReport untangle_with_fixed_boundary(VolumeMesh& m, const UntangleOptions& options = {}) {
+  VertexPlacement placement = spatial_placement(m.V, boundary_fixed(m));
+  return untangle(m, placement, options);
+}
+
+// The whole mesh's relaxation towards the shapes of `target`, at most `max_sweeps` sweeps.
+UntangleOptions relaxation_towards(const VolumeMesh& target, int max_sweeps) {
+  UntangleOptions relax;
+  relax.target = &target;
+  relax.whole_mesh = true;
+  relax.max_sweeps = max_sweeps;
+  return relax;
+}
+
 TEST(Untangle, RepairsADeliberatelyInvertedMeshWithoutMovingTheBoundary) {
   VolumeMesh m = test::hex_box(4, 4, 4, 4, 4, 4);
   const Eigen::MatrixXd boundary_before = m.V;
@@ -71,8 +86,7 @@ TEST(Untangle, RepairsAFlatCellThatIsNotInverted) {
   const CornerJacobianCheck before = check_corner_jacobians(m);
   ASSERT_TRUE(before.inverted.empty());
   ASSERT_FALSE(before.degenerate.empty());
-  VertexPlacement placement = spatial_placement(m.V, boundary_fixed(m));
-  const UntangleReport r = untangle(m, placement);
+  const UntangleReport r = untangle_with_fixed_boundary(m);
   EXPECT_EQ(r.degenerate_before, static_cast<int>(before.degenerate.size()));
   EXPECT_EQ(r.degenerate_after, 0);
   EXPECT_EQ(r.inverted_after, 0);
@@ -84,8 +98,7 @@ TEST(Untangle, LeavesAGoodMeshUntouched) {
   VolumeMesh m = test::hex_box(3, 3, 3);
   test::jitter_interior(m, 0.05);
   const Eigen::MatrixXd before = m.V;
-  VertexPlacement placement = spatial_placement(m.V, boundary_fixed(m));
-  const UntangleReport r = untangle(m, placement);
+  const UntangleReport r = untangle_with_fixed_boundary(m);
   EXPECT_EQ(r.bad_before, 0);
   EXPECT_EQ(m.V, before);
 }
@@ -104,20 +117,18 @@ TEST(Untangle, KeepsCellsAsPoorAsInTheReference) {
   UntangleOptions as_reference;
   as_reference.reference_scaled_jacobian = reference;
   VolumeMesh kept = m;
-  VertexPlacement placement = spatial_placement(kept.V, boundary_fixed(kept));
-  const UntangleReport r = untangle(kept, placement, as_reference);
+  const UntangleReport r = untangle_with_fixed_boundary(kept, as_reference);
   EXPECT_EQ(r.bad_before, 0);
   EXPECT_EQ(kept.V, m.V);
 
   VolumeMesh improved = m;  // without the reference the same cells are bad and are improved
-  VertexPlacement free_placement = spatial_placement(improved.V, boundary_fixed(improved));
-  const UntangleReport r2 = untangle(improved, free_placement);
+  const UntangleReport r2 = untangle_with_fixed_boundary(improved);
   EXPECT_GT(r2.bad_before, 0);
   EXPECT_GT(r2.min_scaled_jacobian_after, r2.min_scaled_jacobian_before);
 
   UntangleOptions wrong_size;
   wrong_size.reference_scaled_jacobian = Eigen::VectorXd::Ones(3);
-  EXPECT_THROW(untangle(improved, free_placement, wrong_size), Error);
+  EXPECT_THROW(untangle_with_fixed_boundary(improved, wrong_size), Error);
 }
 
 // A finishing pass grows its region from the unusable cells only: a merely poor cell far from them is left alone.
@@ -134,8 +145,7 @@ TEST(Untangle, FinishingPassMovesOnlyAroundUnusableCells) {
   UntangleOptions finishing;
   finishing.seed_unusable_only = true;
   finishing.rings = 1;
-  VertexPlacement placement = spatial_placement(m.V, boundary_fixed(m));
-  const UntangleReport r = untangle(m, placement, finishing);
+  const UntangleReport r = untangle_with_fixed_boundary(m, finishing);
   EXPECT_GT(r.inverted_before, 0);
   EXPECT_EQ(r.inverted_after, 0);
   EXPECT_EQ(m.V.row(id(7, 1, 1)), start.V.row(id(7, 1, 1)));  // the squeezed vertex did not move
@@ -148,8 +158,7 @@ void relax_towards(VolumeMesh& m, const VolumeMesh& target, double towards_ideal
   relax.target = &target;
   relax.target_towards_ideal = towards_ideal;
   relax.whole_mesh = true;
-  VertexPlacement placement = spatial_placement(m.V, boundary_fixed(m));
-  untangle(m, placement, relax);
+  untangle_with_fixed_boundary(m, relax);
 }
 
 // Shape relaxation with a target (the standard a mesh was mapped from): the target's own shape is where it settles.
@@ -160,13 +169,9 @@ TEST(ShapeRelaxation, ReturnsAPerturbedMeshToItsTargetShape) {
   test::jitter_interior(m, 0.2, 11);  // the "mapping" moved the interior
   const double start = (m.V - target.V).cwiseAbs().maxCoeff();
   ASSERT_GT(start, 0.1);
-  UntangleOptions relax;
-  relax.target = &target;
-  relax.whole_mesh = true;
-  relax.max_sweeps = 200;
+  UntangleOptions relax = relaxation_towards(target, 200);
   VolumeMesh moved = m;
-  VertexPlacement placement = spatial_placement(moved.V, boundary_fixed(moved));
-  const UntangleReport r = untangle(moved, placement, relax);
+  const UntangleReport r = untangle_with_fixed_boundary(moved, relax);
   EXPECT_EQ(r.free_vertices, 27);  // every interior vertex, though no cell is bad
   // Sweeps stop once no vertex moves more than 1e-3 of its edge length (4 mm here): the target within that.
   EXPECT_LT((moved.V - target.V).cwiseAbs().maxCoeff(), 1e-3 * 4);
@@ -175,8 +180,7 @@ TEST(ShapeRelaxation, ReturnsAPerturbedMeshToItsTargetShape) {
   test::jitter_interior(ideal, 0.2, 11);
   UntangleOptions cubes = relax;
   cubes.target = nullptr;
-  VertexPlacement ideal_placement = spatial_placement(ideal.V, boundary_fixed(ideal));
-  untangle(ideal, ideal_placement, cubes);
+  untangle_with_fixed_boundary(ideal, cubes);
   EXPECT_GT((ideal.V - target.V).cwiseAbs().maxCoeff(), 0.1);
 }
 
@@ -188,14 +192,10 @@ TEST(ShapeRelaxation, ATetherTradesTheTargetsShapeForStayingWhereTheMappingPutTh
   test::jitter_interior(target, 0.25);
   VolumeMesh start = target;
   test::jitter_interior(start, 0.2, 11);
-  UntangleOptions relax;
-  relax.target = &target;
-  relax.whole_mesh = true;
-  relax.max_sweeps = 200;
+  UntangleOptions relax = relaxation_towards(target, 200);
   const auto relaxed = [&](const UntangleOptions& o) {
     VolumeMesh moved = start;
-    VertexPlacement placement = spatial_placement(moved.V, boundary_fixed(moved));
-    untangle(moved, placement, o);
+    untangle_with_fixed_boundary(moved, o);
     return moved.V;
   };
   const auto mean_distance = [](const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
@@ -230,16 +230,12 @@ TEST(ShapeRelaxation, GivesTheSameMeshOnOneThreadAndOnTwo) {
   test::jitter_interior(target, 0.2);
   VolumeMesh start = target;
   test::jitter_interior(start, 0.3, 5);
-  UntangleOptions relax;
-  relax.target = &target;
-  relax.whole_mesh = true;
-  relax.max_sweeps = 20;
+  UntangleOptions relax = relaxation_towards(target, 20);
   std::vector<Eigen::MatrixXd> results;
   for (const int threads : {1, 2}) {
     VolumeMesh moved = start;
     relax.threads = threads;
-    VertexPlacement placement = spatial_placement(moved.V, boundary_fixed(moved));
-    untangle(moved, placement, relax);
+    untangle_with_fixed_boundary(moved, relax);
     results.push_back(moved.V);
   }
   EXPECT_GT((results[0] - start.V).cwiseAbs().maxCoeff(), 0.05);
@@ -250,10 +246,7 @@ TEST(ShapeRelaxation, ReportsEachSweepAndCanBeCancelledBetweenSweeps) {
   VolumeMesh target = test::hex_box(4, 4, 4, 4, 4, 4);
   VolumeMesh m = target;
   test::jitter_interior(m, 0.2, 11);
-  UntangleOptions relax;
-  relax.target = &target;
-  relax.whole_mesh = true;
-  relax.max_sweeps = 40;
+  UntangleOptions relax = relaxation_towards(target, 40);
   std::vector<double> fractions;
   relax.progress = [&](const std::string& stage, double f) {
     EXPECT_EQ(stage, "untangling");
@@ -261,8 +254,7 @@ TEST(ShapeRelaxation, ReportsEachSweepAndCanBeCancelledBetweenSweeps) {
     return true;
   };
   VolumeMesh moved = m;
-  VertexPlacement placement = spatial_placement(moved.V, boundary_fixed(moved));
-  const UntangleReport r = untangle(moved, placement, relax);
+  const UntangleReport r = untangle_with_fixed_boundary(moved, relax);
   ASSERT_EQ(static_cast<int>(fractions.size()), r.sweeps);  // one report per sweep made
   EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
   EXPECT_DOUBLE_EQ(fractions.front(), 1.0 / relax.max_sweeps);
@@ -272,8 +264,7 @@ TEST(ShapeRelaxation, ReportsEachSweepAndCanBeCancelledBetweenSweeps) {
   int calls = 0;
   relax.progress = [&](const std::string&, double) { return ++calls < 3; };
   VolumeMesh cancelled = m;
-  VertexPlacement cancelled_placement = spatial_placement(cancelled.V, boundary_fixed(cancelled));
-  EXPECT_THROW(untangle(cancelled, cancelled_placement, relax), Cancelled);
+  EXPECT_THROW(untangle_with_fixed_boundary(cancelled, relax), Cancelled);
   EXPECT_EQ(calls, 3);
   EXPECT_TRUE(check_corner_jacobians(cancelled).inverted.empty());
   EXPECT_GT((cancelled.V - m.V).cwiseAbs().maxCoeff(), 0) << "three sweeps moved nothing";
@@ -320,8 +311,7 @@ TEST(ShapeRelaxation, RejectsATargetWithOtherCells) {
   UntangleOptions relax;
   relax.target = &other;
   relax.whole_mesh = true;
-  VertexPlacement placement = spatial_placement(m.V, boundary_fixed(m));
-  EXPECT_THROW(untangle(m, placement, relax), Error);
+  EXPECT_THROW(untangle_with_fixed_boundary(m, relax), Error);
 }
 
 // Vertices on a curved surface move through surface parameters (a placement, vertex_placement.h): however far the
@@ -359,10 +349,7 @@ TEST(ShapeRelaxation, SlidesBoundaryVerticesAlongAnAnalyticSurface) {
     return true;
   };
   const Eigen::MatrixXd start = m.V;
-  UntangleOptions relax;
-  relax.target = &target;
-  relax.whole_mesh = true;
-  relax.max_sweeps = 100;
+  UntangleOptions relax = relaxation_towards(target, 100);
   untangle(m, placement, relax);
   double slid = 0;
   for (int v = 0; v < m.num_vertices(); ++v) {
