@@ -80,6 +80,22 @@ TEST(CornerEnergy, IsOneAndFlatAtTheTargetShapeWhateverItsSizeAndRotation) {
   EXPECT_GT(CornerEnergy{}(A + 0.1 * Eigen::Matrix3d::Identity(), W.inverse()), 1 + 1e-6);
 }
 
+// Without regularization the energy is the inverse mean ratio eta = |S|^2 / (3 det(S)^(2/3)) to the given power,
+// for the whole powers the solvers use and for fractional ones.
+TEST(CornerEnergy, IsTheInverseMeanRatioToItsPower) {
+  std::mt19937 rng(11);
+  for (const double power : {1.0, 2.0, 8.0, 2.5, 40.0})
+    for (int trial = 0; trial < 10; ++trial) {
+      const Eigen::Matrix3d A = random_corner(rng, 0.4), Winv = random_corner(rng, 0.3).inverse();
+      const Eigen::Matrix3d S = A * Winv;
+      ASSERT_GT(S.determinant(), 0);
+      const double eta = S.squaredNorm() / (3 * std::cbrt(S.determinant() * S.determinant()));
+      const double expected = std::pow(eta, power);
+      const CornerEnergy energy{0, power};
+      EXPECT_NEAR(energy(A, Winv), expected, 1e-12 * expected) << "power " << power;
+    }
+}
+
 TEST(CornerEnergy, AnInvertedCornerIsInfiniteWithoutRegularizationAndFiniteWithIt) {
   Eigen::Matrix3d A = Eigen::Matrix3d::Identity();
   A(2, 2) = -0.5;
