@@ -8,6 +8,7 @@
 #include <sstream>
 #include <vector>
 
+#include "core/segment/symmetry_trace.h"
 #include "core/segment/tragus.h"
 #include "core/util/error.h"
 #include "core/util/mirror_symmetry.h"
@@ -25,6 +26,7 @@ constexpr double kChinSoftTissue = 25.0;  // mm: bone this close behind the skin
 constexpr double kChinGap = 8.0;          // mm of levels without such bone within the chin's run (lips apart)
 constexpr double kChinDepth = 30.0;       // mm the mandible's lower border reaches back from the chin's front
 constexpr double kMaxRoll = 20.0;         // degrees a head tilts towards a shoulder in a scanner, at most
+constexpr double kLevelAgreement = 3.0;   // mm: a level whose mirror centre lies this close to the trace agrees
 constexpr double kMaxTurn = 40.0;         // degrees a head is looked for turned about the vertical axis
 constexpr double kTurnSampling = 2.0;     // mm between the head voxels compared for the turn
 // The auricle is thin: the opening of the body removes it. Where the body stands out of its opening sideways by at
@@ -39,7 +41,10 @@ constexpr double kBrowReach[2] = {3.0, 30.0};  // mm above the nasion where the 
 // out of one of them); a box or a small phantom is neither.
 constexpr double kMinHeadSize = 80.0;   // mm
 constexpr double kMinNoseRelief = 4.0;  // mm
-constexpr double kCheekOffset = 40.0;   // mm from the mid-sagittal plane
+// mm from the nose tip (pronasale) down to the chin's lowest bone (menton): adults' lie within about 60 to 100, and a
+// chin that the scan's first slice cuts, or a nose its field of view clips, shortens or lengthens it by a little.
+constexpr double kNoseToChin[2] = {30.0, 115.0};
+constexpr double kCheekOffset = 40.0;  // mm from the mid-sagittal plane
 
 const double kNone = std::numeric_limits<double>::quiet_NaN();
 
@@ -125,37 +130,20 @@ std::array<int, 3> head_levels(const Sections& s) {
   return {lowest, top, bottom};
 }
 
-struct SliceSymmetry {
-  double z, c;
-};
-
-// Rule 2 on one slice.
-std::optional<SliceSymmetry> slice_symmetry(const Sections& s, int k, double x0) {
+// Rule 2 on one slice: its mirror centre.
+std::optional<LevelCentre> slice_symmetry(const Sections& s, int k, double x0) {
   std::vector<double> front(s.g.dims[0]);
   for (int i = 0; i < s.g.dims[0]; ++i) front[i] = s.front[s.at(i, k)];
   const std::optional<double> c =
       mirror_centre(front, s.g.origin.x(), s.g.spacing.x(), x0, kSymmetrySearch, kSymmetryReach);
   if (!c) return std::nullopt;
-  return SliceSymmetry{s.g.point(0, 0, k).z(), *c};
+  return LevelCentre{s.g.point(0, 0, k).z(), *c};
 }
 
-// Least-squares line c(z) = c0 + slope (z - z0) through the slices, refitted without those more than 3 mm off.
-void fit_plane(const std::vector<SliceSymmetry>& slices, FaceAnatomy& anatomy) {
-  std::vector<const SliceSymmetry*> use;
-  for (const auto& s : slices) use.push_back(&s);
-  for (int pass = 0; pass < 2; ++pass) {
-    double z0 = 0, c0 = 0;
-    for (const auto* s : use) z0 += s->z, c0 += s->c;
-    z0 /= use.size(), c0 /= use.size();
-    double szz = 0, szc = 0;
-    for (const auto* s : use) szz += (s->z - z0) * (s->z - z0), szc += (s->z - z0) * (s->c - c0);
-    anatomy.roll_z = z0, anatomy.centre_x = c0, anatomy.roll_slope = szz > 0 ? szc / szz : 0;
-    std::vector<const SliceSymmetry*> kept;
-    for (const auto* s : use)
-      if (std::abs(s->c - anatomy.centre_at(s->z)) <= 3.0) kept.push_back(s);
-    if (kept.size() < 3) break;
-    use = kept;
-  }
+// Rule 2's trace through the levels' centres (symmetry_trace.h).
+void fit_plane(const std::vector<LevelCentre>& levels, FaceAnatomy& anatomy) {
+  const SymmetryTrace trace = consensus_trace(levels, kLevelAgreement, std::tan(kMaxRoll * M_PI / 180));
+  anatomy.roll_z = trace.z0, anatomy.centre_x = trace.c0, anatomy.roll_slope = trace.slope;
   anatomy.roll_degrees = std::atan(anatomy.roll_slope) * 180 / M_PI;
 }
 
@@ -256,11 +244,22 @@ void find_chin(const Mask& bone, const Profile& profile, int lowest, FaceAnatomy
   std::vector<std::uint8_t> seen(g.size(), 0);
   std::vector<std::array<int, 3>> stack = {last};
   seen[g.index(last[0], last[1], last[2])] = 1;
+  // The lowest level's voxel nearest the mid-plane (then the most anterior): a chin whose lowest level is broad, or
+  // that the scan's first slice cuts, has many voxels there, and the menton is the midline's.
   std::array<int, 3> lowest_bone = last;
+  const auto off_plane = [&](const std::array<int, 3>& v) {
+    const Eigen::Vector3d p = g.point(v[0], v[1], v[2]);
+    return std::abs(p.x() - anatomy.centre_at(p.z()));
+  };
+  const auto lower = [&](const std::array<int, 3>& a, const std::array<int, 3>& b) {
+    if (a[2] != b[2]) return a[2] < b[2];
+    if (off_plane(a) != off_plane(b)) return off_plane(a) < off_plane(b);
+    return a[1] != b[1] ? a[1] > b[1] : a[0] < b[0];
+  };
   while (!stack.empty()) {
     const std::array<int, 3> v = stack.back();
     stack.pop_back();
-    if (v[2] < lowest_bone[2]) lowest_bone = v;
+    if (lower(v, lowest_bone)) lowest_bone = v;
     for (int axis = 0; axis < 3; ++axis)
       for (int d : {-1, 1}) {
         std::array<int, 3> n = v;
@@ -418,7 +417,7 @@ FaceAnatomy find_face_anatomy(const Mask& head, const Mask& without_ears, const 
     for (int i = 0; i < g.dims[0]; ++i)
       if (!std::isnan(sections.front[sections.at(i, k)])) x_sum += g.point(i, 0, 0).x(), count += 1;
   const double x0 = x_sum / count;
-  std::vector<SliceSymmetry> slices;
+  std::vector<LevelCentre> slices;
   const int stride = std::max(1, static_cast<int>(std::lround(2.0 / g.spacing.z())));  // every 2 mm is plenty
   for (int k = lowest; k <= top; k += stride)
     if (const auto s = slice_symmetry(sections, k, x0)) slices.push_back(*s);
@@ -489,6 +488,13 @@ FaceAnatomy find_face_anatomy(const Mask& head, const Mask& without_ears, const 
                             : *profile.extreme(prn->z(), z_hi, true, tie);
   anatomy.highest_head_z = z_hi;
   find_chin(bone, profile, bottom, anatomy);
+  // A profile read off the face (a head frame turned far from the head's, a misread plane) can show a "nose" and a
+  // "chin" that stand out enough but lie at no face's distance apart.
+  const double nose_to_chin = anatomy.pronasale.z() - anatomy.menton.z();
+  if (!(nose_to_chin >= kNoseToChin[0] && nose_to_chin <= kNoseToChin[1]))
+    not_a_head("the nose tip found (z " + mm(anatomy.pronasale.z()) + ") lies " + mm(nose_to_chin) +
+               " above the chin's lowest bone (z " + mm(anatomy.menton.z()) + "), a face's " + mm(kNoseToChin[0]) +
+               " to " + mm(kNoseToChin[1]));
   find_ear_front(head, without_ears, anatomy);
   anatomy.tragi = find_tragi(head, anatomy);
   return anatomy;

@@ -10,9 +10,9 @@
 //     head voxel of each column) is compared with its mirror image about x = c, up to a linear term a s (a head
 //     turned about the vertical axis makes the front a little deeper on one side, proportionally to the distance s
 //     from the plane); c minimises the mean squared difference within kSymmetryReach of the plane (among equals, the
-//     nearest to the head's mean x). A straight line c(z) fitted through the levels' c (least squares, then again
-//     without the levels more than 3 mm off it) is the plane's trace: its slope is the head's roll (tilt towards a
-//     shoulder), refused beyond kMaxRoll (20 degrees: no head lies so in a scanner, and a fit that leans more has
+//     nearest to the head's mean x). The plane's trace is the straight line c(z) that the most levels' c agree with
+//     (core/segment/symmetry_trace.h: a clipped nose, the neck or a one-sided bulge can put many levels' c far to
+//     one side); its slope is the head's roll (tilt towards a shoulder), refused beyond kMaxRoll (20 degrees: no head lies so in a scanner, and a fit that leans more has
 //     read the symmetry wrongly, as on a head turned far about the vertical axis). A turned head keeps its plane
 //     through the nose, at the depth of the face's features;
 //  3. the skin profile: per head level, the most anterior head voxel within kProfileBand of c(z);
@@ -31,7 +31,9 @@
 //     over gaps of at most kChinGap; the chin's run is the tallest (the upper teeth and alveolar bone make a shorter
 //     one above it when the lips are further apart); menton = the lowest bone voxel connected, within the mid-plane
 //     band and going down and at most kChinDepth backwards, to the bone at that run's lowest level (the lower border
-//     of the mandible curves back, under the skin's horizontal reach);
+//     of the mandible curves back, under the skin's horizontal reach), of that level's such voxels the one nearest
+//     the plane, then the most anterior. A nose tip less than 30 mm or more than 115 mm above the menton is no face's
+//     (adults' lie within about 60 to 100 mm): not a plausible head, as where no nose stands out;
 //  5. the ears: the auricle is thin, so the opening of the body (soft_tissue.h, opening_radius) removes it; per side,
 //     over the levels from 25 mm below the pronasale to the glabella and in the middle half of the head's depth
 //     there, a coronal row holds the ear where the body reaches at least kEarStandOut further sideways than the body

@@ -216,7 +216,7 @@ TEST_F(Cli, DemoRunsTheWholeChainFromTheBundledCt) {
   EXPECT_NE(r.output.find("cuts (mm, segmentation frame): top z 135.0, bottom z 3.0, posterior y 100.2"),
             std::string::npos)
       << r.output;
-  EXPECT_NE(r.output.find("found: mid-sagittal plane x 98.4"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("found: mid-sagittal plane x 98.7"), std::string::npos) << r.output;
   // Its voxels are 3.2 mm wide: the tets are no finer (docs/segmentation.md step 8).
   EXPECT_NE(r.output.find("tets of edge length 3.2 mm (the CT's coarsest voxel spacing; --edge-length sets it)"),
             std::string::npos)
@@ -349,24 +349,30 @@ TEST_F(Cli, SegmentTakesTheCutsGivenAndRejectsBadOnes) {
   EXPECT_NE(r.output.find("\n    exocanthion left "), std::string::npos) << r.output;
   // A turn given: the cuts are placed in the head frame turned by it, the model stays in the CT's frame and its plane
   // says how it is turned.
-  r = run("segment " + ct + " --edge-length 4 --head-turn 5 -o " + path("turned.vtu"));
+  r = run("segment " + ct + " --edge-length 4 --head-turn -5 -o " + path("turned.vtu"));
   ASSERT_EQ(r.status, 0) << r.output;
-  EXPECT_NE(r.output.find("head turned 5.0 deg about the vertical axis"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("head turned -5.0 deg about the vertical axis"), std::string::npos) << r.output;
   r = run("info " + path("turned.vtu"));
   EXPECT_NE(r.output.find("mid_sagittal_plane(field,1x5)"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find(", turned 5.0 degrees"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(", turned -5.0 degrees"), std::string::npos) << r.output;
   // A pitch given: the same, about the lateral axis, and the plane carries the pitch.
-  r = run("segment " + ct + " --edge-length 4 --head-pitch 8 -o " + path("pitched.vtu"));
+  r = run("segment " + ct + " --edge-length 4 --head-pitch -8 -o " + path("pitched.vtu"));
   ASSERT_EQ(r.status, 0) << r.output;
-  EXPECT_NE(r.output.find("head pitched 8.0 deg (chin raised) about the lateral axis"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("head pitched -8.0 deg (chin lowered) about the lateral axis"), std::string::npos)
+      << r.output;
   r = run("info " + path("pitched.vtu"));
   EXPECT_NE(r.output.find("mid_sagittal_plane(field,1x6)"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find(", pitched 8.0 degrees"), std::string::npos) << r.output;
-  // A turn far from the head's: no face in the head frame, and the error names the turn's option.
-  r = run("segment " + ct + " --edge-length 4 --head-turn 12 -o " + path("wrong.vtu"));
-  EXPECT_EQ(r.status, 1) << r.output;
-  EXPECT_NE(r.output.find("--head-turn sets the turn"), std::string::npos) << r.output;
-  EXPECT_FALSE(fs::exists(path("wrong.vtu")));
+  EXPECT_NE(r.output.find(", pitched -8.0 degrees"), std::string::npos) << r.output;
+  // A turn or a pitch far from the head's: no face in the head frame (this upright face's front, clipped flat by the
+  // field of view, shows a "nose" on the forehead, over 115 mm above the chin), and the error names the option.
+  for (const char* option : {"--head-turn 5", "--head-turn 12", "--head-pitch 8"}) {
+    const std::string wrong = option;
+    r = run("segment " + ct + " --edge-length 4 " + wrong + " -o " + path("wrong.vtu"));
+    EXPECT_EQ(r.status, 1) << wrong << ": " << r.output;
+    EXPECT_NE(r.output.find("above the chin's lowest bone"), std::string::npos) << wrong << ": " << r.output;
+    EXPECT_NE(r.output.find(wrong.substr(0, wrong.find(' '))), std::string::npos) << wrong << ": " << r.output;
+    EXPECT_FALSE(fs::exists(path("wrong.vtu")));
+  }
 
   for (const char* bad : {"--ear-clearance -1", "--brow-clearance -2", "--top-cut nan", "--chin-clearance x",
                           "--max-depth 0", "--smoothing -1", "--bone-gap x", "--min-thickness -3", "--cavity-closing y",
@@ -724,8 +730,10 @@ TEST_F(Cli, ARegistrationThatCannotRunFallsBackToTheFeatureLines) {
 // stops naming --landmarks.
 TEST_F(Cli, TheRegisteredSkinNeedsNoLandmarks) {
   // A model meshed at 6 mm edges without the CT's skin points (a mesh from elsewhere): its own skin is too sparse
-  // for the landmarks (with the posterior cut at y 100; how a 6 mm mesh's few profile vertices fall depends on it).
-  Result r = run("segment " + facehex::default_ct() + " --edge-length 6 --posterior-cut 100 -o " + path("coarse.vtu"));
+  // for the landmarks (with the posterior cut at y 100 and the mid-plane at x 98.4; how a 6 mm mesh's few profile
+  // vertices fall depends on them).
+  Result r = run("segment " + facehex::default_ct() + " --edge-length 6 --posterior-cut 100 --mid-plane 98.4 -o " +
+                 path("coarse.vtu"));
   ASSERT_EQ(r.status, 0) << r.output;
   facehex::VolumeMesh model = facehex::read_volume_mesh(path("coarse.vtu"));
   ASSERT_EQ(model.field_data.erase(facehex::kSkinPointsField), 1u);

@@ -16,7 +16,7 @@
 namespace facehex {
 namespace {
 
-// Seeds 5 and 34 of these warps (moderate: scale within 8 %, shear 0.04, bumps up to 4 mm, about the bundled model's
+// Seeds 10 and 34 of these warps (moderate: scale within 8 %, shear 0.04, bumps up to 4 mm, about the bundled model's
 // skin) thin the tissue somewhere until its first surface has a tunnel; the segmentation repairs it and says so. With
 // the end slices kept flat, a skin threshold set high and the posterior cut given at y 92 mm, seed 7's tunnel outlasts
 // both repairs: the error names the options that change it. Coarse tets: the surface, not TetGen, is under test. In the
@@ -37,7 +37,7 @@ TEST(WarpedCtSegmentation, ThinTissueThatPiercesTheSurfaceIsRepairedAndSaidSo) {
   options.tets.target_edge_length = 6;
   options.coarsen_above_tets = 0;
   options.cuts.head_turn = 0;
-  for (const int seed : {5, 34}) {
+  for (const int seed : {10, 34}) {
     const SmoothWarp warp = random_warp(seed, centre, anchors, moderate);
     PatientModel m;
     ASSERT_NO_THROW(m = build_patient_model(CtVolume{warp_volume(ct.intensity, warp), "warped"}, options))
