@@ -10,9 +10,9 @@
 //     head voxel of each column) is compared with its mirror image about x = c, up to a linear term a s (a head
 //     turned about the vertical axis makes the front a little deeper on one side, proportionally to the distance s
 //     from the plane); c minimises the mean squared difference within kSymmetryReach of the plane (among equals, the
-//     nearest to the head's mean x). The plane's trace is the straight line c(z) that the most levels' c agree with
-//     (core/segment/symmetry_trace.h: a clipped nose, the neck or a one-sided bulge can put many levels' c far to
-//     one side); its slope is the head's roll (tilt towards a shoulder), refused beyond kMaxRoll (20 degrees: no head lies so in a scanner, and a fit that leans more has
+//     nearest to the head's mean x). The plane's trace is the straight line c(z) fitted through the face's levels, those
+//     near the line the most levels' c agree with (core/segment/symmetry_trace.h: a clipped nose, the neck or a
+//     one-sided bulge can put many levels' c far to one side); its slope is the head's roll (tilt towards a shoulder), refused beyond kMaxRoll (20 degrees: no head lies so in a scanner, and a fit that leans more has
 //     read the symmetry wrongly, as on a head turned far about the vertical axis). A turned head keeps its plane
 //     through the nose, at the depth of the face's features;
 //  3. the skin profile: per head level, the most anterior head voxel within kProfileBand of c(z);
