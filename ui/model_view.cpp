@@ -19,18 +19,20 @@
 #include <vtkImplicitPlaneRepresentation.h>
 #include <vtkImplicitPlaneWidget2.h>
 #include <vtkInteractorStyleTrackballCamera.h>
-#include <vtkLabeledDataMapper.h>
 #include <vtkPlane.h>
 #include <vtkPointData.h>
 #include <vtkPointHandleRepresentation3D.h>
+#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
+#include <vtkPolyDataMapper2D.h>
 #include <vtkPolyDataNormals.h>
 #include <vtkPolygonalSurfacePointPlacer.h>
 #include <vtkProperty.h>
+#include <vtkProperty2D.h>
 #include <vtkRenderer.h>
 #include <vtkScalarBarActor.h>
-#include <vtkStringArray.h>
+#include <vtkTextActor.h>
 #include <vtkTextProperty.h>
 #include <vtkThreshold.h>
 #include <vtkUnsignedCharArray.h>
@@ -40,12 +42,14 @@
 #include <QStackedWidget>
 #include <QVBoxLayout>
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <optional>
 #include <set>
 
 #include "core/face/landmark_file.h"
 #include "core/quality/vtk_grid.h"
+#include "ui/label_layout.h"
 #include "ui/palette.h"
 
 namespace facehex::gui {
@@ -139,6 +143,23 @@ Ptr<vtkActor> pointActor(vtkPolyData* data, double size) {
   return actor;
 }
 
+// px: how far a landmark's handle reaches from its centre (its 24 px cursor), kept clear of the names.
+constexpr double kLandmarkHandleRadius = 12;
+
+Ptr<vtkTextActor> landmarkLabel(const std::string& name) {
+  auto label = make<vtkTextActor>();
+  label->SetInput(name.c_str());
+  vtkTextProperty* text = label->GetTextProperty();
+  text->SetFontSize(14);
+  text->SetBold(true);
+  text->ItalicOff();
+  text->SetShadow(true);
+  text->SetColor(1, 1, 1);
+  text->SetJustificationToLeft();
+  text->SetVerticalJustificationToBottom();
+  return label;
+}
+
 }  // namespace
 
 struct ModelView::Pipeline {
@@ -188,10 +209,14 @@ struct ModelView::Pipeline {
 
   // The landmarks: a marker and a name each, and a handle each that slides on the model's surface (the placer picks
   // the surface actor). Handles are kept by name, so a release that re-places the features keeps its own handle.
+  // The names are laid out on the screen before each frame (label_layout.h), with a leader line to the marker from a
+  // name that had to move away from it.
   Ptr<vtkPolyData> landmarkPoints = make<vtkPolyData>();
   Ptr<vtkActor> landmarkActor = pointActor(landmarkPoints, 12);
-  Ptr<vtkLabeledDataMapper> labelMapper = make<vtkLabeledDataMapper>();
-  Ptr<vtkActor2D> labelActor = make<vtkActor2D>();
+  std::vector<Ptr<vtkTextActor>> labels;
+  Ptr<vtkPolyData> leaderLines = make<vtkPolyData>();
+  Ptr<vtkActor2D> leaderActor = make<vtkActor2D>();
+  std::vector<QRectF> labelBoxes;  // display pixels, as last laid out
   Ptr<vtkPolygonalSurfacePointPlacer> placer = make<vtkPolygonalSurfacePointPlacer>();
   std::map<std::string, Ptr<vtkHandleWidget>> handles;
 
@@ -284,18 +309,11 @@ void ModelView::Pipeline::setUpGlyphs() {
 }
 
 void ModelView::Pipeline::setUpLandmarks() {
-  labelMapper->SetInputData(landmarkPoints);
-  labelMapper->SetLabelModeToLabelFieldData();
-  labelMapper->SetFieldDataName("name");
-  vtkTextProperty* text = labelMapper->GetLabelTextProperty();
-  text->SetFontSize(14);
-  text->SetBold(true);
-  text->ItalicOff();
-  text->SetShadow(true);
-  text->SetColor(1, 1, 1);
-  text->SetJustificationToLeft();
-  text->SetVerticalJustificationToCentered();
-  labelActor->SetMapper(labelMapper);
+  auto mapper = make<vtkPolyDataMapper2D>();
+  mapper->SetInputData(leaderLines);
+  leaderActor->SetMapper(mapper);
+  leaderActor->GetProperty()->SetColor(1, 1, 1);
+  leaderActor->GetProperty()->SetLineWidth(1.5);
   placer->AddProp(surfaceActor);
 }
 
@@ -357,7 +375,7 @@ ModelView::ModelView(SessionModel* session, Role role, QWidget* parent)
   p.overlay->AddActor(p.selectionActor);
   p.overlay->AddActor(p.highlightActor);
   p.overlay->AddActor(p.landmarkActor);
-  p.overlay->AddActor(p.labelActor);
+  p.overlay->AddActor(p.leaderActor);
 
   p.planeRep->SetPlaceFactor(1.05);
   p.planeRep->OutlineTranslationOff();
@@ -726,13 +744,14 @@ void ModelView::updateLandmarks() {
   const std::optional<FaceLandmarks>& landmarks = session_->landmarks(role_);
   const bool shown = landmarks && session_->display().showLandmarks && !p.hexShown;
   PointCloud markers;
-  auto names = make<vtkStringArray>();
-  names->SetName("name");
+  for (const Ptr<vtkTextActor>& label : p.labels) p.overlay->RemoveActor2D(label);
+  p.labels.clear();
   std::map<std::string, Ptr<vtkHandleWidget>> handles;
   if (shown) {
     for (const auto& [name, x] : landmarks->points) {
       markers.add(x, landmarkColour());
-      names->InsertNextValue("   " + name);  // clear of the marker
+      p.labels.push_back(landmarkLabel(name));
+      p.overlay->AddActor2D(p.labels.back());
       // A handle slides on the model's surface: one that lies off it (a tragus) is shown, not dragged.
       if (!lies_on_model_skin(name)) continue;
       Ptr<vtkHandleWidget>& handle = handles[name];
@@ -763,10 +782,56 @@ void ModelView::updateLandmarks() {
     }
   p.handles = std::move(handles);
   markers.install(p.landmarkPoints);
-  p.landmarkPoints->GetPointData()->AddArray(names);
   p.landmarkActor->SetVisibility(shown);
-  p.labelActor->SetVisibility(shown);
+  p.leaderActor->SetVisibility(shown);
+  p.labelBoxes.clear();
 }
+
+void ModelView::layOutLandmarkLabels() {
+  Pipeline& p = *p_;
+  const vtkIdType n = p.landmarkPoints->GetNumberOfPoints();
+  auto lines = make<vtkCellArray>();
+  auto ends = make<vtkPoints>();
+  p.labelBoxes.clear();
+  if (p.landmarkActor->GetVisibility() && n == static_cast<vtkIdType>(p.labels.size())) {
+    Eigen::MatrixX2d anchors(n, 2), sizes(n, 2);
+    for (vtkIdType i = 0; i < n; ++i) {
+      double x[3];
+      p.landmarkPoints->GetPoint(i, x);
+      p.overlay->SetWorldPoint(x[0], x[1], x[2], 1.0);
+      p.overlay->WorldToDisplay();
+      anchors.row(i) << p.overlay->GetDisplayPoint()[0], p.overlay->GetDisplayPoint()[1];
+      double size[2];
+      p.labels[i]->GetSize(p.overlay, size);
+      sizes.row(i) << size[0], size[1];
+    }
+    LabelLayoutOptions layout;
+    layout.marker_radius = kLandmarkHandleRadius;
+    const int* view = p.overlay->GetSize();
+    layout.viewport = Eigen::Vector2d(view[0], view[1]);
+    const Eigen::MatrixX2d corners = place_labels(anchors, sizes, layout);
+    for (vtkIdType i = 0; i < n; ++i) {
+      p.labels[i]->SetDisplayPosition(static_cast<int>(std::lround(corners(i, 0))),
+                                      static_cast<int>(std::lround(corners(i, 1))));
+      p.labelBoxes.emplace_back(corners(i, 0), corners(i, 1), sizes(i, 0), sizes(i, 1));
+      // A name that had to move away from its marker points back to it: a line from the marker's edge to the name's
+      // nearest point.
+      const Eigen::Vector2d a = anchors.row(i).transpose();
+      const Eigen::Vector2d nearest =
+          a.cwiseMax(corners.row(i).transpose()).cwiseMin((corners.row(i) + sizes.row(i)).transpose());
+      const double distance = (nearest - a).norm();
+      if (distance <= layout.marker_radius + 2 * layout.gap) continue;
+      const Eigen::Vector2d from = a + (nearest - a) * (layout.marker_radius / distance);
+      const vtkIdType ids[2] = {ends->InsertNextPoint(from.x(), from.y(), 0),
+                                ends->InsertNextPoint(nearest.x(), nearest.y(), 0)};
+      lines->InsertNextCell(2, ids);
+    }
+  }
+  p.leaderLines->SetPoints(ends);
+  p.leaderLines->SetLines(lines);
+}
+
+std::vector<QRectF> ModelView::landmarkLabelBoxes() const { return p_->labelBoxes; }
 
 void ModelView::showSessionLandmarks() {
   if (!session_->hasModel(role_)) return;
@@ -842,9 +907,11 @@ void ModelView::resetCamera() {
 // frame is drawn, whenever the size changed.
 void ModelView::onRenderStart() {
   const int* size = p_->window->GetSize();
-  if (!autoFrame_ || (size[0] == framedSize_[0] && size[1] == framedSize_[1])) return;
-  framedSize_ = {size[0], size[1]};
-  frameModel();
+  if (autoFrame_ && (size[0] != framedSize_[0] || size[1] != framedSize_[1])) {
+    framedSize_ = {size[0], size[1]};
+    frameModel();
+  }
+  layOutLandmarkLabels();  // the names follow the camera
 }
 
 void ModelView::frameModel() {

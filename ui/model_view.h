@@ -7,9 +7,11 @@
 // the session's plane; releasing a dragged landmark is reported (landmarkMoved) for the controller to place its
 // features again: the view never edits anything else.
 #include <Eigen/Core>
+#include <QRectF>
 #include <QWidget>
 #include <array>
 #include <memory>
+#include <vector>
 
 #include "ui/session_model.h"
 
@@ -38,6 +40,9 @@ class ModelView : public QWidget {
   QWidget* renderWidget() const;
   // Landmarks shown in this view.
   int shownLandmarks() const;
+  // The boxes of the landmarks' names as last drawn (display pixels, origin at the lower left), in the order of the
+  // session's landmarks.
+  std::vector<QRectF> landmarkLabelBoxes() const;
   // Frames the model in a three-quarter view, and keeps it framed as the view resizes until the user turns it.
   void resetCamera();
   // Turns the camera to look along `direction` with `viewUp`, keeping its focal point and distance (linked views).
@@ -72,6 +77,7 @@ class ModelView : public QWidget {
   void updateGlyphs();
   void updatePlaneWidget();
   void updateLandmarks();
+  void layOutLandmarkLabels();
   void onLandmarkDragged(vtkObject* handle, unsigned long event, void*);
   void onPlaneInteraction();
   void onCameraInteraction();

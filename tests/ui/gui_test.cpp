@@ -106,6 +106,8 @@ class GuiTest : public QObject {
   const Constraint* patientConstraint(const std::string& name) const;
   // The patient's landmark of that name (it must have it).
   Eigen::Vector3d patientLandmark(const std::string& name) const;
+  // After a frame is drawn: every shown landmark has its name, and no two names overlap.
+  static bool landmarkNamesAreClear(ModelView* view);
   // Opens a patient on the worker thread and waits; the error it reported, or empty.
   QString openPatient(const QString& path);
   SessionModel* session() const { return window_->session(); }
@@ -178,6 +180,18 @@ const Constraint* GuiTest::patientConstraint(const std::string& name) const {
 
 Eigen::Vector3d GuiTest::patientLandmark(const std::string& name) const {
   return session()->landmarks(Role::Patient)->points.at(name);
+}
+
+bool GuiTest::landmarkNamesAreClear(ModelView* view) {
+  view->render();
+  const std::vector<QRectF> boxes = view->landmarkLabelBoxes();
+  if (int(boxes.size()) != view->shownLandmarks() || boxes.empty()) return false;
+  for (size_t i = 0; i < boxes.size(); ++i)
+    for (size_t j = i + 1; j < boxes.size(); ++j) {
+      const QRectF shared = boxes[i].intersected(boxes[j]);
+      if (shared.width() > 0 && shared.height() > 0) return false;
+    }
+  return true;
 }
 
 void GuiTest::answerNextQuestion(QMessageBox::StandardButton answer) {
@@ -332,6 +346,7 @@ void GuiTest::landmarkFilePlacesTheFeatures() {
   QVERIFY2(openDemo(), qPrintable(error_));
   ModelView* view = window_->view(Role::Patient);
   QCOMPARE(view->shownLandmarks(), int(session()->landmarks(Role::Patient)->points.size()));
+  QVERIFY(landmarkNamesAreClear(view));
   // The bundled patient's landmarks with the glabella 4 mm lower: the eyebrow line follows the file.
   std::vector<NamedLandmark> given = read_landmark_file(FACEHEX_TEST_DATA_DIR "/landmarks/headsq.json");
   for (NamedLandmark& l : given)
@@ -343,6 +358,7 @@ void GuiTest::landmarkFilePlacesTheFeatures() {
 
   QVERIFY2(window_->controller()->loadLandmarks(Role::Patient, path, kFeatureBand), qPrintable(error_));
   QVERIFY(session()->landmarks(Role::Patient)->given);
+  QVERIFY(landmarkNamesAreClear(view));  // the file's eye corners and tragi too
   QVERIFY((patientLandmark("glabella") - glabella).norm() < 1e-9);
   const Constraint* eyebrow = patientConstraint(feature_specs().at(1).name);
   QVERIFY(eyebrow && eyebrow->select.plane);
