@@ -459,7 +459,7 @@ void MainWindow::askSegmentation(const QString& ct) {
     const LoadedModel& patient = session_->model(Role::Patient);
     if (patient.path == ct && patient.segmentation) {
       segmentationDialog_->setOptions(patient.segmentation->options);
-      segmentationDialog_->showFound(patient.segmentation->thresholds, patient.segmentation->cuts);
+      segmentationDialog_->showFound(*patient.segmentation);
     }
   }
   segmentationDialog_->open();

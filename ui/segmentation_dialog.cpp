@@ -69,6 +69,10 @@ SegmentationDialog::SegmentationDialog(QWidget* parent) : QDialog(parent) {
          "(docs/segmentation.md). Untick to keep the edge length as given.")
           .arg(kMostScanEdgeLength));
   form->addRow(QString(), coarsenLargeFaces_);
+  madeAt_ = new QLabel(this);
+  madeAt_->setObjectName("segmentMadeAt");
+  madeAt_->setWordWrap(true);
+  form->addRow(QString(), madeAt_);
   anterior_ = axisChoice("segmentAnterior", "+y", this);
   superior_ = axisChoice("segmentSuperior", "+z", this);
   form->addRow(tr("Face looks along"), anterior_);
@@ -114,8 +118,9 @@ SegmentationDialog::SegmentationDialog(QWidget* parent) : QDialog(parent) {
             tr("Automatic: the chin clearance below the chin's bone. ") + frame);
   addNumber(PosteriorCut, tr("Posterior cut y"), -1e4, 1e4, tr(" mm"), "segmentPosteriorCut",
             tr("Automatic: the ear clearance in front of the ears. ") + frame);
-  addNumber(MidPlane, tr("Mid-plane x"), -1e4, 1e4, tr(" mm"), "segmentMidPlane",
-            tr("Divides the posterior cut into the u0 and u1 ends; automatic: the head's mean x. ") + frame);
+  addNumber(
+      MidPlane, tr("Mid-plane x"), -1e4, 1e4, tr(" mm"), "segmentMidPlane",
+      tr("Divides the posterior cut into the u0 and u1 ends; automatic: the face's mirror-symmetry plane. ") + frame);
   browClearance_ = spinBox(0, 100, tr(" mm"), "segmentBrowClearance", this);
   chinClearance_ = spinBox(0, 100, tr(" mm"), "segmentChinClearance", this);
   earClearance_ = spinBox(0, 100, tr(" mm"), "segmentEarClearance", this);
@@ -139,6 +144,7 @@ void SegmentationDialog::setCt(const QString& path) {
                                    : tr("Segment <b>%1</b> into the facial soft-tissue model (docs/segmentation.md).")
                                          .arg(QFileInfo(path).fileName().toHtmlEscaped()));
   heading_->setToolTip(path);
+  madeAt_->hide();  // until showFound says how this CT's model was made
 }
 
 void SegmentationDialog::setOptions(const SegmentOptions& o) {
@@ -182,11 +188,19 @@ SegmentOptions SegmentationDialog::options() const {
   return o;
 }
 
-void SegmentationDialog::showFound(const TissueThresholds& thresholds, const FaceCuts& cuts) {
+void SegmentationDialog::showFound(const CtSegmentation& segmentation) {
+  const TissueThresholds& thresholds = segmentation.thresholds;
+  const FaceCuts& cuts = segmentation.cuts;
   const std::array<double, kNumbers> found = {thresholds.skin, thresholds.bone, cuts.turn.degrees, cuts.turn.pitch,
                                               cuts.top_z,      cuts.bottom_z,   cuts.posterior_y,  cuts.centre_x};
   for (int n = 0; n < kNumbers; ++n)
     if (numbers_[n].automatic->isChecked()) numbers_[n].value->setValue(found[n]);
+  madeAt_->setText(segmentation.edge_length_rule.empty()
+                       ? tr("The model's tets were made at %1 mm.").arg(segmentation.edge_length, 0, 'f', 1)
+                       : tr("The model's tets were made at %1 mm (%2).")
+                             .arg(segmentation.edge_length, 0, 'f', 1)
+                             .arg(QString::fromStdString(segmentation.edge_length_rule)));
+  madeAt_->show();
 }
 
 }  // namespace facehex::gui

@@ -8,6 +8,7 @@
 #include <QDialog>
 #include <array>
 
+#include "core/segment/patient_input.h"
 #include "core/segment/soft_tissue.h"
 
 class QCheckBox;
@@ -26,8 +27,9 @@ class SegmentationDialog : public QDialog {
   void setCt(const QString& path);  // names the CT in the dialog's heading
   void setOptions(const SegmentOptions& options);
   SegmentOptions options() const;
-  // The values a segmentation of this CT found: shown in the boxes that are still automatic.
-  void showFound(const TissueThresholds& thresholds, const FaceCuts& cuts);
+  // What a segmentation of this CT found: its thresholds and cuts in the boxes that are still automatic, and the
+  // edge length its tets were made at under the edge length's box.
+  void showFound(const CtSegmentation& segmentation);
 
  private:
   // A number that is either automatic (box disabled, showing the found value if any) or given.
@@ -39,7 +41,7 @@ class SegmentationDialog : public QDialog {
   };
   enum Number { Skin, Bone, HeadTurnAngle, HeadPitchAngle, TopCut, BottomCut, PosteriorCut, MidPlane, kNumbers };
 
-  QLabel* heading_;
+  QLabel *heading_, *madeAt_;
   QDoubleSpinBox *edgeLength_, *browClearance_, *chinClearance_, *earClearance_;
   QCheckBox* coarsenLargeFaces_;
   QComboBox *anterior_, *superior_;

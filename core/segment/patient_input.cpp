@@ -83,12 +83,8 @@ PatientTetModel load_patient_model(const std::string& path, const SegmentOptions
       report_progress(progress, "segmentation: reading the CT", 0.0);
       PatientModel segmented = segment_ct(path, options, progress);
       model.mesh = std::move(segmented.mesh);
-      CtSegmentation as_used{segmented.options, segmented.thresholds, segmented.cuts, segmented.repair,
-                             segmented.edge_length_rule};
-      as_used.options.tets.target_edge_length = segmented.edge_length;
-      as_used.options.coarsen_above_tets = 0;
-      as_used.options.follow_scan_spacing = false;
-      model.segmentation = as_used;
+      model.segmentation = CtSegmentation{segmented.options, segmented.thresholds,  segmented.cuts,
+                                          segmented.repair,  segmented.edge_length, segmented.edge_length_rule};
     } else {
       MeshReadOptions read;
       read.target_edge_length = options.tets.target_edge_length;
@@ -122,7 +118,7 @@ std::string segmentation_summary(const CtSegmentation& segmentation) {
   if (cuts.palate_pitch)
     text << "; hard palate " << std::abs(*cuts.palate_pitch) << " deg " << (*cuts.palate_pitch >= 0 ? "up" : "down")
          << " to the front";
-  text << "; tets of edge length " << segmentation.options.tets.target_edge_length << " mm";
+  text << "; tets of edge length " << segmentation.edge_length << " mm";
   if (!segmentation.edge_length_rule.empty())
     text << " (" << segmentation.edge_length_rule << "; --edge-length sets it)";
   if (!segmentation.repair.empty()) text << "; repaired: " << segmentation.repair;

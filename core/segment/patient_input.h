@@ -12,14 +12,16 @@
 
 namespace facehex {
 
-// How a CT was segmented: the options as used (the edge length the tets were made at, without further coarsening),
-// and the thresholds and cut planes used (found or given), for the user to check and to give back changed
-// (SegmentOptions::cuts).
+// How a CT was segmented: the options as given (a tunnel repair's thicker layer and wider blur included:
+// PatientModel::options), the edge length the tets were made at (the given one, or what the
+// scan's and the face's rules made of it), and the thresholds and cut planes used (found or given), for the user to
+// check and to give back changed (SegmentOptions::cuts).
 struct CtSegmentation {
   SegmentOptions options;
   TissueThresholds thresholds;
   FaceCuts cuts;
   std::string repair;            // PatientModel::repair, and the second segmentation of a pitched head
+  double edge_length = 0;        // mm, PatientModel::edge_length
   std::string edge_length_rule;  // PatientModel::edge_length_rule
 };
 

@@ -663,7 +663,11 @@ void GuiTest::segmentationDialogRoundTripsItsOptions() {
   found.turn.degrees = 7.5;
   found.turn.pitch = -6;
   dialog.findChild<QCheckBox*>("segmentHeadTurnAutomatic")->setChecked(true);
-  dialog.showFound({550, 1100}, found);
+  CtSegmentation segmentation;
+  segmentation.thresholds = {550, 1100};
+  segmentation.cuts = found;
+  segmentation.edge_length = 3.5;
+  dialog.showFound(segmentation);
   o = dialog.options();
   QVERIFY(!o.cuts.head_turn);
   QCOMPARE(dialog.findChild<QDoubleSpinBox*>("segmentHeadTurn")->value(), 7.5);
@@ -692,6 +696,11 @@ void GuiTest::segmentAgainStartsFromWhatWasFoundAndTakesACut() {
   QVERIFY(!window_->controller()->busy());
   QCOMPARE(dialog->findChild<QDoubleSpinBox*>("segmentSkin")->value(), std::round(skin * 10) / 10);
   QCOMPARE(dialog->findChild<QDoubleSpinBox*>("segmentPosteriorCut")->value(), found.posterior_y);
+  // The edge length as the user left it, its rules on; the length the CT's 3.2 mm voxels made of it said beside.
+  QCOMPARE(dialog->findChild<QDoubleSpinBox*>("segmentEdgeLength")->value(), SegmentOptions{}.tets.target_edge_length);
+  QVERIFY(dialog->findChild<QCheckBox*>("segmentCoarsenLargeFaces")->isChecked());
+  const QString madeAt = dialog->findChild<QLabel*>("segmentMadeAt")->text();
+  QVERIFY2(madeAt.contains("3.2 mm") && madeAt.contains("voxel spacing"), qPrintable(madeAt));
   checkStates({"segmentation"});  // the window with the dialog, rendered
 
   // Cancel: nothing happens.

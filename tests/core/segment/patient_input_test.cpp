@@ -57,7 +57,10 @@ TEST(PatientInput, ACtIsSegmentedAndItsThresholdsAndCutsAreReturned) {
   EXPECT_NEAR(thresholds.skin, 500, 150);  // between air (0) and soft tissue (1000)
   EXPECT_GT(thresholds.bone, 1000);
   EXPECT_EQ(p.segmentation->options.tets.target_edge_length, options.tets.target_edge_length);  // as given
-  EXPECT_EQ(cuts.top_z, *options.cuts.top_z);  // given cuts are used as given
+  EXPECT_EQ(p.segmentation->options.follow_scan_spacing, options.follow_scan_spacing);
+  EXPECT_EQ(p.segmentation->options.coarsen_above_tets, options.coarsen_above_tets);
+  EXPECT_GE(p.segmentation->edge_length, options.tets.target_edge_length);  // as made: the rules may lengthen it
+  EXPECT_EQ(cuts.top_z, *options.cuts.top_z);                               // given cuts are used as given
   EXPECT_EQ(cuts.bottom_z, *options.cuts.bottom_z);
   EXPECT_EQ(cuts.posterior_y, *options.cuts.posterior_y);
   EXPECT_EQ(cuts.centre_x, *options.cuts.centre_x);
