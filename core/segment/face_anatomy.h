@@ -10,11 +10,12 @@
 //     head voxel of each column) is compared with its mirror image about x = c, up to a linear term a s (a head
 //     turned about the vertical axis makes the front a little deeper on one side, proportionally to the distance s
 //     from the plane); c minimises the mean squared difference within kSymmetryReach of the plane (among equals, the
-//     nearest to the head's mean x). The plane's trace is the straight line c(z) fitted through the face's levels, those
-//     near the line the most levels' c agree with (core/segment/symmetry_trace.h: a clipped nose, the neck or a
-//     one-sided bulge can put many levels' c far to one side); its slope is the head's roll (tilt towards a shoulder), refused beyond kMaxRoll (20 degrees: no head lies so in a scanner, and a fit that leans more has
-//     read the symmetry wrongly, as on a head turned far about the vertical axis). A turned head keeps its plane
-//     through the nose, at the depth of the face's features;
+//     nearest to the head's mean x). The plane's trace is the straight line c(z) fitted through the face's levels,
+//     those near the line the most levels' c agree with (core/segment/symmetry_trace.h: a clipped nose, the neck or a
+//     one-sided bulge can put many levels' c far to one side); its slope is the head's roll (tilt towards a shoulder),
+//     refused beyond kMaxRoll (20 degrees: no head lies so in a scanner, and a fit that leans more has read the
+//     symmetry wrongly, as on a head turned far about the vertical axis). A turned head keeps its plane through the
+//     nose, at the depth of the face's features;
 //  3. the skin profile: per head level, the most anterior head voxel within kProfileBand of c(z);
 //     pronasale = the most anterior profile point at the levels of the nasal aperture (the highest run, at least
 //     kApertureHeight tall, of levels where the bone within the profile band lies more than kChinSoftTissue behind the
@@ -43,7 +44,9 @@
 //     far back the helix flares out varies from head to head and moves the widest row by centimetres. Where no
 //     auricle stands out (the field of view cuts the ears off, or a support presses them flat), ears_estimated: an
 //     ear's front is the most anterior row whose reach from the plane on that side is within kEarReachTolerance of
-//     the furthest;
+//     the furthest. An ear's front nearer than kMinEarDepth (60 mm) behind the pronasale is no ear's (a cheek's
+//     bulge, or the rows where a scan that ends behind the face is widest): that side's ear is unseen, and with both
+//     unseen the posterior cut is placed by where the scan ends (face_cuts.h);
 //  6. the tragi: core/segment/tragus.h.
 #include <Eigen/Core>
 #include <array>
@@ -63,8 +66,8 @@ struct FaceAnatomy {
   bool nose_clipped = false;                    // the front of the nose is a plateau (field-of-view cut)
   bool brow_unseen = false;                     // no nasion below a brow in the profile (rule 3); nasion = pronasale
   Eigen::Vector3d menton;                       // bone: the lowest point of the chin
-  double ear_front_y = 0;                       // y of the front of the ears (the auricles' front edges), rule 5
-  bool ears_estimated = false;                  // no auricle stands out: the front of the widest rows (rule 5)
+  double ear_front_y = 0;       // y of the front of the ears (the auricles' front edges), rule 5; -inf: both unseen
+  bool ears_estimated = false;  // no auricle stands out: the front of the widest rows (rule 5)
   // Each ear's front (-x side, +x side); -inf: not seen.
   std::array<double, 2> ear_fronts_y = {-std::numeric_limits<double>::infinity(),
                                         -std::numeric_limits<double>::infinity()};

@@ -50,8 +50,52 @@ double front_of_the_ears(const FaceAnatomy& anatomy) {
   return std::isfinite(front) ? front : anatomy.ear_front_y + kTragusBeforeAuricleEdge;
 }
 
+namespace {
+
+// The posterior cut from the anatomy and from where the scan ends across the head (face_cuts.h).
+void place_posterior_cut(const FaceAnatomy& a, const FaceCutOptions& options,
+                         const std::vector<FieldOfViewContact>& scan_edge, FaceCuts& cuts) {
+  // From the mouth's level (half way from the chin's lowest bone to the nose tip) up: lower down, a scan that ends
+  // across the shoulders beside the neck says nothing of the face.
+  const double z_lo = 0.5 * (a.menton.z() + a.pronasale.z()), z_hi = a.glabella.z() + options.brow_clearance;
+  for (const FieldOfViewContact& contact : scan_edge)
+    if (contact.point.z() >= z_lo && contact.point.z() <= z_hi)
+      cuts.scan_edge_y =
+          std::max(cuts.scan_edge_y.value_or(-std::numeric_limits<double>::infinity()), contact.point.y());
+  const double ears = front_of_the_ears(a) + options.ear_clearance;  // -inf: unseen
+  if (cuts.scan_edge_y) {
+    const double edge = *cuts.scan_edge_y + options.border_margin;
+    // The scan ends in front of the ears' cut, or the ears are unseen; or they are estimated (the widest rows) too
+    // near the face for a face region, where the head is widest because the scan ends behind it.
+    cuts.posterior_at_scan_edge = !(ears >= edge) || (a.ears_estimated && a.pronasale.y() - ears < kMinFaceDepth);
+  }
+  if (cuts.posterior_at_scan_edge) {
+    cuts.posterior_y = *cuts.scan_edge_y + options.border_margin;
+  } else if (std::isfinite(ears)) {
+    cuts.posterior_y = ears;
+  } else {
+    throw Error("segment",
+                "cannot find the ears in the CT (no auricle stands out, and the head's widest rows lie "
+                "nearer the face than ears do); check --skin, --anterior and --superior, or place the "
+                "posterior cut with --posterior-cut");
+  }
+  cuts.posterior_y = std::round(10 * cuts.posterior_y) / 10;
+  const double depth = a.pronasale.y() - cuts.posterior_y;
+  if (cuts.posterior_at_scan_edge && depth < kMinFaceDepth)
+    throw Error("segment", "the scan ends across the head " + mm(a.pronasale.y() - *cuts.scan_edge_y) +
+                               " behind the nose tip (at y " + mm(*cuts.scan_edge_y) +
+                               "), in front of the ears: a face region of " + mm(depth) +
+                               " holds too little of the "
+                               "face for the standard, which reaches back to in front of the ears (at least " +
+                               mm(kMinFaceDepth) +
+                               "); a scan of the whole face is needed, or place the posterior cut "
+                               "with --posterior-cut to mesh what lies in front of it");
+}
+
+}  // namespace
+
 FaceCuts find_face_cuts(const Mask& head, const Mask& without_ears, const Mask& bone, const FaceCutOptions& options,
-                        const std::optional<ScanSlab>& slab) {
+                        const std::optional<ScanSlab>& slab, const std::vector<FieldOfViewContact>& scan_edge) {
   const GridGeometry& g = head.geometry;
   // The first body voxel in slice order lies in the lowest slice with any body: below it a scan holds air only (a
   // field of view that starts above its lowest slices, or a volume resampled into a larger box).
@@ -63,9 +107,10 @@ FaceCuts find_face_cuts(const Mask& head, const Mask& without_ears, const Mask& 
     cuts.anatomy = find_face_anatomy(head, without_ears, bone);
   cuts.centre_x = options.centre_x ? *options.centre_x : cuts.anatomy->centre_x;
   // To the tenth of a millimetre the cuts are printed and shown with, so that a cut given as printed is the same cut.
-  cuts.posterior_y = options.posterior_y
-                         ? *options.posterior_y
-                         : std::round(10 * (front_of_the_ears(*cuts.anatomy) + options.ear_clearance)) / 10;
+  if (options.posterior_y)
+    cuts.posterior_y = *options.posterior_y;
+  else
+    place_posterior_cut(*cuts.anatomy, options, scan_edge, cuts);
   double scan_lo = g.lower(2), scan_hi = g.upper(2);
   if (slab && slab->turn.pitch != 0 && cuts.anatomy) {
     // The scan's slices are tilted in the head frame: the top cut stays below the last over the face's depth (from

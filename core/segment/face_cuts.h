@@ -21,7 +21,12 @@
 //   top_z       = the glabella plus brow_clearance (above the eyebrows), but at least border_margin below the CT's top
 //                 and below the head's highest level (a scan that ends within the forehead); the head's highest
 //                 level less border_margin when the profile shows no brow (FaceAnatomy::brow_unseen);
-//   posterior_y = the front of the ears (front_of_the_ears) plus ear_clearance;
+//   posterior_y = the front of the ears (front_of_the_ears) plus ear_clearance; where the scan ends across the side
+//                 or the back of the head from the mouth's level (half way from the menton to the pronasale) to the
+//                 top cut's (core/segment/field_of_view.h) in front of that, or with the ears unseen, or estimated
+//                 less than kMinFaceDepth behind the pronasale (the head is widest where the scan ends behind the
+//                 face), border_margin in front of where it ends; a face region then less than kMinFaceDepth deep
+//                 is refused (the scan holds too little of the face for the standard's);
 //   jaw_z       = just above the highest model voxel on the posterior cut within one voxel of the mid-plane, in the
 //                 lower half of the face (find_jaw_cut, once the soft tissue is known); none if there is none.
 #include <limits>
@@ -31,6 +36,7 @@
 #include "core/mesh/mid_sagittal_plane.h"
 #include "core/mesh/sides.h"
 #include "core/segment/face_anatomy.h"
+#include "core/segment/field_of_view.h"
 #include "core/segment/voxel_grid.h"
 
 namespace facehex {
@@ -73,6 +79,10 @@ struct FaceCuts {
   std::optional<double> palate_pitch;
   double top_z = 0, bottom_z = 0, posterior_y = 0, centre_x = 0;
   double jaw_z = -std::numeric_limits<double>::infinity();  // -infinity: no jaw cut
+  // y of the most anterior place the scan ends across the side or the back of the head at the face's levels
+  // (posterior_y above; field_of_view.h), where it does; whether the automatic posterior cut was placed by it.
+  std::optional<double> scan_edge_y;
+  bool posterior_at_scan_edge = false;
   std::optional<FaceAnatomy> anatomy;  // what the automatic cuts were placed by; empty if all given
 
   std::vector<CutPlane> planes() const;
@@ -96,8 +106,15 @@ struct ScanSlab {
 // auricle's outline than the auricle's front edge does.
 double front_of_the_ears(const FaceAnatomy& anatomy);
 
+// The face region reaches at least this far behind the nose tip (the pronasale): the standard's reaches back to in
+// front of the ears, about 90 to 110 mm; a scan that ends across the cheeks nearer the face than this holds too
+// little of it to map the standard onto.
+constexpr double kMinFaceDepth = 65.0;  // mm
+
+// scan_edge: where the scan ends across the head (field_of_view_contacts, head frame), or none.
 FaceCuts find_face_cuts(const Mask& head, const Mask& without_ears, const Mask& bone, const FaceCutOptions& options,
-                        const std::optional<ScanSlab>& slab = std::nullopt);
+                        const std::optional<ScanSlab>& slab = std::nullopt,
+                        const std::vector<FieldOfViewContact>& scan_edge = {});
 
 // The mid-sagittal plane the landmarks are read on (core/mesh/mid_sagittal_plane.h), stored with the model: the cuts'
 // plane, leaning as the head does when the symmetry's fit leans more than kLandmarkPlaneMinLean and the line between

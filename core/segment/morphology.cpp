@@ -158,7 +158,7 @@ Mask largest_component(const Mask& mask) {
   return out;
 }
 
-Mask fill_cavities(const Mask& mask, const std::array<bool, 3>& open) {
+Mask fill_cavities(const Mask& mask, const std::array<bool, 6>& open) {
   const GridGeometry& g = mask.geometry;
   std::vector<int> labels;
   std::vector<size_t> sizes;
@@ -167,9 +167,9 @@ Mask fill_cavities(const Mask& mask, const std::array<bool, 3>& open) {
   for (int k = 0; k < g.dims[2]; ++k)
     for (int j = 0; j < g.dims[1]; ++j)
       for (int i = 0; i < g.dims[0]; ++i) {
-        const bool on_open_face = (open[0] && (i == 0 || i == g.dims[0] - 1)) ||
-                                  (open[1] && (j == 0 || j == g.dims[1] - 1)) ||
-                                  (open[2] && (k == 0 || k == g.dims[2] - 1));
+        const bool on_open_face = (open[0] && i == 0) || (open[1] && i == g.dims[0] - 1) || (open[2] && j == 0) ||
+                                  (open[3] && j == g.dims[1] - 1) || (open[4] && k == 0) ||
+                                  (open[5] && k == g.dims[2] - 1);
         if (on_open_face) exterior[labels[g.index(i, j, k)]] = 1;
       }
   Mask out(g, 0);

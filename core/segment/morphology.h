@@ -21,9 +21,9 @@ Mask open(const Mask& mask, double radius);
 int label_components(const Mask& mask, std::vector<int>& labels, std::vector<size_t>& sizes);
 Mask largest_component(const Mask& mask);
 
-// Fills every 6-connected region of zero voxels that does not touch one of the "open" grid faces, given per axis
-// (open[a]: both faces perpendicular to axis a are open). With open = {x, y} only, the trachea leaving through the
-// bottom slice still counts as enclosed.
-Mask fill_cavities(const Mask& mask, const std::array<bool, 3>& open);
+// Fills every 6-connected region of zero voxels that does not touch one of the "open" grid faces, given per face in
+// the order -x, +x, -y, +y, -z, +z. With the x and y faces open only, the trachea leaving through the bottom slice
+// still counts as enclosed.
+Mask fill_cavities(const Mask& mask, const std::array<bool, 6>& open);
 
 }  // namespace facehex

@@ -111,8 +111,10 @@ std::string segmentation_summary(const CtSegmentation& segmentation) {
     text << "cuts (mm, head frame, --head-turn 0 --head-pitch 0 for the CT's): ";
   else
     text << "cuts (mm, segmentation frame): ";
-  text << "top z " << cuts.top_z << ", bottom z " << cuts.bottom_z << ", posterior y " << cuts.posterior_y
-       << ", mid-plane x " << cuts.centre_x;
+  text << "top z " << cuts.top_z << ", bottom z " << cuts.bottom_z << ", posterior y " << cuts.posterior_y;
+  if (cuts.posterior_at_scan_edge)
+    text << " (in front of where the scan ends across the head, y " << *cuts.scan_edge_y << ")";
+  text << ", mid-plane x " << cuts.centre_x;
   if (std::isfinite(cuts.jaw_z)) text << ", jaw cut rising to z " << cuts.jaw_z << " at the posterior cut";
   if (cuts.anatomy) text << "; found: " << face_anatomy_text(*cuts.anatomy);
   if (cuts.palate_pitch)

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -14,6 +15,7 @@
 #include "core/segment/distance_transform.h"
 #include "core/segment/eye_corners.h"
 #include "core/segment/face_anatomy.h"
+#include "core/segment/field_of_view.h"
 #include "core/segment/head_frame.h"
 #include "core/segment/iso_surface.h"
 #include "core/segment/morphology.h"
@@ -135,7 +137,7 @@ Mask model_mask(const Mask& head, const Mask& bone, const Field& air_distance, c
           }
         m.data[v] = !behind_bone;
       }
-  return fill_cavities(largest_component(m), {true, true, true});
+  return fill_cavities(largest_component(m), {true, true, true, true, true, true});
 }
 
 // The sub-grid holding every voxel of `mask` plus `margin` voxels around (clamped to the grid): [lo, hi] per axis.
@@ -353,9 +355,18 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   check_head_size(raw_body);
   step("the head", 0.05);
   const Mask body = open(raw_body, options.opening_radius);
+  // Where the scan ends across the head (core/segment/field_of_view.h).
+  const GridGeometry& scan_grid = ct.intensity.geometry;
+  const ScanSides scan_sides{
+      {scan_grid.lower(0), scan_grid.lower(1)}, {scan_grid.upper(0), scan_grid.upper(1)}, model.cuts.turn};
+  const std::vector<FieldOfViewContact> scan_edge = field_of_view_contacts(
+      raw_body, scan_sides, -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity());
   // The trachea leaves through the bottom slice and the head through the top: only the x and y faces of the grid
-  // are open air.
-  const Mask head = fill_cavities(close(body, options.cavity_closing_radius), {true, true, false});
+  // are open air, and of those only the ones the scan does not end on across the head (an airway cut there is no
+  // opening of the face).
+  const std::array<bool, 6> cut_faces = cut_grid_faces(raw_body, scan_edge);
+  const Mask head = fill_cavities(close(body, options.cavity_closing_radius),
+                                  {!cut_faces[0], !cut_faces[1], !cut_faces[2], !cut_faces[3], false, false});
   Mask bone = at_least(intensity, model.thresholds.bone);
   for (size_t i = 0; i < bone.data.size(); ++i) bone.data[i] &= head.data[i];
   // Without bone the model would have no depth limit but max_depth and the chin nothing to be found by.
@@ -367,7 +378,7 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   std::optional<double> palate = palate_pitch(head, bone, turn.axis.x());
   if (palate) *palate += turn.pitch;  // the slope in the CT's frame
   try {
-    model.cuts = find_face_cuts(raw_body, body, bone, options.cuts, slab);
+    model.cuts = find_face_cuts(raw_body, body, bone, options.cuts, slab, scan_edge);
   } catch (const Error& e) {
     const Error stated =
         !turn.turned()

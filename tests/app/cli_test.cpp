@@ -21,6 +21,7 @@
 #include "core/mesh/skin_points.h"
 #include "core/quality/hex_quality.h"
 #include "core/segment/ct_volume.h"
+#include "core/segment/voxel_grid.h"
 #include "core/util/resources.h"
 #include "core/workflow/report.h"
 #include "tests/core/test_meshes.h"
@@ -999,12 +1000,16 @@ TEST_F(Cli, ErrorsExitOneWithOneLineAndSuggestOnlyOptionsThatExist) {
     for (int j = 2; j < 38; ++j)
       for (int i = 2; i < 32; ++i) box.intensity(i, j, k) = (i > 12 && i < 22 && j > 12 && j < 28) ? 1500.0f : 40.0f;
   facehex::write_ct_volume(path("box.mha"), box);
+  facehex::CtVolume cheeks = facehex::read_ct_volume(facehex::default_ct());  // a scan that ends across the cheeks
+  cheeks.intensity = facehex::crop(cheeks.intensity, {13, 0, 0}, {51, 64, 93});
+  facehex::write_ct_volume(path("cheeks.mha"), cheeks);
   const std::string help = run("run --help").output;
   for (const auto& [args, file] : std::vector<std::pair<std::string, std::string>>{
            {"info " + path("garbage.vtu"), path("garbage.vtu")},
            {"convert " + path("garbage.vtu") + " " + path("out.vtu"), path("garbage.vtu")},
            {"segment " + path("garbage.mha") + " -o " + path("out.vtu"), path("garbage.mha")},
-           {"run " + path("box.mha") + " -o " + path("out"), "not a plausible head"}}) {
+           {"run " + path("box.mha") + " -o " + path("out"), "not a plausible head"},
+           {"run " + path("cheeks.mha") + " -o " + path("out"), "the scan ends across the head"}}) {
     const Result r = run_shell("(" + std::string(FACEHEX_CLI) + " " + args + " 2>&1 1>/dev/null)");  // stderr only
     EXPECT_EQ(r.status, 1) << args << ": " << r.output;
     // Progress lines may come first; the error is the last line, and the only one.

@@ -81,6 +81,8 @@ TEST(DistanceTransform, EmptyMaskIsInfinitelyFar) {
   for (auto v : within.data) EXPECT_EQ(v, 0);
 }
 
+constexpr std::array<bool, 6> kAllOpen = {true, true, true, true, true, true};
+
 TEST(Morphology, FillCavitiesKeepsOpenAirAndFillsEnclosedAir) {
   GridGeometry g;
   g.dims = {9, 9, 9};
@@ -88,18 +90,24 @@ TEST(Morphology, FillCavitiesKeepsOpenAirAndFillsEnclosedAir) {
   for (int k = 1; k < 8; ++k)
     for (int j = 1; j < 8; ++j)
       for (int i = 1; i < 8; ++i) shell(i, j, k) = (i == 1 || i == 7 || j == 1 || j == 7 || k == 1 || k == 7);
-  const Mask filled = fill_cavities(shell, {true, true, true});
+  const Mask filled = fill_cavities(shell, kAllOpen);
   EXPECT_EQ(filled(4, 4, 4), 1);
   EXPECT_EQ(filled(0, 4, 4), 0);
   // A hole in the shell lets the cavity out.
   Mask open_shell = shell;
   open_shell(7, 4, 4) = 0;
-  EXPECT_EQ(fill_cavities(open_shell, {true, true, true})(4, 4, 4), 0);
+  EXPECT_EQ(fill_cavities(open_shell, kAllOpen)(4, 4, 4), 0);
   // Air that only reaches a face that is not open (the trachea at the bottom slice) is filled.
   Mask tube(g, 1);
   for (int k = 0; k < 5; ++k) tube(4, 4, k) = 0;
-  EXPECT_EQ(fill_cavities(tube, {true, true, false})(4, 4, 2), 1);
-  EXPECT_EQ(fill_cavities(tube, {true, true, true})(4, 4, 2), 0);
+  EXPECT_EQ(fill_cavities(tube, {true, true, true, true, false, true})(4, 4, 2), 1);
+  EXPECT_EQ(fill_cavities(tube, kAllOpen)(4, 4, 2), 0);
+  // Each face on its own: air reaching the -y face only (an airway where the scan ends behind the face) is filled
+  // when that face is closed, whatever the others.
+  Mask airway(g, 1);
+  for (int j = 0; j < 5; ++j) airway(4, j, 4) = 0;
+  EXPECT_EQ(fill_cavities(airway, {true, true, false, true, true, true})(4, 2, 4), 1);
+  EXPECT_EQ(fill_cavities(airway, {false, false, true, false, false, false})(4, 2, 4), 0);
 }
 
 TEST(Morphology, OpeningDropsThinAttachmentsAndClosingFillsNarrowGaps) {

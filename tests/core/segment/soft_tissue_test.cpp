@@ -426,5 +426,76 @@ TEST(SoftTissue, RefusesWhatIsNotAPlausibleHead) {
                "not a plausible head: no voxel of the head reaches the bone threshold");
 }
 
+// The bundled CT as a scan cropped to the voxels lo <= (i, j, k) < hi would hold it.
+CtVolume cropped_bundled_ct(const std::array<int, 3>& lo, const std::array<int, 3>& hi) {
+  CtVolume ct = read_ct_volume(default_ct());
+  ct.intensity = crop(ct.intensity, lo, hi);
+  return ct;
+}
+
+TEST(SoftTissue, AScanThatEndsBehindTheFaceIsCutWhereItEnds) {
+  // The bundled CT as if its field of view ended at y 96 mm, behind its posterior cut (y 100.2) but in front of its
+  // ears (auricles' front 88, tragi 91): the ears are not in the scan, and the posterior cut is placed border_margin in
+  // front of where the scan ends rather than where the ear rules would put it in the rows left.
+  const CtVolume ct = read_ct_volume(default_ct());
+  const PatientModel whole = build_patient_model(ct);
+  const int j0 = 30;               // y = 96 mm
+  SegmentOptions same_thresholds;  // the crop's histogram has less air
+  same_thresholds.skin_threshold = whole.thresholds.skin;
+  same_thresholds.bone_threshold = whole.thresholds.bone;
+  const PatientModel cut = build_patient_model(cropped_bundled_ct({0, j0, 0}, {64, 64, 93}), same_thresholds);
+  expect_valid_patient(cut);
+  EXPECT_FALSE(cut.cuts.turn.turned()) << cut.cuts.turn.degrees;
+  ASSERT_TRUE(cut.cuts.scan_edge_y);
+  EXPECT_NEAR(*cut.cuts.scan_edge_y, j0 * 3.2, 1e-3);
+  EXPECT_TRUE(cut.cuts.posterior_at_scan_edge);
+  // The surface moves a cut by a fraction of a voxel where it would fall on a voxel plane (level_surface_with_cuts).
+  EXPECT_NEAR(cut.cuts.posterior_y, j0 * 3.2 + FaceCutOptions{}.border_margin, 0.5);
+  EXPECT_FALSE(cut.cuts.anatomy->tragi[0] || cut.cuts.anatomy->tragi[1]);
+  // The face in front is the same: the other cuts, and the model's front. The mid-sagittal plane moves by less than
+  // half this CT's 3.2 mm voxel: its levels' symmetry, on the face's front, loses the back of the head's sections.
+  EXPECT_FALSE(whole.cuts.posterior_at_scan_edge);
+  EXPECT_NEAR(cut.cuts.top_z, whole.cuts.top_z, 0.5);
+  EXPECT_NEAR(cut.cuts.bottom_z, whole.cuts.bottom_z, 0.5);
+  EXPECT_NEAR(cut.cuts.centre_x, whole.cuts.centre_x, 1.6);
+  EXPECT_NEAR(cut.mesh.V.col(1).maxCoeff(), whole.mesh.V.col(1).maxCoeff(), 1.0);
+  EXPECT_GE(cut.mesh.V.col(1).minCoeff(), cut.cuts.posterior_y - 1e-4);
+}
+
+TEST(SoftTissue, AScanThatEndsBehindTheEarsKeepsTheEarsCut) {
+  // The bundled CT cropped at y 38.4 mm, across the back of the head well behind the ears: the ears are in the scan
+  // and place the posterior cut, as on the whole scan.
+  const CtVolume ct = read_ct_volume(default_ct());
+  const PatientModel whole = build_patient_model(ct);
+  SegmentOptions same_thresholds;
+  same_thresholds.skin_threshold = whole.thresholds.skin;
+  same_thresholds.bone_threshold = whole.thresholds.bone;
+  const PatientModel cut = build_patient_model(cropped_bundled_ct({0, 12, 0}, {64, 64, 93}), same_thresholds);
+  ASSERT_TRUE(cut.cuts.scan_edge_y);
+  EXPECT_LT(*cut.cuts.scan_edge_y, 60);
+  EXPECT_FALSE(cut.cuts.posterior_at_scan_edge);
+  EXPECT_NEAR(cut.cuts.posterior_y, whole.cuts.posterior_y, 0.5);
+}
+
+TEST(SoftTissue, AScanThatEndsAcrossTheCheeksIsRefusedNamingThePosteriorCut) {
+  // The bundled CT cropped to x 41.6-160 mm: the scan ends across the cheeks, a few centimetres behind the nose.
+  expect_error(
+      [&] {
+        build_patient_model(cropped_bundled_ct({13, 0, 0}, {51, 64, 93}));
+      },
+      "segment", "the scan ends across the head");
+  expect_error(
+      [&] {
+        build_patient_model(cropped_bundled_ct({13, 0, 0}, {51, 64, 93}));
+      },
+      "segment", "--posterior-cut");
+  // Given a posterior cut, the user's choice is meshed.
+  SegmentOptions given;
+  given.cuts.posterior_y = 150;
+  const PatientModel m = build_patient_model(cropped_bundled_ct({13, 0, 0}, {51, 64, 93}), given);
+  EXPECT_EQ(m.cuts.posterior_y, 150);
+  EXPECT_GT(m.mesh.num_cells(), 1000);
+}
+
 }  // namespace
 }  // namespace facehex

@@ -4,10 +4,13 @@
 #include <filesystem>
 
 #include "core/face/automatic_constraints.h"
+#include "core/face/landmark_file.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh/ct_landmarks.h"
 #include "core/mesh/hex_to_tets.h"
 #include "core/mesh/sides.h"
+#include "core/segment/ct_volume.h"
+#include "core/segment/voxel_grid.h"
 #include "core/standard/closed_domain.h"
 #include "core/util/error.h"
 #include "core/workflow/patient_setup.h"
@@ -154,6 +157,48 @@ TEST_F(Workflow, AStandardMustBeHexDominantAndItsDomainKindKnown) {
   EXPECT_THROW(check_standard_domain_kind("open"), Error);
   const TetDomain aux = standard_domain(hex, "auxiliary");
   EXPECT_EQ(aux.hex_vertices, hex.num_vertices());
+}
+
+// The Visible Human's CT (../shared, optional) as scans that end across the head would hold it, made from the file:
+// cropped behind the face at y 290 mm (20 mm in front of the tragi, the ears out of the scan) it is meshed in front of
+// where the scan ends, its landmarks found as on the whole scan (within 3 mm of the hand-placed ones, the tragi
+// unseen); cropped to x 195-330 mm, across the cheeks, it is refused, naming --posterior-cut.
+TEST_F(Workflow, AHeadCtEndingBehindTheFaceIsMeshedInFrontOfWhereItEndsAndOneEndingAcrossTheCheeksIsRefused) {
+  const std::string source = std::string(FACEHEX_SHARED_DIR) + "/data/ct/vhfemale-head.mha";
+  if (!fs::exists(source)) GTEST_SKIP() << "no shared data at " << source;
+  const CtVolume ct = read_ct_volume(source);
+  const std::array<int, 3> dims = ct.intensity.geometry.dims;
+  CtVolume behind = ct;
+  behind.intensity = crop(ct.intensity, {0, 290, 0}, dims);
+  write_ct_volume(path("behind.mha"), behind);
+  std::map<std::string, double> values;  // any: the landmarks the features are placed at are what is checked
+  for (const auto& spec : feature_specs()) values[spec.name] = 0.5;
+  const PatientSetup p = load_patient(path("behind.mha"), {}, "", &values);
+  ASSERT_TRUE(p.segmentation);
+  EXPECT_TRUE(p.segmentation->cuts.posterior_at_scan_edge);
+  EXPECT_NEAR(p.segmentation->cuts.posterior_y, 290 + FaceCutOptions{}.border_margin, 0.5);
+  ASSERT_TRUE(p.landmarks) << p.features_problem;
+  for (const NamedLandmark& placed :
+       read_landmark_file(std::string(FACEHEX_TEST_DATA_DIR) + "/landmarks/vhfemale-head.json")) {
+    const auto found = p.landmarks->points.find(placed.name);
+    if (placed.name.rfind("tragus", 0) == 0) {
+      EXPECT_EQ(found, p.landmarks->points.end()) << placed.name << " is not in the scan";
+      continue;
+    }
+    ASSERT_NE(found, p.landmarks->points.end()) << placed.name;
+    EXPECT_LT((found->second - placed.position).norm(), 3.0) << placed.name;
+  }
+
+  CtVolume across = ct;
+  across.intensity = crop(ct.intensity, {195, 0, 0}, {331, dims[1], dims[2]});
+  write_ct_volume(path("across.mha"), across);
+  try {
+    load_patient(path("across.mha"), {}, "", &values);
+    FAIL() << "a scan ending across the cheeks was segmented";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("the scan ends across the head"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("--posterior-cut"), std::string::npos) << e.what();
+  }
 }
 
 TEST(ExitCode, ZeroOnlyWhenNoCellIsInvertedOrFlat) {
