@@ -32,12 +32,9 @@ constexpr double kTurnSampling = 2.0;     // mm between the head voxels compared
 // The auricle is thin: the opening of the body removes it. Where the body stands out of its opening sideways by at
 // least kEarStandOut (more than the opening's rounding of the skin), over levels at least kEarMinHeight tall in one
 // coronal row (the auricle's front edge is taller; a skin fold or a strap's edge is not), the row holds the ear.
-constexpr double kEarStandOut = 3.0;        // mm
-constexpr double kEarMinHeight = 10.0;      // mm
-constexpr double kEarReachTolerance = 3.0;  // mm: without an auricle, rows reaching this close to the widest
-// mm: an ear's front lies at least this far behind the nose tip (adults' tragi lie about 90 to 120 mm behind it). What
-// stands out nearer the face is a cheek's bulge where the scan ends behind it, not an auricle.
-constexpr double kMinEarDepth = 60.0;
+constexpr double kEarStandOut = 3.0;           // mm
+constexpr double kEarMinHeight = 10.0;         // mm
+constexpr double kEarReachTolerance = 3.0;     // mm: without an auricle, rows reaching this close to the widest
 constexpr double kBrowReach[2] = {3.0, 30.0};  // mm above the nasion where the brow is looked for
 // A head, an infant's included, is wider and deeper than this, and its nose tip stands at least this far in front of
 // its nasion or of the mean of its cheeks kCheekOffset to either side (a nose clipped by the field of view still stands
@@ -148,6 +145,7 @@ void fit_plane(const std::vector<LevelCentre>& levels, FaceAnatomy& anatomy) {
   const SymmetryTrace trace = consensus_trace(levels, kLevelAgreement, std::tan(kMaxRoll * M_PI / 180));
   anatomy.roll_z = trace.z0, anatomy.centre_x = trace.c0, anatomy.roll_slope = trace.slope;
   anatomy.roll_degrees = std::atan(anatomy.roll_slope) * 180 / M_PI;
+  anatomy.roll_support = static_cast<double>(trace.agreeing.size()) / static_cast<double>(levels.size());
 }
 
 // Rule 3: the mid-sagittal skin profile, one point per head level (NaN y where the band is empty).
@@ -327,17 +325,14 @@ void find_ear_front(const Mask& head, const Mask& without_ears, FaceAnatomy& ana
     }
   }
   // Each ear's front, and the more anterior of the two: the posterior cut goes in front of both.
-  const double deepest_front = anatomy.pronasale.y() - kMinEarDepth;
   for (int s = 0; s < 2; ++s)
     for (int j = 0; j < g.dims[1]; ++j)
-      if (ear_height[s][j] >= kEarMinHeight - 1e-9 && g.point(0, j, 0).y() <= deepest_front)
+      if (ear_height[s][j] >= kEarMinHeight - 1e-9)
         anatomy.ear_fronts_y[s] = std::max(anatomy.ear_fronts_y[s], g.point(0, j, 0).y());
   anatomy.ear_front_y = std::max(anatomy.ear_fronts_y[0], anatomy.ear_fronts_y[1]);
   if (std::isfinite(anatomy.ear_front_y)) return;
   // No auricle stands out (outside the field of view, or pressed flat by a support): each side's front of the rows
-  // that reach within kEarReachTolerance of its widest, where the ears would be. None where those lie nearer the face
-  // than an ear can (the scan ends across the cheeks): the ears are unseen, and the posterior cut is placed by where
-  // the scan ends (face_cuts.h).
+  // that reach within kEarReachTolerance of its widest, where the ears would be.
   anatomy.ears_estimated = true;
   for (int s = 0; s < 2; ++s) {
     const double widest = *std::max_element(reach[s].begin(), reach[s].end());
@@ -345,9 +340,9 @@ void find_ear_front(const Mask& head, const Mask& without_ears, FaceAnatomy& ana
     for (int j = 0; j < g.dims[1]; ++j)
       if (reach[s][j] >= widest - kEarReachTolerance)
         anatomy.ear_fronts_y[s] = std::max(anatomy.ear_fronts_y[s], g.point(0, j, 0).y());
-    if (anatomy.ear_fronts_y[s] > deepest_front) anatomy.ear_fronts_y[s] = -std::numeric_limits<double>::infinity();
   }
   anatomy.ear_front_y = std::max(anatomy.ear_fronts_y[0], anatomy.ear_fronts_y[1]);
+  if (!std::isfinite(anatomy.ear_front_y)) not_found("the ears", "--posterior-cut");
 }
 
 }  // namespace
@@ -519,12 +514,9 @@ std::string face_anatomy_text(const FaceAnatomy& a) {
     << point_text(a.pronasale) << (a.nose_clipped ? " (nose clipped)" : "")
     << (a.brow_unseen ? "" : ", nasion " + point_text(a.nasion)) << ", glabella " << point_text(a.glabella)
     << (a.brow_unseen ? " (estimated: the profile shows no nasion below a brow, the top cut is the head's top)" : "")
-    << ", menton " << point_text(a.menton);
-  if (std::isfinite(a.ear_front_y))
-    s << ", front of the ears y " << a.ear_front_y << " (-x ear " << ear(0) << ", +x ear " << ear(1)
-      << (a.ears_estimated ? "; estimated: no auricle stands out, the front of the widest rows" : "") << ")";
-  else
-    s << ", ears unseen (no auricle, nor a widest row at least " << kMinEarDepth << " mm behind the nose tip)";
+    << ", menton " << point_text(a.menton) << ", front of the ears y " << a.ear_front_y << " (-x ear " << ear(0)
+    << ", +x ear " << ear(1)
+    << (a.ears_estimated ? "; estimated: no auricle stands out, the front of the widest rows" : "") << ")";
   for (int side = 0; side < 2; ++side)
     s << ", " << kTragusNames[side] << " "
       << (a.tragi[side] ? point_text(a.tragi[side]->point) + (a.tragi[side]->estimated ? " (estimated)" : "")

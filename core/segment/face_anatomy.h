@@ -44,9 +44,7 @@
 //     far back the helix flares out varies from head to head and moves the widest row by centimetres. Where no
 //     auricle stands out (the field of view cuts the ears off, or a support presses them flat), ears_estimated: an
 //     ear's front is the most anterior row whose reach from the plane on that side is within kEarReachTolerance of
-//     the furthest. An ear's front nearer than kMinEarDepth (60 mm) behind the pronasale is no ear's (a cheek's
-//     bulge, or the rows where a scan that ends behind the face is widest): that side's ear is unseen, and with both
-//     unseen the posterior cut is placed by where the scan ends (face_cuts.h);
+//     the furthest;
 //  6. the tragi: core/segment/tragus.h.
 #include <Eigen/Core>
 #include <array>
@@ -62,12 +60,13 @@ namespace facehex {
 struct FaceAnatomy {
   double centre_x = 0;      // mid-sagittal plane at the pronasale's level
   double roll_degrees = 0;  // the plane's trace leans by this angle from vertical (positive: +x upwards)
+  double roll_support = 1;  // the fraction of the head levels the trace was fitted through (rule 2)
   Eigen::Vector3d pronasale, nasion, glabella;  // skin points of the mid-sagittal profile
   bool nose_clipped = false;                    // the front of the nose is a plateau (field-of-view cut)
   bool brow_unseen = false;                     // no nasion below a brow in the profile (rule 3); nasion = pronasale
   Eigen::Vector3d menton;                       // bone: the lowest point of the chin
-  double ear_front_y = 0;       // y of the front of the ears (the auricles' front edges), rule 5; -inf: both unseen
-  bool ears_estimated = false;  // no auricle stands out: the front of the widest rows (rule 5)
+  double ear_front_y = 0;                       // y of the front of the ears (the auricles' front edges), rule 5
+  bool ears_estimated = false;                  // no auricle stands out: the front of the widest rows (rule 5)
   // Each ear's front (-x side, +x side); -inf: not seen.
   std::array<double, 2> ear_fronts_y = {-std::numeric_limits<double>::infinity(),
                                         -std::numeric_limits<double>::infinity()};

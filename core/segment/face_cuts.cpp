@@ -62,24 +62,14 @@ void place_posterior_cut(const FaceAnatomy& a, const FaceCutOptions& options,
     if (contact.point.z() >= z_lo && contact.point.z() <= z_hi)
       cuts.scan_edge_y =
           std::max(cuts.scan_edge_y.value_or(-std::numeric_limits<double>::infinity()), contact.point.y());
-  const double ears = front_of_the_ears(a) + options.ear_clearance;  // -inf: unseen
-  if (cuts.scan_edge_y) {
-    const double edge = *cuts.scan_edge_y + options.border_margin;
-    // The scan ends in front of the ears' cut, or the ears are unseen; or they are estimated (the widest rows) too
-    // near the face for a face region, where the head is widest because the scan ends behind it.
-    cuts.posterior_at_scan_edge = !(ears >= edge) || (a.ears_estimated && a.pronasale.y() - ears < kMinFaceDepth);
-  }
-  if (cuts.posterior_at_scan_edge) {
-    cuts.posterior_y = *cuts.scan_edge_y + options.border_margin;
-  } else if (std::isfinite(ears)) {
-    cuts.posterior_y = ears;
-  } else {
-    throw Error("segment",
-                "cannot find the ears in the CT (no auricle stands out, and the head's widest rows lie "
-                "nearer the face than ears do); check --skin, --anterior and --superior, or place the "
-                "posterior cut with --posterior-cut");
-  }
-  cuts.posterior_y = std::round(10 * cuts.posterior_y) / 10;
+  const double ears = front_of_the_ears(a) + options.ear_clearance;
+  // The scan ends in front of the ears' cut; or the ears' cut leaves less than a face region: what the ear rules read
+  // in a scan that ends behind the face (a cheek's bulge standing out, the rows where the head is widest because the
+  // scan ends there) is no ear.
+  cuts.posterior_at_scan_edge =
+      cuts.scan_edge_y && (*cuts.scan_edge_y + options.border_margin > ears || a.pronasale.y() - ears < kMinFaceDepth);
+  cuts.posterior_y =
+      std::round(10 * (cuts.posterior_at_scan_edge ? *cuts.scan_edge_y + options.border_margin : ears)) / 10;
   const double depth = a.pronasale.y() - cuts.posterior_y;
   if (cuts.posterior_at_scan_edge && depth < kMinFaceDepth)
     throw Error("segment", "the scan ends across the head " + mm(a.pronasale.y() - *cuts.scan_edge_y) +
@@ -159,7 +149,8 @@ void find_jaw_cut(const Mask& model, double clearance, FaceCuts& cuts) {
 MidSagittalPlane landmark_plane(const FaceCuts& cuts, const FaceCutOptions& given) {
   if (cuts.anatomy && !given.centre_x && std::abs(cuts.anatomy->roll_degrees) > kLandmarkPlaneMinLean) {
     const std::optional<double> tragi = tragi_roll_degrees(cuts.anatomy->tragi);
-    if (!tragi || std::abs(*tragi - cuts.anatomy->roll_degrees) <= kLandmarkPlaneLeanAgreement)
+    if (tragi ? std::abs(*tragi - cuts.anatomy->roll_degrees) <= kLandmarkPlaneLeanAgreement
+              : cuts.anatomy->roll_support >= kLandmarkPlaneLeanSupport)
       return {cuts.anatomy->centre_x, cuts.anatomy->roll_slope, cuts.anatomy->roll_z};
   }
   return {cuts.centre_x, 0, 0};

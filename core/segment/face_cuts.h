@@ -23,10 +23,11 @@
 //                 level less border_margin when the profile shows no brow (FaceAnatomy::brow_unseen);
 //   posterior_y = the front of the ears (front_of_the_ears) plus ear_clearance; where the scan ends across the side
 //                 or the back of the head from the mouth's level (half way from the menton to the pronasale) to the
-//                 top cut's (core/segment/field_of_view.h) in front of that, or with the ears unseen, or estimated
-//                 less than kMinFaceDepth behind the pronasale (the head is widest where the scan ends behind the
-//                 face), border_margin in front of where it ends; a face region then less than kMinFaceDepth deep
-//                 is refused (the scan holds too little of the face for the standard's);
+//                 top cut's (core/segment/field_of_view.h) in front of that, or, wherever it ends there, when the
+//                 ears' cut lies less than kMinFaceDepth behind the pronasale (a cheek's bulge, or the rows where
+//                 the head is widest because the scan ends there, read as ears): border_margin in front of where it
+//                 ends; a face region then less than kMinFaceDepth deep is refused (the scan holds too little of the
+//                 face for the standard's);
 //   jaw_z       = just above the highest model voxel on the posterior cut within one voxel of the mid-plane, in the
 //                 lower half of the face (find_jaw_cut, once the soft tissue is known); none if there is none.
 #include <limits>
@@ -118,12 +119,16 @@ FaceCuts find_face_cuts(const Mask& head, const Mask& without_ears, const Mask& 
 
 // The mid-sagittal plane the landmarks are read on (core/mesh/mid_sagittal_plane.h), stored with the model: the cuts'
 // plane, leaning as the head does when the symmetry's fit leans more than kLandmarkPlaneMinLean and the line between
-// the two tragi, where both were found, leans within kLandmarkPlaneLeanAgreement of it; else vertical through
-// centre_x (as a plane given with --mid-plane is). On upright heads the fit leans by a few degrees through the neck and
-// skull, and the face's profile is read better on the vertical (docs/benchmarks.md); an uneven shape (a warp's bumps,
-// a clipped face) can lean the fit further on a head the level tragi show upright.
+// the two tragi, where both were found, leans within kLandmarkPlaneLeanAgreement of it, or, without the two tragi,
+// when at least kLandmarkPlaneLeanSupport of the head levels agree with the fit (FaceAnatomy::roll_support); else
+// vertical through centre_x (as a plane given with --mid-plane is). On upright heads the fit leans by a few degrees
+// through the neck and skull, and the face's profile is read better on the vertical (docs/benchmarks.md); an uneven
+// shape (a warp's bumps, a clipped face) can lean the fit further on a head the level tragi show upright, and where
+// half the levels' mirror centres wander (a coarse scan's chin and mouth) a fit that leans has no more levels behind
+// it than the vertical has.
 constexpr double kLandmarkPlaneMinLean = 5.0;        // degrees
 constexpr double kLandmarkPlaneLeanAgreement = 5.0;  // degrees
+constexpr double kLandmarkPlaneLeanSupport = 2.0 / 3.0;
 MidSagittalPlane landmark_plane(const FaceCuts& cuts, const FaceCutOptions& given);
 
 // Sets cuts.jaw_z from the model mask (before the cuts are applied): `clearance` mm above the highest model voxel in

@@ -212,6 +212,12 @@ TEST(FaceCuts, ATiltedHeadKeepsItsMidPlaneAndLandmarks) {
   EXPECT_EQ(with_tragi(90 + rise / 2, 90 - rise / 2, false).slope, tilted.anatomy->roll_slope);
   EXPECT_EQ(with_tragi(90 - rise / 2, 90 + rise / 2, false).slope, 0.0);  // tilted the other way
   EXPECT_EQ(with_tragi(90, 90, true).slope, tilted.anatomy->roll_slope);
+  // Without the tragi, the lean is taken when most levels agree with it (as on this phantom), not when only half do.
+  EXPECT_GE(tilted.anatomy->roll_support, kLandmarkPlaneLeanSupport);
+  FaceCuts weak = tilted;
+  weak.anatomy->roll_support = 0.5;
+  EXPECT_EQ(landmark_plane(weak, FaceCutOptions()).slope, 0.0);
+  EXPECT_EQ(landmark_plane(weak, FaceCutOptions()).x, weak.centre_x);
   const Head upright(Eigen::Matrix3d::Identity(), false);
   const FaceCuts straight = cuts_of(upright.head, upright.bone, FaceCutOptions());
   EXPECT_EQ(landmark_plane(straight, FaceCutOptions()).slope, 0.0);
