@@ -6,6 +6,7 @@
 #include <QDoubleSpinBox>
 #include <QFileInfo>
 #include <QFormLayout>
+#include <QGroupBox>
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QPushButton>
@@ -71,7 +72,7 @@ SegmentationDialog::SegmentationDialog(QWidget* parent) : QDialog(parent) {
   form->addRow(QString(), coarsenLargeFaces_);
   madeAt_ = new QLabel(this);
   madeAt_->setObjectName("segmentMadeAt");
-  madeAt_->setWordWrap(true);
+  madeAt_->setWordWrap(false);
   form->addRow(QString(), madeAt_);
   anterior_ = axisChoice("segmentAnterior", "+y", this);
   superior_ = axisChoice("segmentSuperior", "+z", this);
@@ -127,7 +128,31 @@ SegmentationDialog::SegmentationDialog(QWidget* parent) : QDialog(parent) {
   form->addRow(tr("Brow clearance (automatic top cut)"), browClearance_);
   form->addRow(tr("Chin clearance (automatic bottom cut)"), chinClearance_);
   form->addRow(tr("Ear clearance (automatic posterior cut)"), earClearance_);
-  layout->addLayout(form);
+  // The soft-tissue layer's settings, beside the rest (the dialog stays short enough for a laptop's screen): the ones
+  // a segmentation's error names when its surface has tunnels (docs/segmentation.md).
+  auto* tissue = new QGroupBox(tr("Soft-tissue layer"), this);
+  auto* tissueForm = new QFormLayout(tissue);
+  const auto addLength = [&](QDoubleSpinBox*& box, const QString& label, double lo, const QString& name,
+                             const QString& option, const QString& tip) {
+    box = spinBox(lo, 100, tr(" mm"), name, this);
+    box->setToolTip(tip + tr(" (the command line's %1)").arg(option));
+    tissueForm->addRow(label, box);
+  };
+  addLength(minThickness_, tr("Min thickness"), 0, "segmentMinThickness", "--min-thickness",
+            tr("Tissue this close below the skin is always in the model, bone or not (thin skin over bone)."));
+  addLength(maxDepth_, tr("Max depth"), 0.5, "segmentMaxDepth", "--max-depth",
+            tr("Nothing deeper than this below the skin is in the model, where no bone is nearer."));
+  addLength(boneGap_, tr("Bone gap"), 0, "segmentBoneGap", "--bone-gap",
+            tr("Gaps in the bone narrower than twice this (between the teeth, thin orbital walls) still hide the "
+               "tissue behind them."));
+  addLength(cavityClosing_, tr("Cavity closing"), 0, "segmentCavityClosing", "--cavity-closing",
+            tr("Openings narrower than twice this (nostrils, lips, eyelids) are closed."));
+  addLength(smoothing_, tr("Smoothing"), 0, "segmentSmoothing", "--smoothing",
+            tr("Gaussian blur of the model before its surface is taken."));
+  auto* columns = new QHBoxLayout;
+  columns->addLayout(form, 1);
+  columns->addWidget(tissue, 0, Qt::AlignTop);
+  layout->addLayout(columns);
 
   auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, this);
   buttons->button(QDialogButtonBox::Ok)->setText(tr("Segment"));
@@ -163,6 +188,11 @@ void SegmentationDialog::setOptions(const SegmentOptions& o) {
   browClearance_->setValue(o.cuts.brow_clearance);
   chinClearance_->setValue(o.cuts.chin_clearance);
   earClearance_->setValue(o.cuts.ear_clearance);
+  minThickness_->setValue(o.min_thickness);
+  maxDepth_->setValue(o.max_depth);
+  boneGap_->setValue(o.bone_gap_radius);
+  cavityClosing_->setValue(o.cavity_closing_radius);
+  smoothing_->setValue(o.smoothing_sigma);
 }
 
 SegmentOptions SegmentationDialog::options() const {
@@ -185,6 +215,11 @@ SegmentOptions SegmentationDialog::options() const {
   o.cuts.brow_clearance = browClearance_->value();
   o.cuts.chin_clearance = chinClearance_->value();
   o.cuts.ear_clearance = earClearance_->value();
+  o.min_thickness = minThickness_->value();
+  o.max_depth = maxDepth_->value();
+  o.bone_gap_radius = boneGap_->value();
+  o.cavity_closing_radius = cavityClosing_->value();
+  o.smoothing_sigma = smoothing_->value();
   return o;
 }
 

@@ -43,6 +43,7 @@ class SegmentationDialog : public QDialog {
 
   QLabel *heading_, *madeAt_;
   QDoubleSpinBox *edgeLength_, *browClearance_, *chinClearance_, *earClearance_;
+  QDoubleSpinBox *minThickness_, *maxDepth_, *boneGap_, *cavityClosing_, *smoothing_;  // the soft-tissue layer
   QCheckBox* coarsenLargeFaces_;
   QComboBox *anterior_, *superior_;
   std::array<OptionalNumber, kNumbers> numbers_;

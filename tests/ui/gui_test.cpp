@@ -625,6 +625,11 @@ void GuiTest::segmentationDialogRoundTripsItsOptions() {
           !o.cuts.centre_x && !o.cuts.head_turn && !o.cuts.head_pitch);
   QVERIFY(o.orientation.anterior.empty() && o.orientation.superior.empty());
   QCOMPARE(o.cuts.ear_clearance, defaults.cuts.ear_clearance);
+  QCOMPARE(o.min_thickness, defaults.min_thickness);
+  QCOMPARE(o.max_depth, defaults.max_depth);
+  QCOMPARE(o.bone_gap_radius, defaults.bone_gap_radius);
+  QCOMPARE(o.cavity_closing_radius, defaults.cavity_closing_radius);
+  QCOMPARE(o.smoothing_sigma, defaults.smoothing_sigma);
 
   SegmentOptions given;
   given.tets.target_edge_length = 3.5;
@@ -637,8 +642,21 @@ void GuiTest::segmentationDialogRoundTripsItsOptions() {
   given.cuts.head_pitch = 14;
   given.cuts.ear_clearance = 5;
   given.orientation.anterior = "-y";
+  // The soft-tissue layer's settings, which a segmentation's error names when its surface has tunnels.
+  given.min_thickness = 5;
+  given.max_depth = 20;
+  given.bone_gap_radius = 3.5;
+  given.cavity_closing_radius = 6;
+  given.smoothing_sigma = 2.2;
   dialog.setOptions(given);
   o = dialog.options();
+  QCOMPARE(o.min_thickness, 5.0);
+  QCOMPARE(o.max_depth, 20.0);
+  QCOMPARE(o.bone_gap_radius, 3.5);
+  QCOMPARE(o.cavity_closing_radius, 6.0);
+  QCOMPARE(o.smoothing_sigma, 2.2);
+  dialog.findChild<QDoubleSpinBox*>("segmentMinThickness")->setValue(4);
+  QCOMPARE(dialog.options().min_thickness, 4.0);
   QCOMPARE(o.tets.target_edge_length, 3.5);
   QCOMPARE(o.coarsen_above_tets, 0.0);
   QVERIFY(!o.follow_scan_spacing);
