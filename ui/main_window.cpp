@@ -24,6 +24,7 @@
 #include <QToolBar>
 #include <QUndoGroup>
 #include <QUndoStack>
+#include <utility>
 
 #include "core/io/mesh_io.h"
 #include "core/segment/ct_volume.h"
@@ -90,15 +91,25 @@ MainWindow::MainWindow(QWidget* parent)
 
   segmentationDialog_ = new SegmentationDialog(this);
   connect(segmentationDialog_, &QDialog::accepted, this, [this] {
-    if (!controller_->openPatient(segmentationCt_, segmentationDialog_->options())) note(tr(kBusy));
+    segmenting_ = controller_->openPatient(segmentationCt_, segmentationDialog_->options());
+    if (!segmenting_) note(tr(kBusy));
   });
   createActions();
   createMenusAndToolbar();
   createDocks();
   createStatusBar();
 
-  connect(controller_, &TransferController::failed, this, [this](const QString& m) { reportError(m); });
+  connect(controller_, &TransferController::failed, this, [this](const QString& m) {
+    reportError(m);
+    // A segmentation the dialog started: the dialog again, as the user left it, saying why and which of its settings
+    // the error names, for the user to change one and segment again.
+    if (std::exchange(segmenting_, false)) {
+      segmentationDialog_->showFailure(m);
+      segmentationDialog_->open();
+    }
+  });
   connect(controller_, &TransferController::finished, this, [this](const QString& m, const QStringList& detail) {
+    segmenting_ = false;
     statusBar()->showMessage(m);
     statusBar()->setToolTip(m);  // the whole line, when the bar cuts it (a segmentation lists its thresholds and cuts)
     log_->add(MessageLog::Kind::Outcome, m, detail);

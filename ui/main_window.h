@@ -101,7 +101,8 @@ class MainWindow : public QMainWindow {
   MessageLog* log_ = nullptr;
   QDockWidget *constraintsDock_ = nullptr, *displayDock_ = nullptr, *analysisDock_ = nullptr;
   SegmentationDialog* segmentationDialog_ = nullptr;
-  QString segmentationCt_;  // the CT the dialog is asking about
+  QString segmentationCt_;   // the CT the dialog is asking about
+  bool segmenting_ = false;  // the controller is segmenting segmentationCt_ as the dialog asked
   ErrorReporter reportError_;
 
   QAction *openPatient_, *resegment_, *openDicom_, *openDemo_, *openStandardFile_, *loadConstraints_,

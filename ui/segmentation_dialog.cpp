@@ -10,7 +10,9 @@
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QPushButton>
+#include <QRegularExpression>
 #include <QVBoxLayout>
+#include <utility>
 
 namespace facehex::gui {
 namespace {
@@ -57,6 +59,12 @@ SegmentationDialog::SegmentationDialog(QWidget* parent) : QDialog(parent) {
   heading_ = new QLabel(this);
   heading_->setWordWrap(true);
   layout->addWidget(heading_);
+  failure_ = new QLabel(this);
+  failure_->setObjectName("segmentFailure");
+  failure_->setWordWrap(true);
+  failure_->setStyleSheet("color: #b00020;");
+  failure_->hide();
+  layout->addWidget(failure_);
 
   auto* form = new QFormLayout;
   edgeLength_ = spinBox(0.5, 20, tr(" mm"), "segmentEdgeLength", this);
@@ -170,6 +178,42 @@ void SegmentationDialog::setCt(const QString& path) {
                                          .arg(QFileInfo(path).fileName().toHtmlEscaped()));
   heading_->setToolTip(path);
   madeAt_->hide();  // until showFound says how this CT's model was made
+  failure_->hide();
+}
+
+void SegmentationDialog::showFailure(const QString& message) {
+  // The command line's options and the settings of this dialog that set the same.
+  const std::pair<const char*, QString> settings[] = {{"--edge-length", tr("Tet edge length")},
+                                                      {"--anterior", tr("Face looks along")},
+                                                      {"--superior", tr("Top of the head along")},
+                                                      {"--skin", tr("Skin threshold")},
+                                                      {"--bone", tr("Bone threshold")},
+                                                      {"--head-turn", tr("Head turn")},
+                                                      {"--head-pitch", tr("Head pitch")},
+                                                      {"--top-cut", tr("Top cut z")},
+                                                      {"--bottom-cut", tr("Bottom cut z")},
+                                                      {"--posterior-cut", tr("Posterior cut y")},
+                                                      {"--mid-plane", tr("Mid-plane x")},
+                                                      {"--brow-clearance", tr("Brow clearance")},
+                                                      {"--chin-clearance", tr("Chin clearance")},
+                                                      {"--ear-clearance", tr("Ear clearance")},
+                                                      {"--min-thickness", tr("Min thickness")},
+                                                      {"--max-depth", tr("Max depth")},
+                                                      {"--bone-gap", tr("Bone gap")},
+                                                      {"--cavity-closing", tr("Cavity closing")},
+                                                      {"--smoothing", tr("Smoothing")}};
+  QStringList named;
+  for (const auto& [option, label] : settings)
+    if (message.contains(QRegularExpression(QRegularExpression::escape(option) + "(?![\\w-])"))) named << label;
+  // The first lines of a long message (a second attempt's reasons follow the first's): the dialog stays short enough
+  // for a laptop's screen; the tooltip and the Messages tab have all of it.
+  constexpr int kShownCharacters = 320;
+  const QString shown = message.size() > kShownCharacters ? message.left(kShownCharacters) + "\u2026" : message;
+  QString text = tr("The last segmentation stopped: %1").arg(shown.toHtmlEscaped());
+  if (!named.isEmpty()) text += tr("<br><b>In this dialog: %1.</b>").arg(named.join(", "));
+  failure_->setText(text);
+  failure_->setToolTip(message);
+  failure_->show();
 }
 
 void SegmentationDialog::setOptions(const SegmentOptions& o) {

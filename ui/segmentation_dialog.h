@@ -30,6 +30,9 @@ class SegmentationDialog : public QDialog {
   // What a segmentation of this CT found: its thresholds and cuts in the boxes that are still automatic, and the
   // edge length its tets were made at under the edge length's box.
   void showFound(const CtSegmentation& segmentation);
+  // Why the last segmentation of this CT stopped, above the settings, with the settings of this dialog its message
+  // names (it names the command line's options); until setCt.
+  void showFailure(const QString& message);
 
  private:
   // A number that is either automatic (box disabled, showing the found value if any) or given.
@@ -41,7 +44,7 @@ class SegmentationDialog : public QDialog {
   };
   enum Number { Skin, Bone, HeadTurnAngle, HeadPitchAngle, TopCut, BottomCut, PosteriorCut, MidPlane, kNumbers };
 
-  QLabel *heading_, *madeAt_;
+  QLabel *heading_, *failure_, *madeAt_;
   QDoubleSpinBox *edgeLength_, *browClearance_, *chinClearance_, *earClearance_;
   QDoubleSpinBox *minThickness_, *maxDepth_, *boneGap_, *cavityClosing_, *smoothing_;  // the soft-tissue layer
   QCheckBox* coarsenLargeFaces_;

@@ -43,7 +43,9 @@
 #include "core/mesh/hex_to_tets.h"
 #include "core/mesh/tet_topology.h"
 #include "core/quality/hex_quality.h"
+#include "core/segment/ct_volume.h"
 #include "core/segment/patient_input.h"
+#include "core/segment/voxel_grid.h"
 #include "core/standard/parameterization_cache.h"
 #include "core/standard/standard_features.h"
 #include "core/util/error.h"
@@ -84,6 +86,7 @@ class GuiTest : public QObject {
   void opensAndSegmentsTheBundledCt();
   void segmentationDialogRoundTripsItsOptions();
   void segmentAgainStartsFromWhatWasFoundAndTakesACut();
+  void aFailedSegmentationAsksAgainNamingItsSettings();
   void opensModelsFromFiles();
   void aSmallerModelReplacingALargerOneKeepsThePlaneSelectionValid();
   void computesTheFields();
@@ -747,6 +750,47 @@ void GuiTest::segmentAgainStartsFromWhatWasFoundAndTakesACut() {
   const QString status = finished.first().first().toString();
   QVERIFY2(status.contains(QString("posterior y %1").arg(found.posterior_y + 8, 0, 'f', 1)), qPrintable(status));
   QCOMPARE(window_->statusBar()->toolTip(), status);  // the whole line, which the status bar cuts
+}
+
+void GuiTest::aFailedSegmentationAsksAgainNamingItsSettings() {
+  // The bundled CT cropped across the cheeks: its segmentation stops (the scan holds too little of the face) naming
+  // --posterior-cut. The dialog opens again as the user left it, says why, and names its own setting for it; with the
+  // posterior cut given there, the CT is segmented.
+  CtVolume cheeks = read_ct_volume(default_ct());
+  cheeks.intensity = crop(cheeks.intensity, {13, 0, 0}, {51, 64, 93});
+  const QString ct = dir_.filePath("cheeks.mha");
+  write_ct_volume(ct.toStdString(), cheeks);
+  window_->openPatient(ct);
+  SegmentationDialog* dialog = window_->segmentationDialog();
+  QVERIFY(dialog->isVisible());
+  QVERIFY(!dialog->findChild<QLabel*>("segmentFailure")->isVisible());
+  dialog->findChild<QDoubleSpinBox*>("segmentEarClearance")->setValue(7);
+  dialog->findChild<QPushButton*>("segmentButton")->click();
+  QVERIFY(window_->controller()->waitUntilIdle());
+  const QString stopped = takeError();
+  QVERIFY2(stopped.contains("the scan ends across the head"), qPrintable(stopped));
+  QVERIFY(!session()->hasModel(Role::Patient));
+  QVERIFY(dialog->isVisible());
+  const QLabel* failure = dialog->findChild<QLabel*>("segmentFailure");
+  QVERIFY(failure->isVisible());
+  const QString text = failure->text();
+  QVERIFY2(text.contains("In this dialog:") && text.mid(text.indexOf("In this dialog:")).contains("Posterior cut y"),
+           qPrintable(text));
+  QCOMPARE(failure->toolTip(), stopped);  // all of it, however much the label shows
+  QCOMPARE(dialog->findChild<QDoubleSpinBox*>("segmentEarClearance")->value(), 7.0);  // as the user left it
+
+  dialog->findChild<QCheckBox*>("segmentPosteriorCutAutomatic")->setChecked(false);
+  dialog->findChild<QDoubleSpinBox*>("segmentPosteriorCut")->setValue(150);
+  dialog->findChild<QPushButton*>("segmentButton")->click();
+  QVERIFY(window_->controller()->waitUntilIdle());
+  QVERIFY2(error_.isEmpty(), qPrintable(takeError()));
+  QVERIFY(!dialog->isVisible());
+  QVERIFY(session()->hasModel(Role::Patient));
+  QCOMPARE(session()->model(Role::Patient).segmentation->cuts.posterior_y, 150.0);
+  // Another CT starts without the message.
+  window_->openPatient(QString::fromStdString(default_ct()));
+  QVERIFY(!failure->isVisible());
+  dialog->reject();
 }
 
 void GuiTest::aSmallerModelReplacingALargerOneKeepsThePlaneSelectionValid() {
