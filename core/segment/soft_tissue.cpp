@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <set>
 #include <sstream>
@@ -77,6 +78,13 @@ GridGeometry working_grid(const Field& ct, double spacing, double skin, double b
 std::string number(double v) {
   std::ostringstream s;
   s << v;
+  return s.str();
+}
+
+// Degrees as the summary prints them.
+std::string degrees(double v) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(1) << v;
   return s.str();
 }
 
@@ -383,9 +391,9 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
     const Error stated =
         !turn.turned()
             ? e
-            : Error(e.subject(), e.problem() + " (the head was looked for turned " + number(turn.degrees) +
+            : Error(e.subject(), e.problem() + " (the head was looked for turned " + degrees(turn.degrees) +
                                      " degrees about the vertical axis" +
-                                     (turn.pitch != 0 ? " and pitched " + number(turn.pitch) + " degrees" : "") +
+                                     (turn.pitch != 0 ? " and pitched " + degrees(turn.pitch) + " degrees" : "") +
                                      "; --head-turn sets the turn" +
                                      (turn.pitch != 0 ? ", --head-pitch the pitch" : "") + ", 0 for none)");
     throw FaceNotFound(stated, palate);
