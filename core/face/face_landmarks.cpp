@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -133,6 +134,19 @@ struct Profile {
     if (best && best->second - best->first >= min_length) return best;
     return std::nullopt;
   }
+
+  // True if, going down from z_top to z_bottom, the profile comes forward again by more than `rise` mm after
+  // receding: a hollow and a bump (the subnasale and an upper lip), not a nose's underside, which only recedes.
+  bool comes_forward_below(double z_top, double z_bottom, double rise) const {
+    double deepest = std::numeric_limits<double>::infinity();
+    for (size_t b = bins.size(); b-- > 0;) {
+      const double z = z0 + static_cast<double>(b) + 0.5;
+      if (z > z_top || z < z_bottom || !bins[b]) continue;
+      deepest = std::min(deepest, bins[b]->y());
+      if (bins[b]->y() > deepest + rise) return true;
+    }
+    return false;
+  }
 };
 
 Profile skin_profile(const Eigen::MatrixXd& V, const std::vector<int>& skin, const MidSagittalPlane& plane,
@@ -198,6 +212,8 @@ constexpr double kTurnTolerances[] = {1.5, 1.0, 0.5};
 // mm below the nose within which the lips are looked for; the second reach only when the first does not show all four
 // (a slanted field-of-view cut's lowest point, taken for the nose, can be well above the tip).
 constexpr double kLipsReaches[] = {50.0, 65.0};
+// mm: a profile that comes this far forward again below a field-of-view cut's flat front shows the lips there
+constexpr double kLipRise = 1.0;
 // mm from the subnasale's hollow down to the stomion's, at least (an adult's upper lip is 15-25 mm tall).
 constexpr double kMinUpperLipHeight = 10.0;
 // mm: an adult's nasion lies this far from the subnasale (check_plausible); the lower bound is about three standard
@@ -345,9 +361,15 @@ FaceLandmarks find_in_head_frame(const Eigen::MatrixXd& V, const Eigen::VectorXi
   }
   const Profile profile = skin_profile(V, skin, l.plane, options.profile_band);
   const Eigen::Vector3d front = require(profile.extreme(zmin + 0.1 * height, zmax - 0.1 * height, true), "nose tip");
-  const std::optional<std::pair<double, double>> cut =
+  std::optional<std::pair<double, double>> cut =
       profile.clipped_run(front.y(), options.clipped_depth, options.clipped_length);
-  if (cut) l.clipped_from = cut->first, l.clipped_to = cut->second;
+  // A cut that clipped the nose back to the lips' level holds the subnasale's hollow and the upper lip in a plateau as
+  // deep as a coarse model's roughness needs: the cut is then its flat front, above them.
+  if (cut) {
+    const auto flat = profile.clipped_run(front.y(), options.clipped_flat_depth, options.clipped_length);
+    if (flat && flat->first > cut->first && profile.comes_forward_below(flat->first, cut->first, kLipRise)) cut = flat;
+    l.clipped_from = cut->first, l.clipped_to = cut->second;
+  }
   // The nose as the profile shows it: its tip, or the lowest point of the cut.
   const Eigen::Vector3d nose = cut ? require(profile.extreme(cut->first - 1, cut->first + 1, true), "nose") : front;
   // The lips: going down from the nose, the profile's turns (Profile::turns_below) are the subnasale's hollow, the
@@ -369,7 +391,15 @@ FaceLandmarks find_in_head_frame(const Eigen::MatrixXd& V, const Eigen::VectorXi
     if (turns.size() >= 4) break;
   }
   const char* lips[] = {"subnasale", "upper lip", "stomion", "lower lip"};
-  if (turns.size() < 4) require(std::nullopt, lips[turns.size()]);
+  if (turns.size() < 4) {
+    if (!cut) require(std::nullopt, lips[turns.size()]);
+    std::ostringstream message;
+    message << std::fixed << std::setprecision(1) << "cannot find the " << lips[turns.size()]
+            << " on the mid-sagittal skin profile below where the scan's field of view cuts the face flat (z "
+            << cut->first << " to " << cut->second
+            << " mm): the cut may reach the lips; give the landmarks with --landmarks FILE";
+    throw Error("landmarks", message.str());
+  }
   // The upper lip's front can be flat, and its turn then a corner of the lip's rise: labrale superius is the most
   // anterior point between the hollows either side of it.
   const Eigen::Vector3d st = turns[2].point, li = turns[3].point;

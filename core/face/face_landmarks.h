@@ -30,7 +30,9 @@
 // A field-of-view cut: when the front of the profile is a plateau (within clipped_depth of its most anterior point;
 // bins without a vertex, between the vertices of a coarse model, neither end nor extend it) at least clipped_length
 // long, the scan cut the face flat there (a nose drops more than that within 25 mm of its
-// tip). The lips and subnasale are found below it as above (the cut's lowest point standing for the nose). When the
+// tip; a plateau below whose flat front, within clipped_flat_depth, the profile recedes and comes forward again by
+// more than 1 mm holds the subnasale and the upper lip, and the cut is that flat front). The lips and subnasale are
+// found below it as above (the cut's lowest point standing for the nose). When the
 // cut ends well below the top of the skin (the nose alone was cut), the pronasale is estimated at the cut's middle and
 // the nasion and glabella are found above the cut, unless the nasion found there lies further from the subnasale than
 // an adult's (70 mm: the cut reached past it); otherwise the pronasale, nasion and glabella are placed by typical
@@ -75,6 +77,8 @@ struct LandmarkOptions {
   double profile_band = 1.5;     // mm
   double clipped_depth = 3.5;    // mm: profile points this close to the most anterior one are on a front plateau
   double clipped_length = 25.0;  // mm: a front plateau this long is a field-of-view cut, not anatomy
+  // mm: a field-of-view cut's flat front, where its plateau holds the lips (a nose clipped back to their level)
+  double clipped_flat_depth = 1.5;
   // The mid-sagittal plane when it is known (the CT's, core/segment/face_anatomy.h: the whole head's symmetry reads it
   // better than the skin of the face alone, and its lean too); else the skin's vertical mirror plane.
   std::optional<MidSagittalPlane> mid_sagittal_plane;

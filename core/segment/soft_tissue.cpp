@@ -365,8 +365,10 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   const Mask body = open(raw_body, options.opening_radius);
   // Where the scan ends across the head (core/segment/field_of_view.h).
   const GridGeometry& scan_grid = ct.intensity.geometry;
-  const ScanSides scan_sides{
-      {scan_grid.lower(0), scan_grid.lower(1)}, {scan_grid.upper(0), scan_grid.upper(1)}, model.cuts.turn};
+  const ScanSides scan_sides{{scan_grid.lower(0), scan_grid.lower(1)},
+                             {scan_grid.upper(0), scan_grid.upper(1)},
+                             find_reconstruction_disc(ct.intensity),
+                             model.cuts.turn};
   const std::vector<FieldOfViewContact> scan_edge = field_of_view_contacts(
       raw_body, scan_sides, -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity());
   // The trachea leaves through the bottom slice and the head through the top: only the x and y faces of the grid

@@ -363,6 +363,39 @@ TEST(FaceLandmarks, AFieldOfViewCutIsFoundBetweenSparseVertices) {
   EXPECT_NO_THROW(check_plausible(l, "test"));
 }
 
+// A nose clipped by the field of view back to the lips' level: the cut (y 89.3, z -1 to 24) stands 2.8 mm in front of
+// the subnasale's hollow (z -5 to -20) and 1 mm in front of the upper lip (z -22 to -25), both within the plateau depth
+// that a coarse model's roughness needs; the forehead above, with the nasion's hollow at z 30.
+const std::vector<Eigen::Vector2d> kClippedToTheLips = {{60, 84},   {42, 85},    {30, 80},    {24, 89.3},  {-1, 89.3},
+                                                        {-5, 86.5}, {-20, 86.5}, {-22, 88.3}, {-25, 88.3}, {-30, 84},
+                                                        {-36, 87},  {-44, 80},   {-54, 86},   {-62, 76},   {-70, 70}};
+
+TEST(FaceLandmarks, ACutLevelWithTheLipsEndsAtTheFlatFront) {
+  for (unsigned seed : {1u, 2u, 3u}) {
+    const FaceLandmarks l = profile_landmarks(kClippedToTheLips, 0.2, seed);
+    EXPECT_NEAR(l.clipped_from, -4, 1.5) << seed;
+    EXPECT_NEAR(l.clipped_to, 24, 1.5) << seed;
+    EXPECT_EQ(l.estimated, std::vector<std::string>{"pronasale"}) << seed;
+    const std::map<std::string, double> expected_z = {
+        {"subnasale", -5}, {"labrale superius", -23.5}, {"stomion", -30}, {"labrale inferius", -36}, {"nasion", 30}};
+    for (const auto& [name, z] : expected_z) EXPECT_NEAR(l.points.at(name).z(), z, 2.0) << name << ", seed " << seed;
+  }
+}
+
+TEST(FaceLandmarks, ACutThatTookTheLipsIsNamedInTheError) {
+  // The same cut carried down to z -40: the lips lie inside it, and the error says where the cut is.
+  std::vector<Eigen::Vector2d> corners(kClippedToTheLips.begin(), kClippedToTheLips.begin() + 4);
+  corners.insert(corners.end(), {{-40, 89.3}, {-44, 80}, {-54, 86}, {-62, 76}, {-70, 70}});
+  try {
+    profile_landmarks(corners, 0.0, 1);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("field of view cuts the face flat (z "), std::string::npos) << what;
+    EXPECT_NE(what.find("--landmarks FILE"), std::string::npos) << what;
+  }
+}
+
 TEST(FaceLandmarks, MouthCornersAreWhereTheLipsEnd) {
   // On the fine sampling and on rows 4 mm apart: the corners inside the lips' taper (20-26 mm from the midline), mirror
   // images of each other, on the mouth line under the upper lip (between the stomion and the labrale superius).

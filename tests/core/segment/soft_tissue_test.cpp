@@ -464,6 +464,46 @@ TEST(SoftTissue, AScanThatEndsBehindTheFaceIsCutWhereItEnds) {
   EXPECT_GE(cut.mesh.V.col(1).minCoeff(), cut.cuts.posterior_y - 1e-4);
 }
 
+// The bundled CT as a scanner would have reconstructed it in a disc about `centre` (x, y mm): the columns beyond
+// `radius` hold the CT's lowest value in every slice.
+CtVolume bundled_ct_in_disc(const Eigen::Vector2d& centre, double radius) {
+  CtVolume ct = read_ct_volume(default_ct());
+  const GridGeometry& g = ct.intensity.geometry;
+  const float lowest = *std::min_element(ct.intensity.data.begin(), ct.intensity.data.end());
+  for (int k = 0; k < g.dims[2]; ++k)
+    for (int j = 0; j < g.dims[1]; ++j)
+      for (int i = 0; i < g.dims[0]; ++i)
+        if ((g.point(i, j, k).head<2>() - centre).norm() > radius) ct.intensity(i, j, k) = lowest;
+  return ct;
+}
+
+TEST(SoftTissue, AScanReconstructedInADiscNarrowerThanTheHeadIsCutInFrontOfWhereItEnds) {
+  // A disc of radius 82 mm about (97.6, 145): the nose tip (y 184) lies inside it, the sides of the head behind the
+  // face outside it, and the ears (tragi at y 91) beyond it. The scan ends across the head on the disc's edge, inside
+  // the volume's box: the posterior cut is placed in front of that, as where a box ends across the head.
+  const CtVolume ct = read_ct_volume(default_ct());
+  const PatientModel whole = build_patient_model(ct);
+  SegmentOptions same_thresholds;  // the fill changes the histogram's air
+  same_thresholds.skin_threshold = whole.thresholds.skin;
+  same_thresholds.bone_threshold = whole.thresholds.bone;
+  const Eigen::Vector2d centre(97.6, 145);
+  constexpr double radius = 82;
+  const PatientModel cut = build_patient_model(bundled_ct_in_disc(centre, radius), same_thresholds);
+  expect_valid_patient(cut);
+  ASSERT_TRUE(cut.cuts.scan_edge_y);
+  EXPECT_TRUE(cut.cuts.posterior_at_scan_edge);
+  EXPECT_GT(*cut.cuts.scan_edge_y, whole.cuts.posterior_y);
+  EXPECT_LT(*cut.cuts.scan_edge_y, centre.y());
+  EXPECT_NEAR(cut.cuts.posterior_y, *cut.cuts.scan_edge_y + FaceCutOptions{}.border_margin, 0.5);
+  EXPECT_GE(cut.mesh.V.col(1).minCoeff(), cut.cuts.posterior_y - 1e-4);
+  // Everything meshed lies in the disc, and the face in front is the same.
+  for (int v = 0; v < cut.mesh.V.rows(); ++v)
+    ASSERT_LE((cut.mesh.V.row(v).head<2>().transpose() - centre).norm(), radius + 1e-6) << v;
+  EXPECT_NEAR(cut.cuts.top_z, whole.cuts.top_z, 0.5);
+  EXPECT_NEAR(cut.cuts.bottom_z, whole.cuts.bottom_z, 0.5);
+  EXPECT_NEAR(cut.mesh.V.col(1).maxCoeff(), whole.mesh.V.col(1).maxCoeff(), 1.0);
+}
+
 TEST(SoftTissue, AScanThatEndsBehindTheEarsKeepsTheEarsCut) {
   // The bundled CT cropped at y 38.4 mm, across the back of the head well behind the ears: the ears are in the scan
   // and place the posterior cut, as on the whole scan.
