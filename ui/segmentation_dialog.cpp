@@ -69,7 +69,12 @@ SegmentationDialog::SegmentationDialog(QWidget* parent) : QDialog(parent) {
   auto* form = new QFormLayout;
   edgeLength_ = spinBox(0.5, 20, tr(" mm"), "segmentEdgeLength", this);
   edgeLength_->setToolTip(tr("Target mean edge length of the tets (the paper: about 2 mm). Coarser is faster."));
-  form->addRow(tr("Tet edge length"), edgeLength_);
+  // A row of a form, and the command line's option it sets.
+  const auto addRow = [&](QFormLayout* into, const QString& label, auto* field, const QString& option) {
+    into->addRow(label, field);
+    rowOfOption_.emplace_back(option, label);
+  };
+  addRow(form, tr("Tet edge length"), edgeLength_, "--edge-length");
   coarsenLargeFaces_ = new QCheckBox(tr("coarser for a coarse scan or a large face"), this);
   coarsenLargeFaces_->setObjectName("segmentCoarsenLargeFaces");
   coarsenLargeFaces_->setToolTip(
@@ -84,11 +89,11 @@ SegmentationDialog::SegmentationDialog(QWidget* parent) : QDialog(parent) {
   form->addRow(QString(), madeAt_);
   anterior_ = axisChoice("segmentAnterior", "+y", this);
   superior_ = axisChoice("segmentSuperior", "+z", this);
-  form->addRow(tr("Face looks along"), anterior_);
-  form->addRow(tr("Top of the head along"), superior_);
+  addRow(form, tr("Face looks along"), anterior_, "--anterior");
+  addRow(form, tr("Top of the head along"), superior_, "--superior");
 
   const auto addNumber = [&](Number n, const QString& label, double lo, double hi, const QString& suffix,
-                             const QString& name, const QString& tip) {
+                             const QString& name, const QString& option, const QString& tip) {
     OptionalNumber& number = numbers_[n];
     number.automatic = new QCheckBox(tr("automatic"), this);
     number.automatic->setObjectName(name + "Automatic");
@@ -101,19 +106,19 @@ SegmentationDialog::SegmentationDialog(QWidget* parent) : QDialog(parent) {
     auto* row = new QHBoxLayout;
     row->addWidget(number.automatic);
     row->addWidget(number.value, 1);
-    form->addRow(label, row);
+    addRow(form, label, row, option);
   };
   const QString units = tr("in the file's intensity units (Hounsfield units when the file says so)");
-  addNumber(Skin, tr("Skin threshold"), -1e5, 1e5, QString(), "segmentSkin",
+  addNumber(Skin, tr("Skin threshold"), -1e5, 1e5, QString(), "segmentSkin", "--skin",
             tr("Body above this intensity; automatic: from the histogram. ") + units);
-  addNumber(Bone, tr("Bone threshold"), -1e5, 1e5, QString(), "segmentBone",
+  addNumber(Bone, tr("Bone threshold"), -1e5, 1e5, QString(), "segmentBone", "--bone",
             tr("Bone above this intensity; automatic: from the histogram. ") + units);
-  addNumber(HeadTurnAngle, tr("Head turn"), -45, 45, tr(" deg"), "segmentHeadTurn",
+  addNumber(HeadTurnAngle, tr("Head turn"), -45, 45, tr(" deg"), "segmentHeadTurn", "--head-turn",
             tr("Degrees the head is turned about the vertical axis in the scanner, towards +x from +y; the cuts are "
                "placed in the head frame turned back by it, and the model stays in the CT's frame. Automatic: from "
                "the head's mirror symmetry, none under 2 degrees; 0: the CT's own frame."));
   addNumber(
-      HeadPitchAngle, tr("Head pitch"), -45, 45, tr(" deg"), "segmentHeadPitch",
+      HeadPitchAngle, tr("Head pitch"), -45, 45, tr(" deg"), "segmentHeadPitch", "--head-pitch",
       tr("Degrees the head is pitched (nodding) about the lateral axis in the scanner, positive with the chin "
          "raised; the cuts are placed in the head frame pitched back by it, and the model stays in the CT's "
          "frame. Automatic: the CT's own frame, or the hard palate's slope when the face or its landmarks are not "
@@ -121,21 +126,21 @@ SegmentationDialog::SegmentationDialog(QWidget* parent) : QDialog(parent) {
   const QString frame =
       tr("Millimetres in the head frame: the file's coordinates, axes swapped or negated so the face looks to +y "
          "and the top of the head is +z, turned and pitched back by the head's turn and pitch.");
-  addNumber(TopCut, tr("Top cut z"), -1e4, 1e4, tr(" mm"), "segmentTopCut",
+  addNumber(TopCut, tr("Top cut z"), -1e4, 1e4, tr(" mm"), "segmentTopCut", "--top-cut",
             tr("Automatic: the brow clearance above the glabella, within the CT. ") + frame);
-  addNumber(BottomCut, tr("Bottom cut z"), -1e4, 1e4, tr(" mm"), "segmentBottomCut",
+  addNumber(BottomCut, tr("Bottom cut z"), -1e4, 1e4, tr(" mm"), "segmentBottomCut", "--bottom-cut",
             tr("Automatic: the chin clearance below the chin's bone. ") + frame);
-  addNumber(PosteriorCut, tr("Posterior cut y"), -1e4, 1e4, tr(" mm"), "segmentPosteriorCut",
+  addNumber(PosteriorCut, tr("Posterior cut y"), -1e4, 1e4, tr(" mm"), "segmentPosteriorCut", "--posterior-cut",
             tr("Automatic: the ear clearance in front of the ears. ") + frame);
   addNumber(
-      MidPlane, tr("Mid-plane x"), -1e4, 1e4, tr(" mm"), "segmentMidPlane",
+      MidPlane, tr("Mid-plane x"), -1e4, 1e4, tr(" mm"), "segmentMidPlane", "--mid-plane",
       tr("Divides the posterior cut into the u0 and u1 ends; automatic: the face's mirror-symmetry plane. ") + frame);
   browClearance_ = spinBox(0, 100, tr(" mm"), "segmentBrowClearance", this);
   chinClearance_ = spinBox(0, 100, tr(" mm"), "segmentChinClearance", this);
   earClearance_ = spinBox(0, 100, tr(" mm"), "segmentEarClearance", this);
-  form->addRow(tr("Brow clearance (automatic top cut)"), browClearance_);
-  form->addRow(tr("Chin clearance (automatic bottom cut)"), chinClearance_);
-  form->addRow(tr("Ear clearance (automatic posterior cut)"), earClearance_);
+  addRow(form, tr("Brow clearance (automatic top cut)"), browClearance_, "--brow-clearance");
+  addRow(form, tr("Chin clearance (automatic bottom cut)"), chinClearance_, "--chin-clearance");
+  addRow(form, tr("Ear clearance (automatic posterior cut)"), earClearance_, "--ear-clearance");
   // The soft-tissue layer's settings, beside the rest (the dialog stays short enough for a laptop's screen): the ones
   // a segmentation's error names when its surface has tunnels (docs/segmentation.md).
   auto* tissue = new QGroupBox(tr("Soft-tissue layer"), this);
@@ -144,7 +149,7 @@ SegmentationDialog::SegmentationDialog(QWidget* parent) : QDialog(parent) {
                              const QString& option, const QString& tip) {
     box = spinBox(lo, 100, tr(" mm"), name, this);
     box->setToolTip(tip + tr(" (the command line's %1)").arg(option));
-    tissueForm->addRow(label, box);
+    addRow(tissueForm, label, box, option);
   };
   addLength(minThickness_, tr("Min thickness"), 0, "segmentMinThickness", "--min-thickness",
             tr("Tissue this close below the skin is always in the model, bone or not (thin skin over bone)."));
@@ -182,28 +187,8 @@ void SegmentationDialog::setCt(const QString& path) {
 }
 
 void SegmentationDialog::showFailure(const QString& message) {
-  // The command line's options and the settings of this dialog that set the same.
-  const std::pair<const char*, QString> settings[] = {{"--edge-length", tr("Tet edge length")},
-                                                      {"--anterior", tr("Face looks along")},
-                                                      {"--superior", tr("Top of the head along")},
-                                                      {"--skin", tr("Skin threshold")},
-                                                      {"--bone", tr("Bone threshold")},
-                                                      {"--head-turn", tr("Head turn")},
-                                                      {"--head-pitch", tr("Head pitch")},
-                                                      {"--top-cut", tr("Top cut z")},
-                                                      {"--bottom-cut", tr("Bottom cut z")},
-                                                      {"--posterior-cut", tr("Posterior cut y")},
-                                                      {"--mid-plane", tr("Mid-plane x")},
-                                                      {"--brow-clearance", tr("Brow clearance")},
-                                                      {"--chin-clearance", tr("Chin clearance")},
-                                                      {"--ear-clearance", tr("Ear clearance")},
-                                                      {"--min-thickness", tr("Min thickness")},
-                                                      {"--max-depth", tr("Max depth")},
-                                                      {"--bone-gap", tr("Bone gap")},
-                                                      {"--cavity-closing", tr("Cavity closing")},
-                                                      {"--smoothing", tr("Smoothing")}};
   QStringList named;
-  for (const auto& [option, label] : settings)
+  for (const auto& [option, label] : rowOfOption_)
     if (message.contains(QRegularExpression(QRegularExpression::escape(option) + "(?![\\w-])"))) named << label;
   // The first lines of a long message (a second attempt's reasons follow the first's): the dialog stays short enough
   // for a laptop's screen; the tooltip and the Messages tab have all of it.

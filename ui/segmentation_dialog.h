@@ -6,7 +6,10 @@
 // one starts from it (the loop: segment, look, move a cut, segment again). The same options as `facehex segment`, with
 // the same defaults.
 #include <QDialog>
+#include <QString>
 #include <array>
+#include <utility>
+#include <vector>
 
 #include "core/segment/patient_input.h"
 #include "core/segment/soft_tissue.h"
@@ -50,6 +53,8 @@ class SegmentationDialog : public QDialog {
   QCheckBox* coarsenLargeFaces_;
   QComboBox *anterior_, *superior_;
   std::array<OptionalNumber, kNumbers> numbers_;
+  // Each row's label and the command line's option it sets, in the dialog's order (showFailure names the rows).
+  std::vector<std::pair<QString, QString>> rowOfOption_;
 };
 
 }  // namespace facehex::gui
