@@ -196,7 +196,7 @@ CtVolume read_ct_volume(const std::string& path, const CtOrientation& orientatio
   CtOrientation axes = orientation;  // a side not stated: the file's own orientation if it has one, else +y / +z
   if (fs::is_directory(path)) {
     DicomVolume dicom = read_dicom_series(path);
-    ct = CtVolume{std::move(dicom.intensity), path};
+    ct = CtVolume{std::move(dicom.intensity), path, dicom.gantry_tilt_degrees};
     if (axes.anterior.empty()) axes.anterior = dicom.anterior;
     if (axes.superior.empty()) axes.superior = dicom.superior;
   } else {
@@ -274,6 +274,7 @@ CtVolume reorient(CtVolume ct, const CtOrientation& orientation) {
   const GridGeometry& old_g = ct.intensity.geometry;
   CtVolume out;
   out.source = ct.source;
+  out.gantry_tilt_degrees = ct.gantry_tilt_degrees;
   GridGeometry& g = out.intensity.geometry;
   for (int a = 0; a < 3; ++a) {
     const int s = source[a];

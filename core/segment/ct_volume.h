@@ -11,6 +11,9 @@ namespace facehex {
 struct CtVolume {
   Field intensity;     // file units (Hounsfield units when the file says so; any monotone scale works)
   std::string source;  // file or folder it was read from, for messages
+  // A DICOM series acquired with its gantry tilted, resampled onto an upright grid (dicom_series.h): the tilt, degrees;
+  // 0 otherwise.
+  double gantry_tilt_degrees = 0;
 };
 
 // Which axis of the file's voxel grid points anterior and which superior: "+x", "-x", "+y", "-y", "+z" or "-z".

@@ -15,12 +15,16 @@
 #include <memory>
 #include <sstream>
 
+#include "core/segment/slice_shear.h"
 #include "core/util/error.h"
 
 namespace facehex {
 namespace {
 
 const gdcm::Tag kSeriesUid(0x0020, 0x000e), kSeriesDescription(0x0008, 0x103e), kRows(0x0028, 0x0010);
+// pixels: slice origins this close in plane lie on one line along the normal (positions are written rounded, to
+// 0.01 mm or finer); a stack whose origins move further leans and is resampled upright
+constexpr double kSameOrigin = 0.1;
 
 std::string trimmed(const char* text) {
   std::string s = text ? text : "";
@@ -136,7 +140,7 @@ DicomVolume read_dicom_series(const std::string& folder) {
     s.reader->SetFileName(s.file.c_str());
     if (!s.reader->Read()) throw Error(s.file, "GDCM could not read this DICOM image");
   }
-  const gdcm::Image& first = slices.front().reader->GetImage();
+  const gdcm::Image& first = slices.front().reader->GetImage();  // the first file's: orientation, size, spacing
   const double* cosines = first.GetDirectionCosines();
   Eigen::Matrix3d axes;  // columns: row direction, column direction, normal (patient LPS frame)
   axes.col(0) = Eigen::Vector3d(cosines[0], cosines[1], cosines[2]).normalized();
@@ -180,11 +184,28 @@ DicomVolume read_dicom_series(const std::string& folder) {
     g.dims = {static_cast<int>(dims[0]), static_cast<int>(dims[1]), static_cast<int>(slices.size())};
     g.spacing(2) = step;
   }
-  const double* origin = first.GetOrigin();
+  // The lowest slice's position (the files' own order is any).
+  const double* origin = slices.front().reader->GetImage().GetOrigin();
   g.origin = axes.transpose() * Eigen::Vector3d(origin[0], origin[1], origin[2]);
   volume.intensity.data.reserve(g.size());
   for (const Slice& s : slices) append_pixels(s.reader->GetImage(), s.file, volume.intensity.data);
   if (volume.intensity.data.size() != g.size()) throw Error(folder, "the decoded pixel data has the wrong size");
+  // Each slice's origin in plane, from the first's: a gantry tilt moves it along the columns from slice to slice.
+  std::vector<Eigen::Vector2d> offsets;
+  bool sheared = false;
+  for (const Slice& s : slices) {
+    const double* o = s.reader->GetImage().GetOrigin();
+    const Eigen::Vector3d d =
+        axes.transpose() * (Eigen::Vector3d(o[0], o[1], o[2]) - Eigen::Vector3d(origin[0], origin[1], origin[2]));
+    offsets.push_back(d.head<2>());
+    sheared |= d.head<2>().norm() > kSameOrigin * std::min(g.spacing(0), g.spacing(1));
+  }
+  if (sheared) {
+    const float lowest = *std::min_element(volume.intensity.data.begin(), volume.intensity.data.end());
+    volume.intensity = unshear_slices(volume.intensity, offsets, lowest);
+    const double along = slices.back().position - slices.front().position;
+    volume.gantry_tilt_degrees = std::atan2(offsets.back().norm(), along) * 180 / M_PI;
+  }
   volume.anterior = nearest_axis(axes, Eigen::Vector3d(0, -1, 0));  // LPS: anterior is -y
   volume.superior = nearest_axis(axes, Eigen::Vector3d(0, 0, 1));
   if (volume.anterior[1] == volume.superior[1])

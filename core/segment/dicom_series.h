@@ -11,7 +11,9 @@
 // Voxel axes: i along the rows (ImageOrientationPatient's first vector), j along the columns (its second), k along the
 // slice normal (their cross product), in the order of increasing position. Spacing: PixelSpacing in plane, the step
 // between consecutive slice positions along the normal (which must be uniform within 1 %). The origin is the first
-// slice's position expressed in those axes. anterior/superior: which voxel axis points that way in the patient (LPS:
+// slice's position expressed in those axes. Slices whose positions also move in plane (a gantry tilted in the
+// acquisition) are resampled onto an upright grid that holds them all (slice_shear.h), the volume's lowest value
+// where a slice does not reach. anterior/superior: which voxel axis points that way in the patient (LPS:
 // anterior is -y, superior +z), as "+x" ... "-z", the nearest axis for an oblique series.
 #include <string>
 #include <vector>
@@ -32,6 +34,9 @@ std::vector<DicomSeries> dicom_series_in(const std::string& folder);
 struct DicomVolume {
   Field intensity;
   std::string anterior, superior;  // voxel axes, see above
+  // The angle between the slices' normal and the line through their origins (a gantry tilt), in degrees; 0 when
+  // their origins lie on the normal.
+  double gantry_tilt_degrees = 0;
 };
 
 // Throws facehex::Error(folder, ...) when the folder has no DICOM image, several series, slices of different sizes or

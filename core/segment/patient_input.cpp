@@ -83,8 +83,13 @@ PatientTetModel load_patient_model(const std::string& path, const SegmentOptions
       report_progress(progress, "segmentation: reading the CT", 0.0);
       PatientModel segmented = segment_ct(path, options, progress);
       model.mesh = std::move(segmented.mesh);
-      model.segmentation = CtSegmentation{segmented.options, segmented.thresholds,  segmented.cuts,
-                                          segmented.repair,  segmented.edge_length, segmented.edge_length_rule};
+      model.segmentation = CtSegmentation{segmented.options,
+                                          segmented.thresholds,
+                                          segmented.cuts,
+                                          segmented.repair,
+                                          segmented.edge_length,
+                                          segmented.edge_length_rule,
+                                          segmented.gantry_tilt_degrees};
     } else {
       MeshReadOptions read;
       read.target_edge_length = options.tets.target_edge_length;
@@ -99,8 +104,10 @@ std::string segmentation_summary(const CtSegmentation& segmentation) {
   const TissueThresholds& thresholds = segmentation.thresholds;
   const FaceCuts& cuts = segmentation.cuts;
   std::ostringstream text;
-  text << std::fixed << std::setprecision(1) << "skin threshold " << thresholds.skin << ", bone threshold "
-       << thresholds.bone << " (file units); ";
+  text << std::fixed << std::setprecision(1);
+  if (segmentation.gantry_tilt_degrees != 0)
+    text << "slices resampled upright from a gantry tilt of " << segmentation.gantry_tilt_degrees << " deg; ";
+  text << "skin threshold " << thresholds.skin << ", bone threshold " << thresholds.bone << " (file units); ";
   if (cuts.turn.degrees != 0)
     text << "head turned " << cuts.turn.degrees << " deg about the vertical axis through x " << cuts.turn.axis.x()
          << ", y " << cuts.turn.axis.y() << "; ";

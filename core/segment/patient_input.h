@@ -20,9 +20,10 @@ struct CtSegmentation {
   SegmentOptions options;
   TissueThresholds thresholds;
   FaceCuts cuts;
-  std::string repair;            // PatientModel::repair, and the second segmentation of a pitched head
-  double edge_length = 0;        // mm, PatientModel::edge_length
-  std::string edge_length_rule;  // PatientModel::edge_length_rule
+  std::string repair;              // PatientModel::repair, and the second segmentation of a pitched head
+  double edge_length = 0;          // mm, PatientModel::edge_length
+  std::string edge_length_rule;    // PatientModel::edge_length_rule
+  double gantry_tilt_degrees = 0;  // PatientModel::gantry_tilt_degrees
 };
 
 struct PatientTetModel {

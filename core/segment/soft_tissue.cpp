@@ -308,6 +308,7 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
     report_progress(progress, std::string("segmentation: ") + stage, fraction);
   };
   PatientModel model;
+  model.gantry_tilt_degrees = ct.gantry_tilt_degrees;
   step("thresholds", 0.0);
   model.thresholds = choose_thresholds(ct, options);
 

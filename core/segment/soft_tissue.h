@@ -89,6 +89,7 @@ struct PatientModel {
   std::string edge_length_rule;    // why longer than SegmentOptions::tets asked (the scan, the face's size), or empty
   SegmentOptions options;          // as used: min_thickness and smoothing_sigma raised by a tunnel repair
   std::string repair;              // the tunnel repair made, the head pitched back, or empty
+  double gantry_tilt_degrees = 0;  // CtVolume's: the CT's slices were resampled upright from this tilt
 };
 
 // The face's anatomy was not found (find_face_cuts): the error, and the hard palate's slope in the CT's frame when one

@@ -8,12 +8,16 @@
 #include <gdcmMediaStorage.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 #include "core/segment/ct_volume.h"
+#include "core/segment/patient_input.h"
 #include "core/util/error.h"
 #include "core/util/resources.h"
 
@@ -102,6 +106,8 @@ TEST(DicomSeries, SlicesAreSortedByPositionRescaledAndOriented) {
       for (int i = 0; i < 3; ++i) EXPECT_EQ(v.intensity(i, j, k), 2.0f * (i + 10 * j + 100 * k) - 1000) << i << j << k;
   EXPECT_EQ(v.anterior, "-y");  // LPS: columns run posterior
   EXPECT_EQ(v.superior, "+z");
+  EXPECT_TRUE(g.origin.isApprox(Eigen::Vector3d::Zero())) << g.origin.transpose();  // the lowest slice's, not a.dcm's
+  EXPECT_EQ(v.gantry_tilt_degrees, 0);
 
   // read_ct_volume takes that orientation unless told another.
   const CtVolume automatic = read_ct_volume(dir.string());
@@ -156,6 +162,69 @@ TEST(DicomSeries, UnevenSpacingDuplicatePositionsAndEmptyFoldersAreErrors) {
   }
 }
 
+// A series acquired with the gantry tilted: axial slices 2.5 mm apart whose origins move one row (0.7 mm) along the
+// columns per slice, towards +y or -y. Slice k's pixel (i, j) shows an upright volume's voxel (i, j + k) (or j - k):
+// read back, the volume is that upright one on a grid holding every slice (each voxel a slice's pixel, exactly), the
+// volume's lowest value where no slice reaches, and the tilt is atan(0.7 / 2.5).
+TEST(DicomSeries, AGantryTiltedSeriesIsResampledOntoAnUprightGrid) {
+  constexpr int kSlices = 4, kRows = 3;
+  const auto upright = [](int i, int j, int k) { return static_cast<float>(2 * (i + 10 * j + 100 * k) - 1000); };
+  for (const int direction : {1, -1}) {
+    const fs::path dir = fresh_dir("tilted" + std::to_string(direction + 1));
+    for (int k = 0; k < kSlices; ++k) {
+      SliceSpec s;
+      s.ny = kRows;
+      s.slope = 2;
+      s.intercept = -1000;
+      s.position = Eigen::Vector3d(0, direction * k * 0.7, k * 2.5);
+      std::vector<std::int16_t> raw;
+      for (int j = 0; j < s.ny; ++j)
+        for (int i = 0; i < s.nx; ++i)
+          raw.push_back(static_cast<std::int16_t>(i + 10 * (j + direction * k + 10) + 100 * k));
+      write_slice((dir / ("s" + std::to_string(k) + ".dcm")).string(), s, raw);
+    }
+    const DicomVolume v = read_dicom_series(dir.string());
+    const GridGeometry& g = v.intensity.geometry;
+    EXPECT_NEAR(v.gantry_tilt_degrees, std::atan2(3 * 0.7, 3 * 2.5) * 180 / M_PI, 1e-6) << direction;
+    ASSERT_EQ(g.dims, (std::array<int, 3>{3, kRows + kSlices - 1, kSlices})) << direction;
+    EXPECT_NEAR(g.origin.y(), direction > 0 ? 0 : -(kSlices - 1) * 0.7, 1e-9) << direction;
+    const float lowest = *std::min_element(v.intensity.data.begin(), v.intensity.data.end());
+    for (int k = 0; k < kSlices; ++k)
+      for (int j = 0; j < g.dims[1]; ++j)
+        for (int i = 0; i < 3; ++i) {
+          // The grid's row j lies at y = origin + 0.7 j: slice k's row j - (direction k) from its own origin.
+          const double y = g.origin.y() + 0.7 * j;
+          const int row = static_cast<int>(std::lround((y - direction * k * 0.7) / 0.7));
+          const float expected = row >= 0 && row < kRows ? upright(i, std::lround(y / 0.7) + 10, k) : lowest;
+          EXPECT_EQ(v.intensity(i, j, k), expected) << direction << ": " << i << " " << j << " " << k;
+        }
+  }
+}
+
+// The bundled CT written as an LPS series, slice k's window and content moved forward (LPS -y) by rows_forward(k)
+// rows: its origin moves with it, as a gantry tilt shears a stack; what a window gains in front of the CT is air.
+fs::path write_bundled_series(const std::string& name, const std::function<int(int)>& rows_forward) {
+  const CtVolume ct = read_ct_volume(default_ct());
+  const GridGeometry& g = ct.intensity.geometry;
+  const fs::path dir = fresh_dir(name);
+  for (int k = 0; k < g.dims[2]; ++k) {
+    SliceSpec s;
+    s.nx = g.dims[0];
+    s.ny = g.dims[1];
+    s.spacing_x = g.spacing(0);
+    s.spacing_y = g.spacing(1);
+    s.position = Eigen::Vector3d(0, -rows_forward(k) * g.spacing(1), g.origin(2) + k * g.spacing(2));
+    std::vector<std::int16_t> raw;  // the file's row j is our y = ny - 1 - j + shift; column i our x = nx - 1 - i
+    for (int j = 0; j < g.dims[1]; ++j)
+      for (int i = 0; i < g.dims[0]; ++i) {
+        const int y = g.dims[1] - 1 - j + rows_forward(k);
+        raw.push_back(static_cast<std::int16_t>(y < g.dims[1] ? ct.intensity(g.dims[0] - 1 - i, y, k) : 0));
+      }
+    write_slice((dir / ("slice" + std::to_string(g.dims[2] - k) + ".dcm")).string(), s, raw);  // reverse name order
+  }
+  return dir;
+}
+
 // The bundled CT written as a DICOM series the way scanners store axial slices (LPS: rows towards the patient's left,
 // columns towards posterior; the segmentation frame's +x is the patient's right, +y anterior), one file per slice in
 // reverse name order, reads back as the same volume in the segmentation frame: the orientation comes from the files,
@@ -163,25 +232,36 @@ TEST(DicomSeries, UnevenSpacingDuplicatePositionsAndEmptyFoldersAreErrors) {
 TEST(DicomSeries, BundledCtAsADicomSeriesReadsBackAsTheSameVolume) {
   const CtVolume ct = read_ct_volume(default_ct());
   const GridGeometry& g = ct.intensity.geometry;
-  const fs::path dir = fresh_dir("bundled");
-  for (int k = 0; k < g.dims[2]; ++k) {
-    SliceSpec s;
-    s.nx = g.dims[0];
-    s.ny = g.dims[1];
-    s.spacing_x = g.spacing(0);
-    s.spacing_y = g.spacing(1);
-    s.cosines = {1, 0, 0, 0, 1, 0};
-    s.position = Eigen::Vector3d(0, 0, g.origin(2) + k * g.spacing(2));  // superior: +z LPS
-    std::vector<std::int16_t> raw;  // row j of the file is our y = ny - 1 - j; column i our x = nx - 1 - i
-    for (int j = 0; j < g.dims[1]; ++j)
-      for (int i = 0; i < g.dims[0]; ++i)
-        raw.push_back(static_cast<std::int16_t>(ct.intensity(g.dims[0] - 1 - i, g.dims[1] - 1 - j, k)));
-    write_slice((dir / ("slice" + std::to_string(g.dims[2] - k) + ".dcm")).string(), s, raw);
-  }
+  const fs::path dir = write_bundled_series("bundled", [](int) { return 0; });
   const CtVolume back = read_ct_volume(dir.string());
   EXPECT_EQ(back.intensity.geometry.dims, g.dims);
   EXPECT_TRUE(back.intensity.geometry.spacing.isApprox(g.spacing, 1e-6));
   EXPECT_EQ(back.intensity.data, ct.intensity.data);
+}
+
+// The bundled CT's slices moved forward by a row every fourth slice (a gantry tilt of atan(3.2 / 6)): segmented from
+// the folder, its cuts and model are those of the same CT written upright, and the summary says it was resampled.
+TEST(DicomSeries, TheBundledCtWithItsSlicesShearedIsSegmentedAsUpright) {
+  const auto every_fourth = [](int k) { return k / 4; };
+  const PatientTetModel sheared = load_patient_model(write_bundled_series("sheared", every_fourth).string());
+  const PatientTetModel upright = load_patient_model(write_bundled_series("upright", [](int) { return 0; }).string());
+  ASSERT_TRUE(sheared.segmentation && upright.segmentation);
+  const GridGeometry& g = read_ct_volume(default_ct()).intensity.geometry;
+  EXPECT_NEAR(sheared.segmentation->gantry_tilt_degrees,
+              std::atan2(every_fourth(g.dims[2] - 1) * g.spacing(1), (g.dims[2] - 1) * g.spacing(2)) * 180 / M_PI,
+              1e-6);
+  EXPECT_EQ(upright.segmentation->gantry_tilt_degrees, 0);
+  EXPECT_NE(segmentation_summary(*sheared.segmentation).find("resampled upright from a gantry tilt"),
+            std::string::npos);
+  const FaceCuts &a = sheared.segmentation->cuts, &b = upright.segmentation->cuts;
+  EXPECT_NEAR(a.top_z, b.top_z, 0.5);
+  EXPECT_NEAR(a.bottom_z, b.bottom_z, 0.5);
+  EXPECT_NEAR(a.centre_x, b.centre_x, 0.5);
+  EXPECT_NEAR(a.posterior_y, b.posterior_y, 0.5);
+  for (int axis = 0; axis < 3; ++axis) {
+    EXPECT_NEAR(sheared.mesh.V.col(axis).minCoeff(), upright.mesh.V.col(axis).minCoeff(), 0.5) << axis;
+    EXPECT_NEAR(sheared.mesh.V.col(axis).maxCoeff(), upright.mesh.V.col(axis).maxCoeff(), 0.5) << axis;
+  }
 }
 
 }  // namespace
