@@ -34,6 +34,9 @@ void add_segment_options(Args& args) {
       .option("anterior",
               "voxel axis the face looks to: +x -x +y -y +z -z (default: from a DICOM series' orientation, else +y)")
       .option("superior", "voxel axis towards the top of the head (default: from a DICOM series, else +z)")
+      .option("series",
+              "the series to read from a DICOM folder that holds several: its number in the list the error prints, or "
+              "its SeriesInstanceUID (default: the folder's only series)")
       .option("head-turn",
               "degrees the head is turned about the vertical axis in the scanner, towards +x from +y; the cuts are "
               "placed in the head frame turned back by it, and the model stays in the CT's frame (default: from the "
@@ -129,6 +132,7 @@ SegmentOptions segment_options(const Args& args) {
   if (args.has("bone")) o.bone_threshold = args.number("bone");
   o.orientation.anterior = args.get("anterior");
   o.orientation.superior = args.get("superior");
+  o.dicom_series = args.get("series");
   if (args.has("edge-length")) {
     o.tets.target_edge_length = args.number("edge-length", kLeastEdgeLength, kMostEdgeLength);
     o.coarsen_above_tets = 0;

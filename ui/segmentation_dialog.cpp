@@ -13,6 +13,10 @@
 #include <QRegularExpression>
 #include <QVBoxLayout>
 #include <utility>
+#include <vector>
+
+#include "core/segment/dicom_series.h"
+#include "core/util/error.h"
 
 namespace facehex::gui {
 namespace {
@@ -67,13 +71,20 @@ SegmentationDialog::SegmentationDialog(QWidget* parent) : QDialog(parent) {
   layout->addWidget(failure_);
 
   auto* form = new QFormLayout;
-  edgeLength_ = spinBox(0.5, 20, tr(" mm"), "segmentEdgeLength", this);
-  edgeLength_->setToolTip(tr("Target mean edge length of the tets (the paper: about 2 mm). Coarser is faster."));
+  form_ = form;
   // A row of a form, and the command line's option it sets.
   const auto addRow = [&](QFormLayout* into, const QString& label, auto* field, const QString& option) {
     into->addRow(label, field);
     rowOfOption_.emplace_back(option, label);
   };
+  series_ = new QComboBox(this);
+  series_->setObjectName("segmentSeries");
+  series_->setToolTip(
+      tr("The DICOM folder holds several series (a localizer, other reconstructions): the one to "
+         "segment. Largest first."));
+  addRow(form, tr("DICOM series"), series_, "--series");
+  edgeLength_ = spinBox(0.5, 20, tr(" mm"), "segmentEdgeLength", this);
+  edgeLength_->setToolTip(tr("Target mean edge length of the tets (the paper: about 2 mm). Coarser is faster."));
   addRow(form, tr("Tet edge length"), edgeLength_, "--edge-length");
   coarsenLargeFaces_ = new QCheckBox(tr("coarser for a coarse scan or a large face"), this);
   coarsenLargeFaces_->setObjectName("segmentCoarsenLargeFaces");
@@ -184,6 +195,22 @@ void SegmentationDialog::setCt(const QString& path) {
   heading_->setToolTip(path);
   madeAt_->hide();  // until showFound says how this CT's model was made
   failure_->hide();
+  // A DICOM folder's series, when there is a choice to make.
+  series_->clear();
+  std::vector<DicomSeries> series;
+  if (QFileInfo(path).isDir()) {
+    try {
+      series = dicom_series_in(path.toStdString());
+    } catch (const Error&) {
+      series.clear();  // not readable as a folder: the segmentation says why
+    }
+  }
+  if (series.size() > 1)
+    for (size_t i = 0; i < series.size(); ++i)
+      series_->addItem(QString("%1: %2").arg(i + 1).arg(QString::fromStdString(series_text(series[i]))),
+                       QString::fromStdString(series[i].uid));
+  series_->setVisible(series.size() > 1);
+  form_->labelForField(series_)->setVisible(series.size() > 1);
 }
 
 void SegmentationDialog::showFailure(const QString& message) {
@@ -204,6 +231,9 @@ void SegmentationDialog::showFailure(const QString& message) {
 void SegmentationDialog::setOptions(const SegmentOptions& o) {
   edgeLength_->setValue(o.tets.target_edge_length);
   coarsenLargeFaces_->setChecked(o.coarsen_above_tets > 0 || o.follow_scan_spacing);
+  for (int i = 0; i < series_->count(); ++i)
+    if (series_->itemData(i).toString().toStdString() == o.dicom_series || std::to_string(i + 1) == o.dicom_series)
+      series_->setCurrentIndex(i);
   selectAxis(anterior_, o.orientation.anterior);
   selectAxis(superior_, o.orientation.superior);
   numbers_[Skin].set(o.skin_threshold);
@@ -231,6 +261,7 @@ SegmentOptions SegmentationDialog::options() const {
     o.coarsen_above_tets = 0;
     o.follow_scan_spacing = false;
   }
+  if (series_->count() > 0) o.dicom_series = series_->currentData().toString().toStdString();
   o.orientation.anterior = anterior_->currentData().toString().toStdString();
   o.orientation.superior = superior_->currentData().toString().toStdString();
   o.skin_threshold = numbers_[Skin].get();

@@ -17,6 +17,7 @@
 class QCheckBox;
 class QComboBox;
 class QDoubleSpinBox;
+class QFormLayout;
 class QLabel;
 
 namespace facehex::gui {
@@ -27,7 +28,8 @@ class SegmentationDialog : public QDialog {
  public:
   explicit SegmentationDialog(QWidget* parent = nullptr);
 
-  void setCt(const QString& path);  // names the CT in the dialog's heading
+  // Names the CT in the dialog's heading; a DICOM folder holding several series shows them to choose from.
+  void setCt(const QString& path);
   void setOptions(const SegmentOptions& options);
   SegmentOptions options() const;
   // What a segmentation of this CT found: its thresholds and cuts in the boxes that are still automatic, and the
@@ -52,6 +54,8 @@ class SegmentationDialog : public QDialog {
   QDoubleSpinBox *minThickness_, *maxDepth_, *boneGap_, *cavityClosing_, *smoothing_;  // the soft-tissue layer
   QCheckBox* coarsenLargeFaces_;
   QComboBox *anterior_, *superior_;
+  QComboBox* series_;  // a DICOM folder's series, shown when it holds several
+  QFormLayout* form_;
   std::array<OptionalNumber, kNumbers> numbers_;
   // Each row's label and the command line's option it sets, in the dialog's order (showFailure names the rows).
   std::vector<std::pair<QString, QString>> rowOfOption_;

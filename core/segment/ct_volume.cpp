@@ -189,13 +189,15 @@ FileVolume read_volume_file(const std::string& path, const CtOrientation& given)
 
 }  // namespace
 
-CtVolume read_ct_volume(const std::string& path, const CtOrientation& orientation) {
+CtVolume read_ct_volume(const std::string& path, const CtOrientation& orientation, const std::string& dicom_series) {
   namespace fs = std::filesystem;
   if (!fs::exists(path)) throw Error(path, "no such file or folder");
+  if (!dicom_series.empty() && !fs::is_directory(path))
+    throw Error(path, "is a file, not a DICOM folder: --series names a series of a folder's");
   CtVolume ct;
   CtOrientation axes = orientation;  // a side not stated: the file's own orientation if it has one, else +y / +z
   if (fs::is_directory(path)) {
-    DicomVolume dicom = read_dicom_series(path);
+    DicomVolume dicom = read_dicom_series(path, dicom_series);
     ct = CtVolume{std::move(dicom.intensity), path, dicom.gantry_tilt_degrees};
     if (axes.anterior.empty()) axes.anterior = dicom.anterior;
     if (axes.superior.empty()) axes.superior = dicom.superior;

@@ -29,8 +29,10 @@ struct CtOrientation {
 // Reads a CT volume: .mhd/.mha (MetaImage), .nii/.nii.gz (NIfTI, scl_slope/inter applied), .nrrd/.nhdr, .vti, or a
 // folder holding one DICOM series (GDCM; rescale slope/intercept applied). Spacing and origin are the file's. Throws
 // facehex::Error(path, ...) on a missing, unreadable, non-3D or blank (constant) volume, a DICOM folder with several
-// series, or an invalid orientation.
-CtVolume read_ct_volume(const std::string& path, const CtOrientation& orientation = {});
+// series and none named by `dicom_series` (read_dicom_series' `series`; given for a file, an error too), or an
+// invalid orientation.
+CtVolume read_ct_volume(const std::string& path, const CtOrientation& orientation = {},
+                        const std::string& dicom_series = "");
 
 // Writes the volume (already in the segmentation frame) as a single-file MetaImage (.mha, float voxels) with VTK's
 // writer, atomically. Throws facehex::Error(path, ...) on another extension or a failed write.

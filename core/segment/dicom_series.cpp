@@ -121,21 +121,32 @@ std::vector<DicomSeries> dicom_series_in(const std::string& folder) {
   return series;
 }
 
-DicomVolume read_dicom_series(const std::string& folder) {
+std::string series_text(const DicomSeries& series) {
+  return std::to_string(series.files.size()) + " files of series " + series.uid +
+         (series.description.empty() ? "" : " (" + series.description + ")");
+}
+
+DicomVolume read_dicom_series(const std::string& folder, const std::string& named) {
   const std::vector<DicomSeries> series = dicom_series_in(folder);
   if (series.empty()) throw Error(folder, "holds no DICOM image");
-  if (series.size() > 1) {
-    std::ostringstream list;
-    for (const DicomSeries& s : series)
-      list << (&s == &series.front() ? "" : "; ") << s.files.size() << " files of series " << s.uid
-           << (s.description.empty() ? "" : " (" + s.description + ")");
-    throw Error(folder, "holds " + std::to_string(series.size()) + " DICOM series (" + list.str() +
-                            "): move the one to segment into a folder of its own");
-  }
-  std::vector<Slice> slices(series.front().files.size());
+  const auto list = [&] {
+    std::ostringstream text;
+    for (size_t i = 0; i < series.size(); ++i) text << (i ? "; " : "") << i + 1 << ": " << series_text(series[i]);
+    return text.str();
+  };
+  const DicomSeries* chosen = series.size() == 1 && named.empty() ? &series.front() : nullptr;
+  for (size_t i = 0; i < series.size() && !named.empty(); ++i)
+    if (series[i].uid == named || std::to_string(i + 1) == named) chosen = &series[i];
+  if (!chosen && named.empty())
+    throw Error(folder, "holds " + std::to_string(series.size()) + " DICOM series (" + list() +
+                            "): name the one to segment with --series (its number or UID)");
+  if (!chosen)
+    throw Error(folder, "holds no DICOM series '" + named + "' (it holds " + list() +
+                            "): --series takes one of their numbers or UIDs");
+  std::vector<Slice> slices(chosen->files.size());
   for (size_t i = 0; i < slices.size(); ++i) {
     Slice& s = slices[i];
-    s.file = series.front().files[i];
+    s.file = chosen->files[i];
     s.reader = std::make_unique<gdcm::ImageReader>();
     s.reader->SetFileName(s.file.c_str());
     if (!s.reader->Read()) throw Error(s.file, "GDCM could not read this DICOM image");

@@ -1,9 +1,10 @@
 #pragma once
 // A DICOM series folder read with GDCM.
 //
-// Every file of the folder (not its subfolders) is scanned; files that are not DICOM images are skipped. The folder
-// must hold exactly one image series (SeriesInstanceUID): scanners export localizers and reconstructions side by side,
-// and stacking them would make a wrong volume, so several series are an error that lists them. The series' slices are
+// Every file of the folder (not its subfolders) is scanned; files that are not DICOM images are skipped. Scanners
+// export localizers and reconstructions side by side, and stacking them would make a wrong volume: the series
+// (SeriesInstanceUID) to read is named, by its UID or its number in dicom_series_in's list, or the folder must hold
+// only one; several without a name are an error that lists them, numbered. The series' slices are
 // sorted along their normal by ImagePositionPatient, decoded (any transfer syntax GDCM reads: raw, JPEG, JPEG-LS,
 // JPEG 2000, RLE), rescaled with each slice's RescaleSlope/Intercept (Hounsfield units for CT) and stacked. A
 // multi-frame file is one series by itself.
@@ -39,8 +40,13 @@ struct DicomVolume {
   double gantry_tilt_degrees = 0;
 };
 
-// Throws facehex::Error(folder, ...) when the folder has no DICOM image, several series, slices of different sizes or
-// orientations, two slices at one position, uneven slice spacing, or a pixel format that is not a scalar number.
-DicomVolume read_dicom_series(const std::string& folder);
+// `series`: the UID of the series to read, or its number in dicom_series_in(folder) (from 1, largest first); empty:
+// the folder's only series. Throws facehex::Error(folder, ...) when the folder has no DICOM image, several series and
+// none named, a named series it does not hold, slices of different sizes or orientations, two slices at one position,
+// uneven slice spacing, or a pixel format that is not a scalar number.
+DicomVolume read_dicom_series(const std::string& folder, const std::string& series = "");
+
+// "N files of series UID (description)", the way the errors list a series.
+std::string series_text(const DicomSeries& series);
 
 }  // namespace facehex

@@ -28,7 +28,7 @@ std::optional<std::string> landmarks_problem(const VolumeMesh& mesh, const std::
 // pitch was given and the hard palate slopes kMinHeadPitch or more, segmented again with the head pitched back by the
 // palate's slope, and that model taken if its landmarks are found.
 PatientModel segment_ct(const std::string& path, const SegmentOptions& options, const ProgressCallback& progress) {
-  const CtVolume ct = read_ct_volume(path, options.orientation);
+  const CtVolume ct = read_ct_volume(path, options.orientation, options.dicom_series);
   const auto pitch_worth_trying = [&](const std::optional<double>& palate) {
     return !options.cuts.head_pitch && palate && std::abs(*palate) >= kMinHeadPitch;
   };

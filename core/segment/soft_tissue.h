@@ -77,6 +77,7 @@ struct SegmentOptions {
   // The command line sets false when --edge-length is given.
   bool follow_scan_spacing = true;
   CtOrientation orientation;  // only used when reading a file
+  std::string dicom_series;   // only used when reading a DICOM folder: read_dicom_series' `series`
 };
 
 struct PatientModel {

@@ -24,6 +24,7 @@
 #include "core/segment/voxel_grid.h"
 #include "core/util/resources.h"
 #include "core/workflow/report.h"
+#include "tests/core/segment/dicom_writer.h"
 #include "tests/core/test_meshes.h"
 
 namespace {
@@ -328,6 +329,31 @@ TEST_F(Cli, BadInputsGiveOneLineErrorsNamingTheFileAndNoOutput) {
     EXPECT_EQ(r.status, 2) << bad << ": " << r.output;  // a usage error
     EXPECT_NE(r.output.find(std::string(bad).substr(0, std::string(bad).find(' '))), std::string::npos) << r.output;
   }
+}
+
+// A DICOM folder as scanners export it, the axial series beside a localizer: segmenting it asks which series (exit
+// 1, the list numbered, the option named, nothing written); named, it is segmented; named for a file, an error.
+TEST_F(Cli, ADicomFolderWithSeveralSeriesIsSegmentedByTheOneNamed) {
+  const fs::path folder = dir_ / "export";
+  fs::create_directories(folder);
+  facehex::testing::write_bundled_series(folder, [](int) { return 0; });
+  facehex::testing::SliceSpec localizer;
+  localizer.series_uid = "1.2.826.0.1.3680043.9.7777.9";
+  localizer.description = "localizer";
+  facehex::testing::write_slice((folder / "scout.dcm").string(), localizer, std::vector<std::int16_t>(6, 5));
+  Result r = run("segment " + folder.string() + " -o " + path("m.vtu"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("2: 1 files of series 1.2.826.0.1.3680043.9.7777.9 (localizer)"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("--series"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(path("m.vtu")));
+  r = run("segment " + folder.string() + " --series 1 -o " + path("m.vtu"));
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(fs::exists(path("m.vtu")));
+  r = run("segment " + facehex::default_ct() + " --series 1 -o " + path("n.vtu"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("not a DICOM folder"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(path("n.vtu")));
 }
 
 TEST_F(Cli, SegmentTakesTheCutsGivenAndRejectsBadOnes) {

@@ -15,6 +15,7 @@
 #include <QApplication>
 #include <QCheckBox>
 #include <QComboBox>
+#include <QDir>
 #include <QDockWidget>
 #include <QDoubleSpinBox>
 #include <QFile>
@@ -50,6 +51,7 @@
 #include "core/standard/standard_features.h"
 #include "core/util/error.h"
 #include "core/util/resources.h"
+#include "tests/core/segment/dicom_writer.h"
 #include "tests/core/test_meshes.h"
 #include "ui/autosave.h"
 #include "ui/main_window.h"
@@ -87,6 +89,7 @@ class GuiTest : public QObject {
   void segmentationDialogRoundTripsItsOptions();
   void segmentAgainStartsFromWhatWasFoundAndTakesACut();
   void aFailedSegmentationAsksAgainNamingItsSettings();
+  void aDicomFolderWithSeveralSeriesAsksWhichToSegment();
   void opensModelsFromFiles();
   void aSmallerModelReplacingALargerOneKeepsThePlaneSelectionValid();
   void computesTheFields();
@@ -790,6 +793,38 @@ void GuiTest::aFailedSegmentationAsksAgainNamingItsSettings() {
   // Another CT starts without the message.
   window_->openPatient(QString::fromStdString(default_ct()));
   QVERIFY(!failure->isVisible());
+  dialog->reject();
+}
+
+void GuiTest::aDicomFolderWithSeveralSeriesAsksWhichToSegment() {
+  // The bundled CT as a DICOM series beside a one-slice localizer, as scanners export them: the segmentation dialog
+  // lists the two, largest first, and segments the one chosen; a folder of one series shows no choice.
+  const QDir folder(dir_.filePath("two-series"));
+  QVERIFY(QDir().mkpath(folder.path()));
+  facehex::testing::write_bundled_series(folder.path().toStdString(), [](int) { return 0; });
+  facehex::testing::SliceSpec localizer;
+  localizer.series_uid = "1.2.826.0.1.3680043.9.7777.9";
+  localizer.description = "localizer";
+  facehex::testing::write_slice(folder.filePath("scout.dcm").toStdString(), localizer, std::vector<std::int16_t>(6, 5));
+  window_->openPatient(folder.path());
+  SegmentationDialog* dialog = window_->segmentationDialog();
+  QVERIFY(dialog->isVisible());
+  auto* series = dialog->findChild<QComboBox*>("segmentSeries");
+  QVERIFY(series->isVisible());
+  QCOMPARE(series->count(), 2);
+  QVERIFY2(series->itemText(1).contains("localizer"), qPrintable(series->itemText(1)));
+  QCOMPARE(dialog->options().dicom_series, facehex::testing::SliceSpec{}.series_uid);
+  dialog->findChild<QPushButton*>("segmentButton")->click();
+  QVERIFY(window_->controller()->waitUntilIdle());
+  QVERIFY2(error_.isEmpty(), qPrintable(takeError()));
+  QVERIFY(session()->hasModel(Role::Patient));
+  QCOMPARE(session()->model(Role::Patient).segmentation->options.dicom_series,
+           facehex::testing::SliceSpec{}.series_uid);
+  // One series: nothing to choose.
+  QVERIFY(QFile::remove(folder.filePath("scout.dcm")));
+  window_->openPatient(folder.path());
+  QVERIFY(!series->isVisible());
+  QVERIFY(dialog->options().dicom_series.empty());
   dialog->reject();
 }
 

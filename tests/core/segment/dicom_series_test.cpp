@@ -3,9 +3,6 @@
 // series, uneven spacing and empty folders are errors naming the folder.
 #include "core/segment/dicom_series.h"
 
-#include <gdcmAttribute.h>
-#include <gdcmImageWriter.h>
-#include <gdcmMediaStorage.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -20,54 +17,15 @@
 #include "core/segment/patient_input.h"
 #include "core/util/error.h"
 #include "core/util/resources.h"
+#include "tests/core/segment/dicom_writer.h"
 
 namespace facehex {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct SliceSpec {
-  int nx = 3, ny = 2;
-  double spacing_x = 0.5, spacing_y = 0.7;
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();
-  std::array<double, 6> cosines = {1, 0, 0, 0, 1, 0};  // axial, LPS: rows towards L (+x), columns towards P (+y)
-  double slope = 1, intercept = 0;
-  std::string series_uid = "1.2.826.0.1.3680043.9.7777.1";
-  std::string description = "axial";
-};
-
-void write_slice(const std::string& path, const SliceSpec& s, const std::vector<std::int16_t>& raw) {
-  gdcm::ImageWriter writer;
-  gdcm::Image& image = writer.GetImage();
-  image.SetNumberOfDimensions(2);
-  image.SetDimension(0, static_cast<unsigned int>(s.nx));
-  image.SetDimension(1, static_cast<unsigned int>(s.ny));
-  image.SetPhotometricInterpretation(gdcm::PhotometricInterpretation::MONOCHROME2);
-  image.SetPixelFormat(gdcm::PixelFormat::INT16);
-  image.SetSpacing(0, s.spacing_x);
-  image.SetSpacing(1, s.spacing_y);
-  for (unsigned int a = 0; a < 3; ++a) image.SetOrigin(a, s.position(a));
-  image.SetDirectionCosines(s.cosines.data());
-  image.SetSlope(s.slope);
-  image.SetIntercept(s.intercept);
-  gdcm::DataElement pixels(gdcm::Tag(0x7fe0, 0x0010));
-  pixels.SetByteValue(reinterpret_cast<const char*>(raw.data()), static_cast<uint32_t>(raw.size() * sizeof raw[0]));
-  image.SetDataElement(pixels);
-  gdcm::DataSet& ds = writer.GetFile().GetDataSet();
-  const char* ct_storage = gdcm::MediaStorage::GetMSString(gdcm::MediaStorage::CTImageStorage);
-  gdcm::DataElement sop_class(gdcm::Tag(0x0008, 0x0016));
-  sop_class.SetByteValue(ct_storage, static_cast<uint32_t>(std::strlen(ct_storage)));
-  sop_class.SetVR(gdcm::Attribute<0x0008, 0x0016>::GetVR());
-  ds.Insert(sop_class);
-  gdcm::Attribute<0x0020, 0x000e> series;
-  series.SetValue(s.series_uid);
-  ds.Replace(series.GetAsDataElement());
-  gdcm::Attribute<0x0008, 0x103e> description;
-  description.SetValue(s.description);
-  ds.Replace(description.GetAsDataElement());
-  writer.SetFileName(path.c_str());
-  ASSERT_TRUE(writer.Write()) << path;
-}
+using facehex::testing::SliceSpec;
+using facehex::testing::write_bundled_series;
+using facehex::testing::write_slice;
 
 fs::path fresh_dir(const std::string& name) {
   const fs::path dir = fs::temp_directory_path() / ("facehex_dicom_test_" + name);
@@ -117,7 +75,7 @@ TEST(DicomSeries, SlicesAreSortedByPositionRescaledAndOriented) {
   EXPECT_NE(automatic.intensity.data, wrong.intensity.data);
 }
 
-TEST(DicomSeries, SeveralSeriesInOneFolderAreAnErrorListingThem) {
+TEST(DicomSeries, SeveralSeriesInOneFolderAreAnErrorListingThemUnlessOneIsNamed) {
   const fs::path dir = write_small_series("mixed");
   SliceSpec localizer;
   localizer.series_uid = "1.2.826.0.1.3680043.9.7777.2";
@@ -134,9 +92,29 @@ TEST(DicomSeries, SeveralSeriesInOneFolderAreAnErrorListingThem) {
     EXPECT_EQ(e.subject(), dir.string());
     const std::string message = e.what();
     EXPECT_NE(message.find("2 DICOM series"), std::string::npos) << message;
-    EXPECT_NE(message.find("1.2.826.0.1.3680043.9.7777.2 (localizer)"), std::string::npos) << message;
-    EXPECT_NE(message.find("folder of its own"), std::string::npos) << message;
+    EXPECT_NE(message.find("2: 1 files of series 1.2.826.0.1.3680043.9.7777.2 (localizer)"), std::string::npos)
+        << message;
+    EXPECT_NE(message.find("--series"), std::string::npos) << message;
   }
+  // Named by number or by UID, a series is read alone.
+  EXPECT_EQ(read_dicom_series(dir.string(), "1").intensity.geometry.dims, (std::array<int, 3>{3, 2, 4}));
+  const DicomVolume scout = read_dicom_series(dir.string(), "1.2.826.0.1.3680043.9.7777.2");
+  EXPECT_EQ(scout.intensity.geometry.dims, (std::array<int, 3>{3, 2, 1}));
+  EXPECT_EQ(scout.intensity.data, std::vector<float>(6, 5.0f));
+  EXPECT_EQ(read_ct_volume(dir.string(), {}, "1").intensity.data,
+            read_ct_volume(dir.string(), {}, "1.2.826.0.1.3680043.9.7777.1").intensity.data);
+  // A series the folder does not hold, or a series named for a file, is an error listing what there is.
+  for (const std::string missing : {"3", "1.2.3"}) {
+    try {
+      read_dicom_series(dir.string(), missing);
+      FAIL() << missing;
+    } catch (const Error& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find("no DICOM series '" + missing + "'"), std::string::npos) << message;
+      EXPECT_NE(message.find("1: 4 files of series"), std::string::npos) << message;
+    }
+  }
+  EXPECT_THROW(read_ct_volume(default_ct(), {}, "1"), Error);
 }
 
 TEST(DicomSeries, UnevenSpacingDuplicatePositionsAndEmptyFoldersAreErrors) {
@@ -201,30 +179,6 @@ TEST(DicomSeries, AGantryTiltedSeriesIsResampledOntoAnUprightGrid) {
   }
 }
 
-// The bundled CT written as an LPS series, slice k's window and content moved forward (LPS -y) by rows_forward(k)
-// rows: its origin moves with it, as a gantry tilt shears a stack; what a window gains in front of the CT is air.
-fs::path write_bundled_series(const std::string& name, const std::function<int(int)>& rows_forward) {
-  const CtVolume ct = read_ct_volume(default_ct());
-  const GridGeometry& g = ct.intensity.geometry;
-  const fs::path dir = fresh_dir(name);
-  for (int k = 0; k < g.dims[2]; ++k) {
-    SliceSpec s;
-    s.nx = g.dims[0];
-    s.ny = g.dims[1];
-    s.spacing_x = g.spacing(0);
-    s.spacing_y = g.spacing(1);
-    s.position = Eigen::Vector3d(0, -rows_forward(k) * g.spacing(1), g.origin(2) + k * g.spacing(2));
-    std::vector<std::int16_t> raw;  // the file's row j is our y = ny - 1 - j + shift; column i our x = nx - 1 - i
-    for (int j = 0; j < g.dims[1]; ++j)
-      for (int i = 0; i < g.dims[0]; ++i) {
-        const int y = g.dims[1] - 1 - j + rows_forward(k);
-        raw.push_back(static_cast<std::int16_t>(y < g.dims[1] ? ct.intensity(g.dims[0] - 1 - i, y, k) : 0));
-      }
-    write_slice((dir / ("slice" + std::to_string(g.dims[2] - k) + ".dcm")).string(), s, raw);  // reverse name order
-  }
-  return dir;
-}
-
 // The bundled CT written as a DICOM series the way scanners store axial slices (LPS: rows towards the patient's left,
 // columns towards posterior; the segmentation frame's +x is the patient's right, +y anterior), one file per slice in
 // reverse name order, reads back as the same volume in the segmentation frame: the orientation comes from the files,
@@ -232,7 +186,8 @@ fs::path write_bundled_series(const std::string& name, const std::function<int(i
 TEST(DicomSeries, BundledCtAsADicomSeriesReadsBackAsTheSameVolume) {
   const CtVolume ct = read_ct_volume(default_ct());
   const GridGeometry& g = ct.intensity.geometry;
-  const fs::path dir = write_bundled_series("bundled", [](int) { return 0; });
+  const fs::path dir = fresh_dir("bundled");
+  write_bundled_series(dir, [](int) { return 0; });
   const CtVolume back = read_ct_volume(dir.string());
   EXPECT_EQ(back.intensity.geometry.dims, g.dims);
   EXPECT_TRUE(back.intensity.geometry.spacing.isApprox(g.spacing, 1e-6));
@@ -243,8 +198,11 @@ TEST(DicomSeries, BundledCtAsADicomSeriesReadsBackAsTheSameVolume) {
 // the folder, its cuts and model are those of the same CT written upright, and the summary says it was resampled.
 TEST(DicomSeries, TheBundledCtWithItsSlicesShearedIsSegmentedAsUpright) {
   const auto every_fourth = [](int k) { return k / 4; };
-  const PatientTetModel sheared = load_patient_model(write_bundled_series("sheared", every_fourth).string());
-  const PatientTetModel upright = load_patient_model(write_bundled_series("upright", [](int) { return 0; }).string());
+  const fs::path sheared_dir = fresh_dir("sheared"), upright_dir = fresh_dir("upright");
+  write_bundled_series(sheared_dir, every_fourth);
+  write_bundled_series(upright_dir, [](int) { return 0; });
+  const PatientTetModel sheared = load_patient_model(sheared_dir.string());
+  const PatientTetModel upright = load_patient_model(upright_dir.string());
   ASSERT_TRUE(sheared.segmentation && upright.segmentation);
   const GridGeometry& g = read_ct_volume(default_ct()).intensity.geometry;
   EXPECT_NEAR(sheared.segmentation->gantry_tilt_degrees,
