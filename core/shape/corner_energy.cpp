@@ -32,9 +32,10 @@ double normalized_determinant(const Eigen::Matrix3d& S) {
 namespace {
 
 // What both evaluations need of S: s^2 = |S|_F^2 / 3 (f) and its powers, det S, sigma, and the energy phi(sigma) =
-// h(sigma)^-q (q = 2 power / 3) with its first two derivatives by sigma; empty where the energy is infinite.
+// h(sigma)^-q (q = 2 power / 3) with, if `derivatives`, its first two derivatives by sigma (the line search asks for
+// the energy alone); empty where the energy is infinite.
 struct SigmaTerms {
-  double f, f32, d, sigma, energy, dphi, d2phi;
+  double f, f32, d, sigma, energy, dphi = 0, d2phi = 0;
 };
 
 // h^(-2 power / 3): by a cube root and multiplications for the small whole powers the solvers use (the relaxation's
@@ -51,7 +52,7 @@ double inverse_power_two_thirds(double h, double power) {
   return result;
 }
 
-std::optional<SigmaTerms> sigma_terms(const Eigen::Matrix3d& S, double delta2, double power) {
+std::optional<SigmaTerms> sigma_terms(const Eigen::Matrix3d& S, double delta2, double power, bool derivatives) {
   SigmaTerms t;
   t.f = S.squaredNorm() / 3;
   if (!(t.f > 0)) return std::nullopt;
@@ -63,6 +64,7 @@ std::optional<SigmaTerms> sigma_terms(const Eigen::Matrix3d& S, double delta2, d
   if (!(h > 0)) return std::nullopt;
   const double q = 2.0 * power / 3.0;
   t.energy = inverse_power_two_thirds(h, power);
+  if (!derivatives) return t;
   const double dh = 0.5 * (1 + t.sigma / root), d2h = 2 * delta2 / (root * root * root);
   t.dphi = -q * t.energy / h * dh;
   t.d2phi = q * (q + 1) * t.energy / (h * h) * dh * dh - q * t.energy / h * d2h;
@@ -74,7 +76,7 @@ std::optional<SigmaTerms> sigma_terms(const Eigen::Matrix3d& S, double delta2, d
 double CornerEnergy::operator()(const Eigen::Matrix3d& A, const Eigen::Matrix3d& Winv,
                                 Eigen::Matrix3d* gradient) const {
   const Eigen::Matrix3d S = A * Winv;
-  const std::optional<SigmaTerms> t = sigma_terms(S, delta2, power);
+  const std::optional<SigmaTerms> t = sigma_terms(S, delta2, power, gradient != nullptr);
   if (!t) return std::numeric_limits<double>::infinity();
   if (gradient) *gradient = t->dphi * (cofactor(S) / t->f32 - t->sigma * S / t->f) * Winv.transpose();
   return t->energy;
@@ -83,7 +85,7 @@ double CornerEnergy::operator()(const Eigen::Matrix3d& A, const Eigen::Matrix3d&
 double CornerEnergy::node(const Eigen::Matrix3d& A, const Eigen::Matrix3d& Winv, const Eigen::Vector3d& coefficient,
                           Eigen::Vector3d& gradient, Eigen::Matrix3d& hessian) const {
   const Eigen::Matrix3d S = A * Winv;
-  const std::optional<SigmaTerms> t = sigma_terms(S, delta2, power);
+  const std::optional<SigmaTerms> t = sigma_terms(S, delta2, power, true);
   if (!t) return std::numeric_limits<double>::infinity();
   const double f52 = t->f32 * t->f, f72 = f52 * t->f;
   // S moves with the node as S + x w^T, w = Winv^T c: |S|^2 is quadratic in x and det S linear (a rank-one update).
