@@ -59,9 +59,11 @@ void place_posterior_cut(const FaceAnatomy& a, const FaceCutOptions& options,
   // across the shoulders beside the neck says nothing of the face.
   const double z_lo = 0.5 * (a.menton.z() + a.pronasale.z()), z_hi = a.glabella.z() + options.brow_clearance;
   for (const FieldOfViewContact& contact : scan_edge)
-    if (contact.point.z() >= z_lo && contact.point.z() <= z_hi)
-      cuts.scan_edge_y =
-          std::max(cuts.scan_edge_y.value_or(-std::numeric_limits<double>::infinity()), contact.point.y());
+    if (contact.point.z() >= z_lo && contact.point.z() <= z_hi &&
+        contact.point.y() > cuts.scan_edge_y.value_or(-std::numeric_limits<double>::infinity())) {
+      cuts.scan_edge_y = contact.point.y();
+      cuts.scan_edge_at_disc = contact.on_disc;
+    }
   const double ears = front_of_the_ears(a) + options.ear_clearance;
   // The scan ends in front of the ears' cut; or the ears' cut leaves less than a face region: what the ear rules read
   // in a scan that ends behind the face (a cheek's bulge standing out, the rows where the head is widest because the

@@ -83,6 +83,7 @@ struct FaceCuts {
   // y of the most anterior place the scan ends across the side or the back of the head at the face's levels
   // (posterior_y above; field_of_view.h), where it does; whether the automatic posterior cut was placed by it.
   std::optional<double> scan_edge_y;
+  bool scan_edge_at_disc = false;  // that place is on the edge of the CT's reconstruction disc, not of its box
   bool posterior_at_scan_edge = false;
   std::optional<FaceAnatomy> anatomy;  // what the automatic cuts were placed by; empty if all given
 

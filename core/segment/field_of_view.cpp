@@ -120,8 +120,9 @@ std::vector<FieldOfViewContact> field_of_view_contacts(const Mask& body, const S
           if (g.contains(ni, nj, k) && body(ni, nj, k)) continue;
           const Eigen::Vector3d beyond = g.point(ni, nj, k);
           if (!scan.outside(beyond)) continue;
-          if (scan.outside_disc_only(beyond) && scan.disc_normal(g.point(i, j, k)).y() > kFrontFacingDisc) continue;
-          contacts.push_back({g.point(i, j, k), static_cast<ScanEdge>(e)});
+          const bool on_disc = scan.outside_disc_only(beyond);
+          if (on_disc && scan.disc_normal(g.point(i, j, k)).y() > kFrontFacingDisc) continue;
+          contacts.push_back({g.point(i, j, k), static_cast<ScanEdge>(e), on_disc});
           break;
         }
       }

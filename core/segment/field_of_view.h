@@ -57,6 +57,7 @@ enum class ScanEdge { MinusX, PlusX, MinusY };
 struct FieldOfViewContact {
   Eigen::Vector3d point;  // mm, head frame: the body voxel's centre
   ScanEdge edge;          // its neighbour outside the scan lies this way
+  bool on_disc = false;   // that neighbour lies outside the reconstruction disc only, within the box
 };
 
 // The contacts of `body` (a mask on a head-frame grid) between heights z_lo and z_hi: body voxels whose neighbour one

@@ -120,7 +120,8 @@ std::string segmentation_summary(const CtSegmentation& segmentation) {
     text << "cuts (mm, segmentation frame): ";
   text << "top z " << cuts.top_z << ", bottom z " << cuts.bottom_z << ", posterior y " << cuts.posterior_y;
   if (cuts.posterior_at_scan_edge)
-    text << " (in front of where the scan ends across the head, y " << *cuts.scan_edge_y << ")";
+    text << " (in front of where the scan ends across the head, y " << *cuts.scan_edge_y
+         << (cuts.scan_edge_at_disc ? ", at the edge of its reconstruction disc)" : ")");
   text << ", mid-plane x " << cuts.centre_x;
   if (std::isfinite(cuts.jaw_z)) text << ", jaw cut rising to z " << cuts.jaw_z << " at the posterior cut";
   if (cuts.anatomy) text << "; found: " << face_anatomy_text(*cuts.anatomy);

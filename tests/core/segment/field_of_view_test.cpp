@@ -40,7 +40,10 @@ TEST(FieldOfView, AHeadCutByTheScansSidesAndBackTouchesThemAndNotItsFront) {
   EXPECT_EQ(count(contacts, ScanEdge::MinusX), 10 * 4);
   EXPECT_EQ(count(contacts, ScanEdge::PlusX), 10 * 4);
   EXPECT_EQ(count(contacts, ScanEdge::MinusY), 18 * 4);
-  for (const FieldOfViewContact& c : contacts) EXPECT_LT(c.point.y(), 10);  // none where air surrounds the head
+  for (const FieldOfViewContact& c : contacts) {
+    EXPECT_LT(c.point.y(), 10);  // none where air surrounds the head
+    EXPECT_FALSE(c.on_disc);
+  }
   const std::array<bool, 6> cut = cut_grid_faces(body, contacts);
   EXPECT_EQ(cut, (std::array<bool, 6>{true, true, true, false, false, false}));
   // Only the levels asked for.
@@ -150,6 +153,7 @@ TEST(FieldOfView, ADiscCutsTheSidesAndTheBackButNotTheFront) {
   for (const FieldOfViewContact& c : contacts) {
     front = std::max(front, c.point.y());
     EXPECT_LE(scan.disc_normal(c.point).y(), 0.5) << c.point.transpose();
+    EXPECT_TRUE(c.on_disc) << c.point.transpose();
   }
   // The sides meet the disc up to where it faces 60 degrees from the front (y = 20.5 cos 60).
   EXPECT_NEAR(front, 10, 1.0);

@@ -448,6 +448,7 @@ TEST(SoftTissue, AScanThatEndsBehindTheFaceIsCutWhereItEnds) {
   EXPECT_FALSE(cut.cuts.turn.turned()) << cut.cuts.turn.degrees;
   ASSERT_TRUE(cut.cuts.scan_edge_y);
   EXPECT_NEAR(*cut.cuts.scan_edge_y, j0 * 3.2, 1e-3);
+  EXPECT_FALSE(cut.cuts.scan_edge_at_disc);
   EXPECT_TRUE(cut.cuts.posterior_at_scan_edge);
   // The surface moves a cut by a fraction of a voxel where it would fall on a voxel plane (level_surface_with_cuts).
   EXPECT_NEAR(cut.cuts.posterior_y, j0 * 3.2 + FaceCutOptions{}.border_margin, 0.5);
@@ -492,6 +493,7 @@ TEST(SoftTissue, AScanReconstructedInADiscNarrowerThanTheHeadIsCutInFrontOfWhere
   expect_valid_patient(cut);
   ASSERT_TRUE(cut.cuts.scan_edge_y);
   EXPECT_TRUE(cut.cuts.posterior_at_scan_edge);
+  EXPECT_TRUE(cut.cuts.scan_edge_at_disc);
   EXPECT_GT(*cut.cuts.scan_edge_y, whole.cuts.posterior_y);
   EXPECT_LT(*cut.cuts.scan_edge_y, centre.y());
   EXPECT_NEAR(cut.cuts.posterior_y, *cut.cuts.scan_edge_y + FaceCutOptions{}.border_margin, 0.5);
