@@ -197,20 +197,20 @@ void SegmentationDialog::setCt(const QString& path) {
   failure_->hide();
   // A DICOM folder's series, when there is a choice to make.
   series_->clear();
-  std::vector<DicomSeries> series;
+  folderSeries_.clear();
   if (QFileInfo(path).isDir()) {
     try {
-      series = dicom_series_in(path.toStdString());
+      folderSeries_ = dicom_series_in(path.toStdString());
     } catch (const Error&) {
-      series.clear();  // not readable as a folder: the segmentation says why
+      // not readable as a folder: the segmentation says why
     }
   }
-  if (series.size() > 1)
-    for (size_t i = 0; i < series.size(); ++i)
-      series_->addItem(QString("%1: %2").arg(i + 1).arg(QString::fromStdString(series_text(series[i]))),
-                       QString::fromStdString(series[i].uid));
-  series_->setVisible(series.size() > 1);
-  form_->labelForField(series_)->setVisible(series.size() > 1);
+  if (folderSeries_.size() > 1)
+    for (size_t i = 0; i < folderSeries_.size(); ++i)
+      series_->addItem(QString("%1: %2").arg(i + 1).arg(QString::fromStdString(series_text(folderSeries_[i]))),
+                       QString::fromStdString(folderSeries_[i].uid));
+  series_->setVisible(folderSeries_.size() > 1);
+  form_->labelForField(series_)->setVisible(folderSeries_.size() > 1);
 }
 
 void SegmentationDialog::showFailure(const QString& message) {
@@ -231,9 +231,8 @@ void SegmentationDialog::showFailure(const QString& message) {
 void SegmentationDialog::setOptions(const SegmentOptions& o) {
   edgeLength_->setValue(o.tets.target_edge_length);
   coarsenLargeFaces_->setChecked(o.coarsen_above_tets > 0 || o.follow_scan_spacing);
-  for (int i = 0; i < series_->count(); ++i)
-    if (series_->itemData(i).toString().toStdString() == o.dicom_series || std::to_string(i + 1) == o.dicom_series)
-      series_->setCurrentIndex(i);
+  if (const DicomSeries* named = series_->count() > 0 ? named_series(folderSeries_, o.dicom_series) : nullptr)
+    series_->setCurrentIndex(static_cast<int>(named - folderSeries_.data()));
   selectAxis(anterior_, o.orientation.anterior);
   selectAxis(superior_, o.orientation.superior);
   numbers_[Skin].set(o.skin_threshold);

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/segment/dicom_series.h"
 #include "core/segment/patient_input.h"
 #include "core/segment/soft_tissue.h"
 
@@ -54,7 +55,8 @@ class SegmentationDialog : public QDialog {
   QDoubleSpinBox *minThickness_, *maxDepth_, *boneGap_, *cavityClosing_, *smoothing_;  // the soft-tissue layer
   QCheckBox* coarsenLargeFaces_;
   QComboBox *anterior_, *superior_;
-  QComboBox* series_;  // a DICOM folder's series, shown when it holds several
+  QComboBox* series_;                      // a DICOM folder's series, shown when it holds several
+  std::vector<DicomSeries> folderSeries_;  // the CT's series when it is a DICOM folder (dicom_series_in)
   QFormLayout* form_;
   std::array<OptionalNumber, kNumbers> numbers_;
   // Each row's label and the command line's option it sets, in the dialog's order (showFailure names the rows).

@@ -126,6 +126,12 @@ std::string series_text(const DicomSeries& series) {
          (series.description.empty() ? "" : " (" + series.description + ")");
 }
 
+const DicomSeries* named_series(const std::vector<DicomSeries>& series, const std::string& name) {
+  for (size_t i = 0; i < series.size(); ++i)
+    if (series[i].uid == name || std::to_string(i + 1) == name) return &series[i];
+  return nullptr;
+}
+
 DicomVolume read_dicom_series(const std::string& folder, const std::string& named) {
   const std::vector<DicomSeries> series = dicom_series_in(folder);
   if (series.empty()) throw Error(folder, "holds no DICOM image");
@@ -134,9 +140,8 @@ DicomVolume read_dicom_series(const std::string& folder, const std::string& name
     for (size_t i = 0; i < series.size(); ++i) text << (i ? "; " : "") << i + 1 << ": " << series_text(series[i]);
     return text.str();
   };
-  const DicomSeries* chosen = series.size() == 1 && named.empty() ? &series.front() : nullptr;
-  for (size_t i = 0; i < series.size() && !named.empty(); ++i)
-    if (series[i].uid == named || std::to_string(i + 1) == named) chosen = &series[i];
+  const DicomSeries* chosen =
+      named.empty() ? (series.size() == 1 ? &series.front() : nullptr) : named_series(series, named);
   if (!chosen && named.empty())
     throw Error(folder, "holds " + std::to_string(series.size()) + " DICOM series (" + list() +
                             "): name the one to segment with --series (its number or UID)");

@@ -49,4 +49,8 @@ DicomVolume read_dicom_series(const std::string& folder, const std::string& seri
 // "N files of series UID (description)", the way the errors list a series.
 std::string series_text(const DicomSeries& series);
 
+// The series `name` names among `series` (dicom_series_in's list): its UID, or its number in the list from 1; null
+// when none is.
+const DicomSeries* named_series(const std::vector<DicomSeries>& series, const std::string& name);
+
 }  // namespace facehex

@@ -15,9 +15,9 @@ constexpr int kDiscRefits = 3;            // refits to the columns near the circ
 constexpr double kFrontFacingDisc = 0.5;  // cos 60 degrees: a disc edge facing closer to the front is the face's
 constexpr int kMinDiscBorderColumns = 20;
 
-Eigen::Vector2d model_xy(const ScanSides& scan, const Eigen::Vector3d& head_point) {
-  const Eigen::Vector3d p = scan.turn.turned() ? scan.turn.to_model(head_point) : head_point;
-  return p.head<2>();
+// A head-frame point in the model's frame (the CT's, where the box and the disc are).
+Eigen::Vector3d model_point(const ScanSides& scan, const Eigen::Vector3d& head_point) {
+  return scan.turn.turned() ? scan.turn.to_model(head_point) : head_point;
 }
 
 bool beyond_box(const ScanSides& scan, const Eigen::Vector2d& p) {
@@ -87,17 +87,17 @@ std::optional<ReconstructionDisc> find_reconstruction_disc(const Field& intensit
 }
 
 bool ScanSides::outside(const Eigen::Vector3d& head_point) const {
-  const Eigen::Vector2d p = model_xy(*this, head_point);
+  const Eigen::Vector2d p = model_point(*this, head_point).head<2>();
   return beyond_box(*this, p) || beyond_disc(*this, p);
 }
 
 bool ScanSides::outside_disc_only(const Eigen::Vector3d& head_point) const {
-  const Eigen::Vector2d p = model_xy(*this, head_point);
+  const Eigen::Vector2d p = model_point(*this, head_point).head<2>();
   return !beyond_box(*this, p) && beyond_disc(*this, p);
 }
 
 Eigen::Vector3d ScanSides::disc_normal(const Eigen::Vector3d& head_point) const {
-  const Eigen::Vector3d p = turn.turned() ? turn.to_model(head_point) : head_point;
+  const Eigen::Vector3d p = model_point(*this, head_point);
   Eigen::Vector3d n(p.x() - disc->centre.x(), p.y() - disc->centre.y(), 0);
   n.normalize();
   return turn.turned() ? Eigen::Vector3d(turn.to_head(p + n) - turn.to_head(p)) : n;
