@@ -53,8 +53,8 @@ void add_segment_options(Args& args) {
       .option("bottom-cut",
               "height z (mm) of the bottom cut (default: --chin-clearance below the menton, the chin's lowest bone)")
       .option("posterior-cut",
-              "y (mm) of the posterior cut (default: --ear-clearance in front of the tragi, else of the auricles' "
-              "front edges)")
+              "y (mm) of the posterior cut, a coronal plane (default: a vertical plane --ear-clearance in front of "
+              "both tragi, else of the auricles' front edges)")
       .option("mid-plane", "x (mm) of the plane between the u0 and u1 ends (default: the face's mirror-symmetry plane)")
       .option("brow-clearance", "mm from the glabella (brow ridge) up to the top cut", "15")
       .option("chin-clearance", "mm from the menton (the chin's lowest bone) down to the bottom cut", "15")

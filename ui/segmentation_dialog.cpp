@@ -142,7 +142,9 @@ SegmentationDialog::SegmentationDialog(QWidget* parent) : QDialog(parent) {
   addNumber(BottomCut, tr("Bottom cut z"), -1e4, 1e4, tr(" mm"), "segmentBottomCut", "--bottom-cut",
             tr("Automatic: the chin clearance below the chin's bone. ") + frame);
   addNumber(PosteriorCut, tr("Posterior cut y"), -1e4, 1e4, tr(" mm"), "segmentPosteriorCut", "--posterior-cut",
-            tr("Automatic: the ear clearance in front of the ears. ") + frame);
+            tr("Automatic: a vertical plane the ear clearance in front of both tragi, its y at the mid-plane "
+               "shown; a value given is a coronal plane. ") +
+                frame);
   addNumber(
       MidPlane, tr("Mid-plane x"), -1e4, 1e4, tr(" mm"), "segmentMidPlane", "--mid-plane",
       tr("Divides the posterior cut into the u0 and u1 ends; automatic: the face's mirror-symmetry plane. ") + frame);

@@ -1,6 +1,7 @@
 #include "core/segment/face_cuts.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -31,13 +32,20 @@ std::optional<double> tragi_roll_degrees(const Tragi& tragi) {
 }  // namespace
 
 std::vector<CutPlane> FaceCuts::planes() const {
+  // The posterior cut y = posterior_y + s (x - centre_x): points with s x - y > s centre_x - posterior_y are cut.
+  const double s = posterior_slope, along = s * centre_x - posterior_y;
+  const Eigen::Vector3d posterior(s, -1, 0);
   std::vector<CutPlane> p = {{Eigen::Vector3d(0, 0, 1), top_z, V1},
                              {Eigen::Vector3d(0, 0, -1), -bottom_z, V0},
-                             {Eigen::Vector3d(0, -1, 0), -posterior_y, U0}};
-  if (jaw_z > -std::numeric_limits<double>::infinity())
-    p.push_back({Eigen::Vector3d(0, -1, -1) / std::sqrt(2.0), -(posterior_y + jaw_z) / std::sqrt(2.0), V0});
+                             {posterior.normalized(), along / posterior.norm(), U0}};
+  if (jaw_z > -std::numeric_limits<double>::infinity()) {
+    const Eigen::Vector3d jaw(s, -1, -1);
+    p.push_back({jaw.normalized(), (along - jaw_z) / jaw.norm(), V0});
+  }
   return p;
 }
+
+double FaceCuts::posterior_turn_degrees() const { return std::atan(posterior_slope) * 180 / M_PI; }
 
 // mm the tragus lies in front of the auricle's front edge that rule 5 finds, where no tragus is seen: on the two real
 // CTs the more anterior tragus lies 2-3 mm in front of it (docs/benchmarks.md).
@@ -48,6 +56,21 @@ double front_of_the_ears(const FaceAnatomy& anatomy) {
   for (const std::optional<CtLandmark>& tragus : anatomy.tragi)
     if (tragus && !tragus->estimated) front = std::max(front, tragus->point.y());
   return std::isfinite(front) ? front : anatomy.ear_front_y + kTragusBeforeAuricleEdge;
+}
+
+EarsLine ears_line(const FaceAnatomy& anatomy, double centre_x) {
+  const EarsLine coronal{front_of_the_ears(anatomy), 0};
+  std::array<std::optional<Eigen::Vector3d>, 2> ear;  // -x side, +x side
+  for (int s = 0; s < 2; ++s)
+    if (anatomy.tragi[s] && !anatomy.tragi[s]->estimated) ear[s] = anatomy.tragi[s]->point;
+  for (int s = 0; s < 2; ++s)
+    if (!ear[s] && ear[1 - s] && !anatomy.ears_estimated && std::isfinite(anatomy.ear_fronts_y[s]))
+      ear[s] = Eigen::Vector3d(2 * centre_x - ear[1 - s]->x(), anatomy.ear_fronts_y[s] + kTragusBeforeAuricleEdge, 0);
+  if (!ear[0] || !ear[1]) return coronal;
+  const Eigen::Vector3d d = *ear[1] - *ear[0];
+  if (!(d.x() > 0) || std::abs(std::atan2(d.y(), d.x())) > kMaxPosteriorCutTurn * M_PI / 180) return coronal;
+  const double slope = d.y() / d.x();
+  return {ear[0]->y() + slope * (centre_x - ear[0]->x()), slope};
 }
 
 namespace {
@@ -64,12 +87,18 @@ void place_posterior_cut(const FaceAnatomy& a, const FaceCutOptions& options,
       cuts.scan_edge_y = contact.point.y();
       cuts.scan_edge_at_disc = contact.on_disc;
     }
-  const double ears = front_of_the_ears(a) + options.ear_clearance;
+  const EarsLine line = ears_line(a, cuts.centre_x);
+  const double ears = line.y_at_centre + options.ear_clearance, slope = line.slope;
   // The scan ends in front of the ears' cut; or the ears' cut leaves less than a face region: what the ear rules read
   // in a scan that ends behind the face (a cheek's bulge standing out, the rows where the head is widest because the
   // scan ends there) is no ear.
-  cuts.posterior_at_scan_edge =
-      cuts.scan_edge_y && (*cuts.scan_edge_y + options.border_margin > ears || a.pronasale.y() - ears < kMinFaceDepth);
+  bool scan_edge_in_front = false;
+  for (const FieldOfViewContact& contact : scan_edge)
+    if (contact.point.z() >= z_lo && contact.point.z() <= z_hi)
+      scan_edge_in_front |=
+          contact.point.y() + options.border_margin > ears + slope * (contact.point.x() - cuts.centre_x);
+  cuts.posterior_at_scan_edge = cuts.scan_edge_y && (scan_edge_in_front || a.pronasale.y() - ears < kMinFaceDepth);
+  cuts.posterior_slope = cuts.posterior_at_scan_edge ? 0 : slope;
   cuts.posterior_y =
       std::round(10 * (cuts.posterior_at_scan_edge ? *cuts.scan_edge_y + options.border_margin : ears)) / 10;
   const double depth = a.pronasale.y() - cuts.posterior_y;

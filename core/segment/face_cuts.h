@@ -6,8 +6,10 @@
 // segmentation frame itself when the head is neither):
 //   top cut      z = top_z        (side v1): just above the eyebrows, or the top of the CT when that is lower;
 //   bottom cut   z = bottom_z     (side v0): below the chin;
-//   posterior    y = posterior_y  (sides u0 at x < centre_x, u1 at x > centre_x): in front of the ears;
-//   jaw cut      y + z = posterior_y + jaw_z (side v0 too), rising backwards at 45 degrees from the bottom cut to
+//   posterior    y = posterior_y + posterior_slope (x - centre_x)  (sides u0 at x < centre_x, u1 at x > centre_x): in
+//                front of the ears, vertical; posterior_y is where it crosses the mid-sagittal plane;
+//   jaw cut      y - posterior_slope (x - centre_x) + z = posterior_y + jaw_z (side v0 too), rising backwards at 45
+//   degrees from the bottom cut to
 //                z = jaw_z on the posterior cut. Under the jaw the soft tissue runs back to the neck, so the posterior
 //                cut alone would cut it right across, joining u0 and u1 under the chin; the jaw cut takes away the
 //                back of the submental region so that the posterior cut meets two separate lateral pieces, as in the
@@ -21,13 +23,15 @@
 //   top_z       = the glabella plus brow_clearance (above the eyebrows), but at least border_margin below the CT's top
 //                 and below the head's highest level (a scan that ends within the forehead); the head's highest
 //                 level less border_margin when the profile shows no brow (FaceAnatomy::brow_unseen);
-//   posterior_y = the front of the ears (front_of_the_ears) plus ear_clearance; where the scan ends across the side
-//                 or the back of the head from the mouth's level (half way from the menton to the pronasale) to the
-//                 top cut's (core/segment/field_of_view.h) in front of that, or, wherever it ends there, when the
-//                 ears' cut lies less than kMinFaceDepth behind the pronasale (a cheek's bulge, or the rows where
-//                 the head is widest because the scan ends there, read as ears): border_margin in front of where it
-//                 ends; a face region then less than kMinFaceDepth deep is refused (the scan holds too little of the
-//                 face for the standard's);
+//   posterior_y = the line in front of the ears (ears_line: through the tragi, core/segment/tragus.h) moved
+//                 ear_clearance forward, each side the same distance in front of its own ear (a face's asymmetry, or
+//                 what is left of a turn of the head, moves them apart);
+//                 where the scan ends across the side or the back of the head from the mouth's level (half way from
+//                 the menton to the pronasale) to the top cut's (core/segment/field_of_view.h) in front of that cut,
+//                 or, wherever it ends there, when the ears' cut lies less than kMinFaceDepth behind the pronasale (a
+//                 cheek's bulge, or the rows where the head is widest because the scan ends there, read as ears):
+//                 coronal, border_margin in front of where it ends; a face region then less than kMinFaceDepth deep
+//                 is refused (the scan holds too little of the face for the standard's);
 //   jaw_z       = just above the highest model voxel on the posterior cut within one voxel of the mid-plane, in the
 //                 lower half of the face (find_jaw_cut, once the soft tissue is known); none if there is none.
 #include <limits>
@@ -79,6 +83,7 @@ struct FaceCuts {
   // how far the head is pitched; none where no palate was found.
   std::optional<double> palate_pitch;
   double top_z = 0, bottom_z = 0, posterior_y = 0, centre_x = 0;
+  double posterior_slope = 0;                               // dy/dx of the posterior cut: 0 for a coronal one
   double jaw_z = -std::numeric_limits<double>::infinity();  // -infinity: no jaw cut
   // y of the most anterior place the scan ends across the side or the back of the head at the face's levels
   // (posterior_y above; field_of_view.h), where it does; whether the automatic posterior cut was placed by it.
@@ -88,6 +93,10 @@ struct FaceCuts {
   std::optional<FaceAnatomy> anatomy;  // what the automatic cuts were placed by; empty if all given
 
   std::vector<CutPlane> planes() const;
+  // y of the posterior cut at x.
+  double posterior_y_at(double x) const { return posterior_y + posterior_slope * (x - centre_x); }
+  // Degrees the posterior cut turns from the head frame's x axis, towards +y at +x.
+  double posterior_turn_degrees() const;
 };
 
 // Where the scan's first and last slices lie (mm, the CT's frame) and the head frame of the grids below: a pitched
@@ -103,15 +112,30 @@ struct ScanSlab {
 // the same grid; `slab`: where the scan ends, when the grid is pitched (else the grid's first and last levels).
 // The anatomy is looked for unless all four values are given. Throws facehex::Error("segment", ...) if it cannot be
 // found (naming the option that places the cut by hand) or if the cuts leave no face (bottom above top, ...).
-// The front of the ears the posterior cut keeps its clearance from: the more anterior tragus found (face anatomy rule
-// 6), else where it would lie, 3 mm in front of the auricles' front edge (rule 5). The tragus moves less with the
-// auricle's outline than the auricle's front edge does.
+// The front of the ears: the more anterior tragus found (face anatomy rule 6), else where it would lie, 3 mm in front
+// of the auricles' front edge (rule 5). The tragus moves less with the auricle's outline than the auricle's front edge
+// does.
 double front_of_the_ears(const FaceAnatomy& anatomy);
+
+// The vertical plane y = y_at_centre + slope (x - centre_x) in front of which the posterior cut keeps its clearance
+// from the ears: through the two tragi found; with one tragus found, through it and, on the other side, the point at
+// its mirror image's x 3 mm in front of that side's auricle edge (rule 5, where an auricle stands out); coronal
+// through front_of_the_ears otherwise, or when the line turns more than kMaxPosteriorCutTurn.
+struct EarsLine {
+  double y_at_centre = 0, slope = 0;
+};
+EarsLine ears_line(const FaceAnatomy& anatomy, double centre_x);
 
 // The face region reaches at least this far behind the nose tip (the pronasale): the standard's reaches back to in
 // front of the ears, about 90 to 110 mm; a scan that ends across the cheeks nearer the face than this holds too
 // little of it to map the standard onto.
 constexpr double kMinFaceDepth = 65.0;  // mm
+
+// The line through the two tragi found turning more than this from the head frame's x axis is not taken for the
+// posterior cut's direction (a tragus read on a helix or a scar), which is then coronal. A head turned in the scanner
+// is turned back by the head frame (FaceCutOptions::head_turn), so what is left is the ears' own asymmetry and the
+// error of the turn.
+constexpr double kMaxPosteriorCutTurn = 12.0;  // degrees
 
 // scan_edge: where the scan ends across the head (field_of_view_contacts, head frame), or none.
 FaceCuts find_face_cuts(const Mask& head, const Mask& without_ears, const Mask& bone, const FaceCutOptions& options,

@@ -122,6 +122,8 @@ std::string segmentation_summary(const CtSegmentation& segmentation) {
   if (cuts.posterior_at_scan_edge)
     text << " (in front of where the scan ends across the head, y " << *cuts.scan_edge_y
          << (cuts.scan_edge_at_disc ? ", at the edge of its reconstruction disc)" : ")");
+  else if (cuts.posterior_slope != 0)
+    text << " at the mid-plane, turned " << cuts.posterior_turn_degrees() << " deg to pass in front of both ears";
   text << ", mid-plane x " << cuts.centre_x;
   if (std::isfinite(cuts.jaw_z)) text << ", jaw cut rising to z " << cuts.jaw_z << " at the posterior cut";
   if (cuts.anatomy) text << "; found: " << face_anatomy_text(*cuts.anatomy);

@@ -124,7 +124,8 @@ Mask model_mask(const Mask& head, const Mask& bone, const Field& air_distance, c
         const size_t v = g.index(i, j, k);
         const Eigen::Vector3d p = g.point(i, j, k);
         if (!head.data[v] || air_distance.data[v] > options.max_depth) continue;
-        if (p.z() < cuts.bottom_z - margin || p.z() > cuts.top_z + margin || p.y() < cuts.posterior_y - margin)
+        if (p.z() < cuts.bottom_z - margin || p.z() > cuts.top_z + margin ||
+            p.y() < cuts.posterior_y_at(p.x()) - margin)
           continue;
         if (air_distance.data[v] <= options.min_thickness) {
           m.data[v] = 1;

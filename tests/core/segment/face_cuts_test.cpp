@@ -138,6 +138,41 @@ TEST(FaceCuts, TheFrontOfTheEarsIsTheMoreAnteriorTragusFound) {
   EXPECT_NEAR(front_of_the_ears(a), 61.5, 1e-9);
 }
 
+TEST(FaceCuts, TheEarsLineRunsThroughBothEars) {
+  FaceAnatomy a;
+  a.ear_front_y = 60;
+  a.ear_fronts_y = {60, 52};
+  const auto expect_line = [](const EarsLine& line, double y_at_centre, double slope, const char* what) {
+    EXPECT_NEAR(line.y_at_centre, y_at_centre, 1e-9) << what;
+    EXPECT_NEAR(line.slope, slope, 1e-12) << what;
+  };
+  // No tragus: coronal, where the more anterior one would lie.
+  expect_line(ears_line(a, 0), 63, 0, "no tragus");
+  // Both tragi: through them (10 mm apart in y over 140 mm in x).
+  a.tragi[0] = CtLandmark{Eigen::Vector3d(-70, 64, 90), false};
+  a.tragi[1] = CtLandmark{Eigen::Vector3d(70, 54, 92), false};
+  expect_line(ears_line(a, 0), 59, -10.0 / 140, "both tragi");
+  expect_line(ears_line(a, 7), 58.5, -10.0 / 140, "both tragi, the plane at x 7");
+  // One tragus: the other side's point at its mirror image's x, 3 mm in front of that side's auricle edge.
+  a.tragi[1].reset();
+  expect_line(ears_line(a, 0), 0.5 * (64 + 55), -9.0 / 140, "the right tragus and the left auricle");
+  a.tragi[1] = CtLandmark{Eigen::Vector3d(70, 54, 92), true};  // estimated: no tragus seen
+  expect_line(ears_line(a, 0), 0.5 * (64 + 55), -9.0 / 140, "an estimated left tragus");
+  // Without an auricle seen on the other side, or with the auricles estimated (none stood out): coronal.
+  a.ear_fronts_y[1] = -std::numeric_limits<double>::infinity();
+  expect_line(ears_line(a, 0), 64, 0, "no left auricle");
+  a.ear_fronts_y[1] = 52;
+  a.ears_estimated = true;
+  expect_line(ears_line(a, 0), 64, 0, "auricles estimated");
+  // Tragi whose line turns more than kMaxPosteriorCutTurn: coronal in front of the more anterior.
+  a.ears_estimated = false;
+  const double too_far = 140 * std::tan((kMaxPosteriorCutTurn + 0.5) * M_PI / 180);
+  a.tragi[1] = CtLandmark{Eigen::Vector3d(70, 64 - too_far, 92), false};
+  expect_line(ears_line(a, 0), 64, 0, "turned too far");
+  a.tragi[1] = CtLandmark{Eigen::Vector3d(70, 64 - too_far + 2, 92), false};
+  EXPECT_LT(ears_line(a, 0).slope, 0);
+}
+
 TEST(FaceCuts, TheMentonIsTheLowestBoneConnectedToTheChinNearTheSkin) {
   Head h;
   // Lower bone reached from the chin within the mid-plane band: the mandible's lower border curving back 20 mm.
@@ -459,12 +494,18 @@ TEST(FaceCuts, RejectsCutsThatLeaveNoFace) {
   expect_error([&] { cuts_of(h.head, Mask(h.head.geometry, 0), FaceCutOptions()); }, "--bottom-cut");
 }
 
-TEST(FaceCuts, PlanesPointOutOfTheModel) {
+// Cuts given as numbers: top z 160, bottom z 30, posterior y 70, mid-plane x 60, no jaw cut.
+FaceCuts box_cuts() {
   FaceCuts cuts;
   cuts.top_z = 160;
   cuts.bottom_z = 30;
   cuts.posterior_y = 70;
   cuts.centre_x = 60;
+  return cuts;
+}
+
+TEST(FaceCuts, PlanesPointOutOfTheModel) {
+  FaceCuts cuts = box_cuts();
   std::vector<CutPlane> planes = cuts.planes();
   ASSERT_EQ(planes.size(), 3u);  // no jaw cut
   EXPECT_EQ(planes[0].side, V1);
@@ -491,14 +532,33 @@ TEST(FaceCuts, PlanesPointOutOfTheModel) {
   EXPECT_LT(jaw.distance(inside), 0);
 }
 
+TEST(FaceCuts, AnObliquePosteriorCutAndItsJawCutTurnTogether) {
+  // y = 70 + 0.1 (x - 60) at the posterior cut; the jaw cut rises from it as from a coronal one, measured along y.
+  FaceCuts cuts = box_cuts();
+  cuts.posterior_slope = 0.1;
+  cuts.jaw_z = 60;
+  EXPECT_NEAR(cuts.posterior_y_at(0), 64, 1e-12);
+  EXPECT_NEAR(cuts.posterior_turn_degrees(), std::atan(0.1) * 180 / M_PI, 1e-12);
+  const std::vector<CutPlane> planes = cuts.planes();
+  ASSERT_EQ(planes.size(), 4u);
+  const CutPlane &posterior = planes[2], &jaw = planes[3];
+  EXPECT_NEAR(posterior.normal.norm(), 1, 1e-15);
+  EXPECT_NEAR(jaw.normal.norm(), 1, 1e-15);
+  for (const double x : {0.0, 60.0, 130.0}) {
+    const double y = cuts.posterior_y_at(x);
+    EXPECT_NEAR(posterior.distance({x, y, 90}), 0, 1e-12) << x;
+    EXPECT_GT(posterior.distance({x, y - 1, 90}), 0) << x;  // behind it: cut away
+    EXPECT_LT(posterior.distance({x, y + 1, 90}), 0) << x;
+    EXPECT_NEAR(jaw.distance({x, y, 60}), 0, 1e-12) << x;       // meets the posterior cut at z = jaw_z
+    EXPECT_NEAR(jaw.distance({x, y + 30, 30}), 0, 1e-12) << x;  // and the bottom cut 30 mm further forward
+    EXPECT_GT(jaw.distance({x, y + 2, 40}), 0) << x;            // under the jaw: cut away
+  }
+}
+
 // find_jaw_cut looks at the posterior plane's voxel row (y = 70: j = 35), within one voxel (2 mm) of x = 60, in the
 // lower half of the face (z <= (30 + 160) / 2 = 95).
 TEST(FaceCuts, TheJawCutIsAboveTheHighestModelVoxelOnThePosteriorCutsMidLine) {
-  FaceCuts cuts;
-  cuts.top_z = 160;
-  cuts.bottom_z = 30;
-  cuts.posterior_y = 70;
-  cuts.centre_x = 60;
+  FaceCuts cuts = box_cuts();
   Mask model(grid(), 0);
   FaceCuts none = cuts;
   find_jaw_cut(model, 3, none);
