@@ -31,8 +31,13 @@ constexpr double kMovedBy = 1e-4;        // a vertex that moved more than this s
 constexpr double kSettledBy = 1e-3;      // a sweep whose largest move is below this share of the edges has settled
 constexpr int kFairSweeps = 30;          // a smoothing with nothing unusable left stops after this many sweeps
 // A repair (not a whole-mesh relaxation, whose sweeps improve every cell's shape whatever the folds do) stops when
-// its unusable cells have not become fewer for this many sweeps: what it could untangle from there, it has.
+// its unusable cells have not become fewer for kStalledWork vertex steps, but at least kLeastStalledSweeps and at most
+// kStalledSweeps sweeps: what it could untangle from there, it has. Patience measured in work: a pass over thousands
+// of vertices that has stalled costs seconds a sweep and the later passes, over the few vertices around what is left,
+// finish the untangling for a fraction of that; a pass over a few hundred vertices is cheap to keep going.
 constexpr int kStalledSweeps = 20;
+constexpr int kLeastStalledSweeps = 5;
+constexpr int kStalledWork = 10000;
 
 struct CellState {
   bool unusable = false;
@@ -57,6 +62,7 @@ class LocalShapeSolver {
     threads_ = options.threads > 0 ? options.threads : std::min(omp_get_max_threads(), idle_cores());
     select_free_vertices();
     gather_corners();
+    stalled_after_ = std::clamp(kStalledWork / std::max(1, free_vertex_count()), kLeastStalledSweeps, kStalledSweeps);
     if (options_.tether_weight > 0 && options_.tether.rows() == mesh_.num_vertices()) {
       tether_scale_.assign(mesh_.num_vertices(), 0);
       for (int v : free_vertices_) {
@@ -112,7 +118,7 @@ class LocalShapeSolver {
       if (unusable_left == 0 && (visited == 0 || moved < kSettledBy * size || sweeps > kFairSweeps)) break;
       since_fewer = unusable_left < fewest_unusable ? 0 : since_fewer + 1;
       fewest_unusable = std::min(fewest_unusable, unusable_left);
-      stalled_ = unusable_left > 0 && !options_.whole_mesh && since_fewer >= kStalledSweeps;
+      stalled_ = unusable_left > 0 && !options_.whole_mesh && since_fewer >= stalled_after_;
       if (stalled_) break;
     }
     return sweeps;
@@ -346,7 +352,8 @@ class LocalShapeSolver {
   const CellBounds& bounds_;
   int threads_ = 1;
   bool stalled_ = false;
-  CornerEnergy energy_;  // delta2 follows the worst corner (update_delta)
+  int stalled_after_ = kStalledSweeps;  // sweeps without fewer unusable cells after which a repair stops
+  CornerEnergy energy_;                 // delta2 follows the worst corner (update_delta)
   std::vector<int> free_vertices_;
   std::vector<std::vector<int>> cells_of_, slabs_;
   std::vector<std::vector<Corner>> corners_of_;

@@ -77,6 +77,32 @@ TEST(Untangle, AFoldNoVertexCanUntangleStopsThePassAndIsReported) {
   EXPECT_GT(r.free_vertices, 0);  // there were vertices to move: they could not help
 }
 
+// The same held fold with every vertex of a large box free: a stalled pass over thousands of vertices gives up after
+// fewer sweeps (its patience is counted in vertex steps), one over a few dozen after more.
+TEST(Untangle, AStalledPassOverManyVerticesGivesUpSooner) {
+  auto stalled_sweeps = [](int n, int rings) {
+    VolumeMesh m = test::hex_box(n, n, n, n, n, n);
+    auto id = [n](int i, int j, int k) { return (k * (n + 1) + j) * (n + 1) + i; };
+    m.V.row(id(1, 1, 1)) << -0.5, -0.4, -0.3;
+    std::vector<char> fixed = boundary_fixed(m);
+    fixed[id(1, 1, 1)] = 1;
+    VertexPlacement placement = spatial_placement(m.V, fixed);
+    UntangleOptions options;
+    options.max_sweeps = 500;
+    options.rings = rings;
+    const UntangleReport r = untangle(m, placement, options);
+    EXPECT_EQ(r.stalled_passes, 1) << n;
+    EXPECT_GT(r.inverted_after, 0) << n;
+    return std::make_pair(r.sweeps, r.free_vertices);
+  };
+  const auto [few_sweeps, few] = stalled_sweeps(4, 2);
+  const auto [many_sweeps, many] = stalled_sweeps(20, 40);
+  ASSERT_LT(few, 100);
+  ASSERT_GT(many, 5000);
+  EXPECT_LE(many_sweeps, 8);
+  EXPECT_GE(few_sweeps, 15);
+}
+
 TEST(Untangle, RepairsAFlatCellThatIsNotInverted) {
   VolumeMesh m = test::hex_box(3, 3, 3, 3, 3, 3);
   // Interior vertex (1,1,1) moved almost onto the midpoint of two of its neighbours: positive but ~0 Jacobians.
