@@ -8,12 +8,12 @@
 //   bottom cut   z = bottom_z     (side v0): below the chin;
 //   posterior    y = posterior_y + posterior_slope (x - centre_x)  (sides u0 at x < centre_x, u1 at x > centre_x): in
 //                front of the ears, vertical; posterior_y is where it crosses the mid-sagittal plane;
-//   jaw cut      y - posterior_slope (x - centre_x) + z = posterior_y + jaw_z (side v0 too), rising backwards at 45
-//   degrees from the bottom cut to
-//                z = jaw_z on the posterior cut. Under the jaw the soft tissue runs back to the neck, so the posterior
-//                cut alone would cut it right across, joining u0 and u1 under the chin; the jaw cut takes away the
-//                back of the submental region so that the posterior cut meets two separate lateral pieces, as in the
-//                standard mesh (whose lower boundary also rises from the chin back towards the ears).
+//   jaw cut      y - posterior_slope (x - centre_x) + z = posterior_y + jaw_z (side v0 too), rising backwards at
+//                45 degrees from the bottom cut to z = jaw_z on the posterior cut. Under the jaw the soft tissue runs
+//                back to the neck, so the posterior cut alone would cut it right across, joining u0 and u1 under the
+//                chin; the jaw cut takes away the back of the submental region so that the posterior cut meets two
+//                separate lateral pieces, as in the standard mesh (whose lower boundary also rises from the chin back
+//                towards the ears).
 // Automatic placement from the anatomy (face_anatomy.h, which states how each landmark is found); each value can be
 // given instead:
 //   centre_x    = the mid-sagittal plane at the pronasale's level, from the face's mirror symmetry;
@@ -108,10 +108,6 @@ struct ScanSlab {
   HeadTurn turn;
 };
 
-// `head` is the body (with its ears), `without_ears` the body opened (find_face_anatomy), `bone` the bone voxels, on
-// the same grid; `slab`: where the scan ends, when the grid is pitched (else the grid's first and last levels).
-// The anatomy is looked for unless all four values are given. Throws facehex::Error("segment", ...) if it cannot be
-// found (naming the option that places the cut by hand) or if the cuts leave no face (bottom above top, ...).
 // The front of the ears: the more anterior tragus found (face anatomy rule 6), else where it would lie, 3 mm in front
 // of the auricles' front edge (rule 5). The tragus moves less with the auricle's outline than the auricle's front edge
 // does.
@@ -137,6 +133,10 @@ constexpr double kMinFaceDepth = 65.0;  // mm
 // error of the turn.
 constexpr double kMaxPosteriorCutTurn = 12.0;  // degrees
 
+// `head` is the body (with its ears), `without_ears` the body opened (find_face_anatomy), `bone` the bone voxels, on
+// the same grid; `slab`: where the scan ends, when the grid is pitched (else the grid's first and last levels).
+// The anatomy is looked for unless all four values are given. Throws facehex::Error("segment", ...) if it cannot be
+// found (naming the option that places the cut by hand) or if the cuts leave no face (bottom above top, ...).
 // scan_edge: where the scan ends across the head (field_of_view_contacts, head frame), or none.
 FaceCuts find_face_cuts(const Mask& head, const Mask& without_ears, const Mask& bone, const FaceCutOptions& options,
                         const std::optional<ScanSlab>& slab = std::nullopt,
