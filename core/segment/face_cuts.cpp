@@ -78,27 +78,26 @@ namespace {
 // The posterior cut from the anatomy and from where the scan ends across the head (face_cuts.h).
 void place_posterior_cut(const FaceAnatomy& a, const FaceCutOptions& options,
                          const std::vector<FieldOfViewContact>& scan_edge, FaceCuts& cuts) {
-  // From the mouth's level (half way from the chin's lowest bone to the nose tip) up: lower down, a scan that ends
-  // across the shoulders beside the neck says nothing of the face.
+  const EarsLine line = ears_line(a, cuts.centre_x);
+  const double ears = line.y_at_centre + options.ear_clearance;
+  // Where the scan ends across the head from the mouth's level (half way from the chin's lowest bone to the nose tip)
+  // up: lower down, a scan that ends across the shoulders beside the neck says nothing of the face. The scan ends in
+  // front of the ears' cut; or the ears' cut leaves less than a face region: what the ear rules read in a scan that
+  // ends behind the face (a cheek's bulge standing out, the rows where the head is widest because the scan ends
+  // there) is no ear.
   const double z_lo = 0.5 * (a.menton.z() + a.pronasale.z()), z_hi = a.glabella.z() + options.brow_clearance;
-  for (const FieldOfViewContact& contact : scan_edge)
-    if (contact.point.z() >= z_lo && contact.point.z() <= z_hi &&
-        contact.point.y() > cuts.scan_edge_y.value_or(-std::numeric_limits<double>::infinity())) {
-      cuts.scan_edge_y = contact.point.y();
+  bool scan_edge_in_front = false;
+  for (const FieldOfViewContact& contact : scan_edge) {
+    const Eigen::Vector3d& p = contact.point;
+    if (p.z() < z_lo || p.z() > z_hi) continue;
+    if (p.y() > cuts.scan_edge_y.value_or(-std::numeric_limits<double>::infinity())) {
+      cuts.scan_edge_y = p.y();
       cuts.scan_edge_at_disc = contact.on_disc;
     }
-  const EarsLine line = ears_line(a, cuts.centre_x);
-  const double ears = line.y_at_centre + options.ear_clearance, slope = line.slope;
-  // The scan ends in front of the ears' cut; or the ears' cut leaves less than a face region: what the ear rules read
-  // in a scan that ends behind the face (a cheek's bulge standing out, the rows where the head is widest because the
-  // scan ends there) is no ear.
-  bool scan_edge_in_front = false;
-  for (const FieldOfViewContact& contact : scan_edge)
-    if (contact.point.z() >= z_lo && contact.point.z() <= z_hi)
-      scan_edge_in_front |=
-          contact.point.y() + options.border_margin > ears + slope * (contact.point.x() - cuts.centre_x);
+    scan_edge_in_front |= p.y() + options.border_margin > ears + line.slope * (p.x() - cuts.centre_x);
+  }
   cuts.posterior_at_scan_edge = cuts.scan_edge_y && (scan_edge_in_front || a.pronasale.y() - ears < kMinFaceDepth);
-  cuts.posterior_slope = cuts.posterior_at_scan_edge ? 0 : slope;
+  cuts.posterior_slope = cuts.posterior_at_scan_edge ? 0 : line.slope;
   cuts.posterior_y =
       std::round(10 * (cuts.posterior_at_scan_edge ? *cuts.scan_edge_y + options.border_margin : ears)) / 10;
   const double depth = a.pronasale.y() - cuts.posterior_y;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <utility>
 
 #include "core/mesh/corner_jacobian.h"
 #include "core/util/error.h"
@@ -56,21 +57,30 @@ TEST(Untangle, RepairsADeliberatelyInvertedMeshWithoutMovingTheBoundary) {
     }
 }
 
-// A fold no free vertex can reach (every vertex of the inverted cell is held): the repair stops once its unusable
-// cells have stopped becoming fewer, reports the pass as stalled and says what is left, instead of sweeping to its
-// limit.
-TEST(Untangle, AFoldNoVertexCanUntangleStopsThePassAndIsReported) {
-  VolumeMesh m = test::hex_box(4, 4, 4, 4, 4, 4);
-  auto id = [](int i, int j, int k) { return (k * 5 + j) * 5 + i; };
-  // The interior vertex (1,1,1) pushed through the corner cell's far corner (0,0,0) and held there.
-  m.V.row(id(1, 1, 1)) << -0.5, -0.4, -0.3;
+// A box of n x n x n unit hexes whose interior vertex (1,1,1) is pushed through the corner cell's far corner (0,0,0)
+// and held there, with the boundary: a fold no free vertex can reach. Its placement moves the others in space.
+struct HeldFold {
+  VolumeMesh mesh;
+  VertexPlacement placement;
+};
+HeldFold held_fold(int n) {
+  VolumeMesh m = test::hex_box(n, n, n, n, n, n);
+  const int held = (n + 2) * (n + 1) + 1;  // vertex (1,1,1)
+  m.V.row(held) << -0.5, -0.4, -0.3;
   std::vector<char> fixed = boundary_fixed(m);
-  fixed[id(1, 1, 1)] = 1;
-  ASSERT_FALSE(check_corner_jacobians(m).inverted.empty());
+  fixed[held] = 1;
   VertexPlacement placement = spatial_placement(m.V, fixed);
+  return {std::move(m), std::move(placement)};
+}
+
+// The held fold: the repair stops once its unusable cells have stopped becoming fewer, reports the pass as stalled and
+// says what is left, instead of sweeping to its limit.
+TEST(Untangle, AFoldNoVertexCanUntangleStopsThePassAndIsReported) {
+  HeldFold fold = held_fold(4);
+  ASSERT_FALSE(check_corner_jacobians(fold.mesh).inverted.empty());
   UntangleOptions options;
   options.max_sweeps = 500;
-  const UntangleReport r = untangle(m, placement, options);
+  const UntangleReport r = untangle(fold.mesh, fold.placement, options);
   EXPECT_GT(r.inverted_after, 0);
   EXPECT_EQ(r.stalled_passes, 1);
   EXPECT_LT(r.sweeps, 50);
@@ -81,16 +91,11 @@ TEST(Untangle, AFoldNoVertexCanUntangleStopsThePassAndIsReported) {
 // fewer sweeps (its patience is counted in vertex steps), one over a few dozen after more.
 TEST(Untangle, AStalledPassOverManyVerticesGivesUpSooner) {
   auto stalled_sweeps = [](int n, int rings) {
-    VolumeMesh m = test::hex_box(n, n, n, n, n, n);
-    auto id = [n](int i, int j, int k) { return (k * (n + 1) + j) * (n + 1) + i; };
-    m.V.row(id(1, 1, 1)) << -0.5, -0.4, -0.3;
-    std::vector<char> fixed = boundary_fixed(m);
-    fixed[id(1, 1, 1)] = 1;
-    VertexPlacement placement = spatial_placement(m.V, fixed);
+    HeldFold fold = held_fold(n);
     UntangleOptions options;
     options.max_sweeps = 500;
     options.rings = rings;
-    const UntangleReport r = untangle(m, placement, options);
+    const UntangleReport r = untangle(fold.mesh, fold.placement, options);
     EXPECT_EQ(r.stalled_passes, 1) << n;
     EXPECT_GT(r.inverted_after, 0) << n;
     return std::make_pair(r.sweeps, r.free_vertices);
