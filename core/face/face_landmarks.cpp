@@ -111,10 +111,17 @@ struct Profile {
     simplify(points, farthest, last, tolerance, kept);
   }
 
-  // The longest run of bins at most `depth` mm behind `front` (one bin behind it allowed), as (lowest z, highest z),
+  // A field-of-view cut's front as the profile shows it: the line through (z, y) rising `slope` mm in y per mm in z,
+  // upright where the scan's edge is level with the head frame, leaning where a pitch (or a warp) leans it.
+  struct FrontLine {
+    double z = 0, y = 0, slope = 0;
+    double y_at(double at) const { return y + slope * (at - z); }
+  };
+
+  // The longest run of bins at most `depth` mm behind `line` (one bin behind it allowed), as (lowest z, highest z),
   // if it is at least `min_length` mm long: a flat plateau where the scan's field of view cut the face. Empty bins
   // neither end nor extend a run: they lie between the mesh's vertices, several in a row where its edges are long.
-  std::optional<std::pair<double, double>> clipped_run(double front, double depth, double min_length) const {
+  std::optional<std::pair<double, double>> run_behind(const FrontLine& line, double depth, double min_length) const {
     std::optional<std::pair<double, double>> best;
     bool in_run = false;
     std::pair<double, double> run{0.0, 0.0};
@@ -122,7 +129,7 @@ struct Profile {
     for (size_t b = 0; b < bins.size(); ++b) {
       if (!bins[b]) continue;
       const double z = z0 + static_cast<double>(b) + 0.5;
-      if (bins[b]->y() >= front - depth) {
+      if (bins[b]->y() >= line.y_at(bins[b]->z()) - depth) {
         run = in_run ? std::pair{run.first, z} : std::pair{z, z};
         in_run = true;
         gap = 0;
@@ -133,6 +140,23 @@ struct Profile {
     }
     if (best && best->second - best->first >= min_length) return best;
     return std::nullopt;
+  }
+
+  // The least-squares line through the bins with z in [lo, hi], moved forward onto the most anterior of them; none
+  // for fewer than two bins.
+  std::optional<FrontLine> fitted_front(double lo, double hi) const {
+    double n = 0, sz = 0, sy = 0, szz = 0, szy = 0;
+    for (const auto& bin : bins)
+      if (bin && bin->z() >= lo && bin->z() <= hi)
+        n += 1, sz += bin->z(), sy += bin->y(), szz += bin->z() * bin->z(), szy += bin->z() * bin->y();
+    const double spread = n * szz - sz * sz;
+    if (n < 2 || spread <= 0) return std::nullopt;
+    FrontLine line{sz / n, sy / n, (n * szy - sz * sy) / spread};
+    double ahead = -std::numeric_limits<double>::infinity();
+    for (const auto& bin : bins)
+      if (bin && bin->z() >= lo && bin->z() <= hi) ahead = std::max(ahead, bin->y() - line.y_at(bin->z()));
+    line.y += ahead;
+    return line;
   }
 
   // True if, going down from z_top to z_bottom, the profile comes forward again by more than `rise` mm after
@@ -212,6 +236,8 @@ constexpr double kTurnTolerances[] = {1.5, 1.0, 0.5};
 // mm below the nose within which the lips are looked for; the second reach only when the first does not show all four
 // (a slanted field-of-view cut's lowest point, taken for the nose, can be well above the tip).
 constexpr double kLipsReaches[] = {50.0, 65.0};
+// dy/dz: a field-of-view cut leaning more than this (15 degrees) in the head frame is not followed along its lean
+constexpr double kMaxCutSlope = 0.27;
 // mm: a profile that comes this far forward again below a field-of-view cut's flat front shows the lips there
 constexpr double kLipRise = 1.0;
 // mm from the subnasale's hollow down to the stomion's, at least (an adult's upper lip is 15-25 mm tall).
@@ -361,12 +387,26 @@ FaceLandmarks find_in_head_frame(const Eigen::MatrixXd& V, const Eigen::VectorXi
   }
   const Profile profile = skin_profile(V, skin, l.plane, options.profile_band);
   const Eigen::Vector3d front = require(profile.extreme(zmin + 0.1 * height, zmax - 0.1 * height, true), "nose tip");
+  Profile::FrontLine cut_front{front.z(), front.y(), 0.0};
   std::optional<std::pair<double, double>> cut =
-      profile.clipped_run(front.y(), options.clipped_depth, options.clipped_length);
+      profile.run_behind(cut_front, options.clipped_depth, options.clipped_length);
+  // A cut that leans in the head frame (a pitched head's, whose scan's edge is level with the scanner; a warp's) ends
+  // early behind an upright front: the line through the plateau's own points follows it down to where it ends, as long
+  // as the profile only recedes below the upright plateau (a plane's trace does; a flat nose's profile comes forward
+  // again at the upper lip).
+  if (cut) {
+    const auto leaning = profile.fitted_front(cut->first, cut->second);
+    const auto along = leaning && std::abs(leaning->slope) <= kMaxCutSlope
+                           ? profile.run_behind(*leaning, options.clipped_depth, options.clipped_length)
+                           : std::nullopt;
+    if (along && along->second - along->first > cut->second - cut->first &&
+        !profile.comes_forward_below(cut->first, along->first, kLipRise))
+      cut = along, cut_front = *leaning;
+  }
   // A cut that clipped the nose back to the lips' level holds the subnasale's hollow and the upper lip in a plateau as
   // deep as a coarse model's roughness needs: the cut is then its flat front, above them.
   if (cut) {
-    const auto flat = profile.clipped_run(front.y(), options.clipped_flat_depth, options.clipped_length);
+    const auto flat = profile.run_behind(cut_front, options.clipped_flat_depth, options.clipped_length);
     if (flat && flat->first > cut->first && profile.comes_forward_below(flat->first, cut->first, kLipRise)) cut = flat;
     l.clipped_from = cut->first, l.clipped_to = cut->second;
   }

@@ -382,6 +382,24 @@ TEST(FaceLandmarks, ACutLevelWithTheLipsEndsAtTheFlatFront) {
   }
 }
 
+// A nose clipped by a field of view that leans back 6 degrees in the head frame (a head pitched in the scanner):
+// the cut runs from the top (z 60, y 96.3) down to the nose's lowest cut point (z 0, y 90), 6.3 mm behind its top.
+// Behind an upright front its plateau ends 24 mm above the nose; along its own line it reaches down to where the
+// nose's underside falls the plateau's depth (3.5 mm) behind that line (z -7), and the lips below are found as under
+// an upright cut.
+TEST(FaceLandmarks, ACutLeaningInTheHeadFrameIsFollowedDownToTheNose) {
+  std::vector<Eigen::Vector2d> corners = {{60, 96.3}};
+  corners.insert(corners.end(), kVerticalLip.begin() + 3, kVerticalLip.end());
+  for (unsigned seed : {1u, 2u, 3u}) {
+    const FaceLandmarks l = profile_landmarks(corners, 0.2, seed);
+    EXPECT_NEAR(l.clipped_from, -7, 1.5) << seed;
+    EXPECT_NEAR(l.clipped_to, 60, 1.5) << seed;
+    const std::map<std::string, double> expected_z = {
+        {"subnasale", -10}, {"labrale superius", -24}, {"stomion", -30}, {"labrale inferius", -36}};
+    for (const auto& [name, z] : expected_z) EXPECT_NEAR(l.points.at(name).z(), z, 2.0) << name << ", seed " << seed;
+  }
+}
+
 TEST(FaceLandmarks, ACutThatTookTheLipsIsNamedInTheError) {
   // The same cut carried down to z -40: the lips lie inside it, and the error says where the cut is.
   std::vector<Eigen::Vector2d> corners(kClippedToTheLips.begin(), kClippedToTheLips.begin() + 4);
