@@ -238,6 +238,9 @@ constexpr double kTurnTolerances[] = {1.5, 1.0, 0.5};
 constexpr double kLipsReaches[] = {50.0, 65.0};
 // dy/dz: a field-of-view cut leaning more than this (15 degrees) in the head frame is not followed along its lean
 constexpr double kMaxCutSlope = 0.27;
+// mm: a plateau followed along its lean that is not this much longer than the upright one is the same plateau, read
+// again on a rough profile (a flat nose's, a coarse model's)
+constexpr double kMinCutGain = 5.0;
 // mm: a profile that comes this far forward again below a field-of-view cut's flat front shows the lips there
 constexpr double kLipRise = 1.0;
 // mm from the subnasale's hollow down to the stomion's, at least (an adult's upper lip is 15-25 mm tall).
@@ -391,15 +394,15 @@ FaceLandmarks find_in_head_frame(const Eigen::MatrixXd& V, const Eigen::VectorXi
   std::optional<std::pair<double, double>> cut =
       profile.run_behind(cut_front, options.clipped_depth, options.clipped_length);
   // A cut that leans in the head frame (a pitched head's, whose scan's edge is level with the scanner; a warp's) ends
-  // early behind an upright front: the line through the plateau's own points follows it down to where it ends, as long
-  // as the profile only recedes below the upright plateau (a plane's trace does; a flat nose's profile comes forward
-  // again at the upper lip).
+  // early behind an upright front: the line through the plateau's own points follows it to where it ends, when that
+  // is well beyond the upright plateau and the profile only recedes below it (a plane's trace does; a flat nose's
+  // profile comes forward again at the upper lip).
   if (cut) {
     const auto leaning = profile.fitted_front(cut->first, cut->second);
     const auto along = leaning && std::abs(leaning->slope) <= kMaxCutSlope
                            ? profile.run_behind(*leaning, options.clipped_depth, options.clipped_length)
                            : std::nullopt;
-    if (along && along->second - along->first > cut->second - cut->first &&
+    if (along && along->second - along->first > cut->second - cut->first + kMinCutGain &&
         !profile.comes_forward_below(cut->first, along->first, kLipRise))
       cut = along, cut_front = *leaning;
   }
