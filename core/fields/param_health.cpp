@@ -29,9 +29,11 @@ ParamHealth parameterization_health(const Eigen::MatrixXi& T, const Eigen::Matri
         by_constraint = all_fixed_equal;
       }
       h.flat_by_constraint += by_constraint;
+      if (!by_constraint) h.folded_tets.push_back(t);
     } else if (vol(t) * h.orientation < 0) {
       ++h.inverted;
       if (h.inverted_tets.size() < 100) h.inverted_tets.push_back(t);
+      h.folded_tets.push_back(t);
     }
   }
   for (Eigen::Index v = 0; v < uvw.rows(); ++v)

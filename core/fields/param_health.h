@@ -15,6 +15,7 @@ struct ParamHealth {
   int flat_by_constraint = 0;      // degenerate because all four corners are pinned to one value of a field
   int outside_cube = 0;            // vertices with a coordinate outside [0, 1] by more than 1e-9
   std::vector<int> inverted_tets;  // ids of the first inverted tets (at most 100)
+  std::vector<int> folded_tets;    // ids of every inverted tet and every degenerate one not flat by a constraint
   bool ok() const { return inverted == 0 && degenerate == flat_by_constraint; }
 };
 

@@ -7,6 +7,7 @@
 #include <limits>
 #include <memory>
 
+#include "core/fields/fold_location.h"
 #include "core/mapping/param_locator.h"
 #include "core/mesh/corner_jacobian.h"
 #include "core/mesh/sides.h"
@@ -16,6 +17,10 @@
 
 namespace facehex {
 namespace {
+
+// Vertex rings about a cut within which folds count as lying against it (fold_location.h): a few cells, the reach of
+// a cut that runs close along a bone surface or over thin tissue.
+constexpr int kFoldRings = 4;
 
 std::string health_problem(const ParamHealth& h) {
   return std::to_string(h.inverted) + " of " + std::to_string(h.tets) + " parametric tets are inverted and " +
@@ -168,7 +173,10 @@ void check_patient_parameterization(const TransferRun& run, const std::string& p
   const ParamHealth& health = run.patient.health;
   const int folded = health.inverted + health.degenerate - health.flat_by_constraint;
   if (!options.allow_inverted_parameterization && folded > options.max_inverted_fraction * health.tets)
-    throw Error(patient_source, "parameterization: " + health_problem(health));
+    throw Error(patient_source,
+                "parameterization: " + health_problem(health) +
+                    fold_location_text(fold_location(run.patient.T, run.patient.fields.uvw, run.patient.fixed,
+                                                     health.folded_tets, kFoldRings)));
   if (run.standard.health.orientation != run.patient.health.orientation)
     throw Error(patient_source,
                 "the model frame has the opposite handedness to the standard's (mirrored scan?): swap the u0 and u1 "

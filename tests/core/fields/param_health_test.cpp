@@ -85,7 +85,8 @@ TEST(ParamHealth, CountsInvertedAndDegenerateTets) {
   EXPECT_EQ(h.inverted, 2);
   EXPECT_EQ(h.inverted_tets, (std::vector<int>{2, 6}));
   EXPECT_EQ(h.degenerate, 1);
-  EXPECT_EQ(h.flat_by_constraint, 0);  // nothing is fixed
+  EXPECT_EQ(h.flat_by_constraint, 0);                     // nothing is fixed
+  EXPECT_EQ(h.folded_tets, (std::vector<int>{2, 6, 7}));  // the inverted ones and the accidentally flat one
   EXPECT_FALSE(h.ok());
 
   // The majority decides the orientation: mirrored, the six positive tets are the negative majority and the two
@@ -120,6 +121,7 @@ TEST(ParamHealth, FlatTetsAreExcusedOnlyWhenOneFieldPinsAllFourCornersToOneValue
   EXPECT_EQ(h.degenerate, 3);
   EXPECT_EQ(h.flat_by_constraint, 1);
   EXPECT_EQ(h.inverted, 0);
+  EXPECT_EQ(h.folded_tets, (std::vector<int>{1, 2}));  // not the one the constraint made flat
   EXPECT_FALSE(h.ok());
 
   // Only the constraint-made flat tet left: healthy.
