@@ -34,8 +34,8 @@
 // more than 1 mm holds the subnasale and the upper lip, and the cut is that flat front). A cut that leans in the head
 // frame (a head pitched in the scanner, whose field of view is level with the scanner) is followed along the line
 // fitted to its plateau (leaning up to 15 degrees) when that line's plateau is at least 5 mm longer and the profile
-// only recedes between the two plateaus' lower ends (a flat nose's comes forward again at the upper lip). The lips and subnasale are
-// found below it as above (the cut's lowest point standing for the nose). When the
+// only recedes between the two plateaus' lower ends (a flat nose's comes forward again at the upper lip). The lips
+// and subnasale are found below it as above (the cut's lowest point standing for the nose). When the
 // cut ends well below the top of the skin (the nose alone was cut), the pronasale is estimated at the cut's middle and
 // the nasion and glabella are found above the cut, unless the nasion found there lies further from the subnasale than
 // an adult's (70 mm: the cut reached past it); otherwise the pronasale, nasion and glabella are placed by typical

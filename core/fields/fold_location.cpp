@@ -2,61 +2,28 @@
 
 #include <algorithm>
 #include <cmath>
-#include <queue>
+
+#include "core/mesh/cell_rings.h"
 
 namespace facehex {
-namespace {
 
-// The vertices' neighbours along the tets' edges (each vertex's list sorted and without repeats).
-std::vector<std::vector<int>> vertex_neighbours(const Eigen::MatrixXi& T, Eigen::Index vertices) {
-  std::vector<std::vector<int>> neighbours(vertices);
-  for (Eigen::Index t = 0; t < T.rows(); ++t)
-    for (int i = 0; i < 4; ++i)
-      for (int j = 0; j < 4; ++j)
-        if (i != j) neighbours[T(t, i)].push_back(T(t, j));
-  for (auto& n : neighbours) {
-    std::sort(n.begin(), n.end());
-    n.erase(std::unique(n.begin(), n.end()), n.end());
-  }
-  return neighbours;
-}
-
-// Per vertex: within `rings` steps of a source (breadth first from all sources at once).
-std::vector<char> within_rings(const std::vector<std::vector<int>>& neighbours, const std::vector<int>& sources,
-                               int rings) {
-  std::vector<int> depth(neighbours.size(), -1);
-  std::queue<int> queue;
-  for (int s : sources) depth[s] = 0, queue.push(s);
-  while (!queue.empty()) {
-    const int v = queue.front();
-    queue.pop();
-    if (depth[v] == rings) continue;
-    for (int n : neighbours[v])
-      if (depth[n] < 0) depth[n] = depth[v] + 1, queue.push(n);
-  }
-  std::vector<char> near(neighbours.size());
-  for (size_t v = 0; v < near.size(); ++v) near[v] = depth[v] >= 0;
-  return near;
-}
-
-}  // namespace
-
-FoldLocation fold_location(const Eigen::MatrixXi& T, const Eigen::MatrixXd& uvw, const Eigen::MatrixXi& fixed,
+FoldLocation fold_location(const VolumeMesh& mesh, const Eigen::MatrixXd& uvw, const Eigen::MatrixXi& fixed,
                            const std::vector<int>& folded, int rings) {
   FoldLocation location;
   location.folded = static_cast<int>(folded.size());
   location.rings = rings;
   if (folded.empty() || fixed.rows() != uvw.rows()) return location;
-  const std::vector<std::vector<int>> neighbours = vertex_neighbours(T, uvw.rows());
   for (int cut = 0; cut < 4; ++cut) {
     const int field = cut / 2;
     const double end = cut % 2;
-    std::vector<int> on_cut;
-    for (Eigen::Index v = 0; v < uvw.rows(); ++v)
-      if (fixed(v, field) != 0 && uvw(v, field) == end) on_cut.push_back(static_cast<int>(v));
-    if (on_cut.empty()) continue;
-    const std::vector<char> near = within_rings(neighbours, on_cut, rings);
-    for (int t : folded) location.near_cut[cut] += near[T(t, 0)] || near[T(t, 1)] || near[T(t, 2)] || near[T(t, 3)];
+    std::vector<char> on_cut(uvw.rows(), 0);
+    for (Eigen::Index v = 0; v < uvw.rows(); ++v) on_cut[v] = fixed(v, field) != 0 && uvw(v, field) == end;
+    const std::vector<char> near = within_cell_rings(mesh, std::move(on_cut), rings);
+    for (int t : folded) {
+      bool touches = false;
+      for (int i = 0; i < node_count(mesh.types[t]); ++i) touches |= near[mesh.C(t, i)] != 0;
+      location.near_cut[cut] += touches;
+    }
   }
   return location;
 }

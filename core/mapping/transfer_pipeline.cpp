@@ -9,6 +9,7 @@
 
 #include "core/fields/fold_location.h"
 #include "core/mapping/param_locator.h"
+#include "core/mesh/cell_rings.h"
 #include "core/mesh/corner_jacobian.h"
 #include "core/mesh/sides.h"
 #include "core/shape/corner_energy.h"
@@ -173,10 +174,10 @@ void check_patient_parameterization(const TransferRun& run, const std::string& p
   const ParamHealth& health = run.patient.health;
   const int folded = health.inverted + health.degenerate - health.flat_by_constraint;
   if (!options.allow_inverted_parameterization && folded > options.max_inverted_fraction * health.tets)
-    throw Error(patient_source,
-                "parameterization: " + health_problem(health) +
-                    fold_location_text(fold_location(run.patient.T, run.patient.fields.uvw, run.patient.fixed,
-                                                     health.folded_tets, kFoldRings)));
+    throw Error(patient_source, "parameterization: " + health_problem(health) +
+                                    fold_location_text(fold_location(
+                                        VolumeMesh::from_tets(run.patient.V, run.patient.T), run.patient.fields.uvw,
+                                        run.patient.fixed, health.folded_tets, kFoldRings)));
   if (run.standard.health.orientation != run.patient.health.orientation)
     throw Error(patient_source,
                 "the model frame has the opposite handedness to the standard's (mirrored scan?): swap the u0 and u1 "

@@ -9,6 +9,7 @@
 #include <memory>
 #include <utility>
 
+#include "core/mesh/cell_rings.h"
 #include "core/mesh/corner_jacobian.h"
 #include "core/shape/cell_bounds.h"
 #include "core/shape/corner_energy.h"

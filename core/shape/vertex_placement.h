@@ -18,10 +18,6 @@ struct VertexPlacement {
   std::function<bool(int v, const Eigen::Vector3d& q, Eigen::Vector3d& x, Eigen::Matrix3d& dxdq)> place;
 };
 
-// The vertices `marked` (#V flags) and those sharing a cell with them, grown `rings` times: the neighbourhood of a
-// set of vertices in cell rings.
-std::vector<char> within_cell_rings(const VolumeMesh& mesh, std::vector<char> marked, int rings);
-
 // p = x: vertices move freely in space, except the fixed ones (#V flags, nonzero = fixed).
 VertexPlacement spatial_placement(const Eigen::MatrixXd& V, const std::vector<char>& fixed);
 

@@ -13,13 +13,13 @@ namespace {
 // A box of 6 x 6 x 12 unit cells split into tets, parameterized as the identity scaled to the unit cube (u along x,
 // v along z, w along y), each field pinned on its two faces as a model's sides are.
 struct BoxParameterization {
-  Eigen::MatrixXd V, uvw;
-  Eigen::MatrixXi T, fixed;
+  VolumeMesh mesh = test::tet_box_without(6, 6, 12, 6, 6, 12, [](int, int, int) { return false; });
+  const Eigen::MatrixXd& V = mesh.V;
+  const Eigen::MatrixXi& T = mesh.C;
+  Eigen::MatrixXd uvw;
+  Eigen::MatrixXi fixed;
 
   BoxParameterization() {
-    const VolumeMesh box = test::tet_box_without(6, 6, 12, 6, 6, 12, [](int, int, int) { return false; });
-    V = box.V;
-    T = box.C;
     uvw.resize(V.rows(), 3);
     uvw << V.col(0) / 6, V.col(2) / 12, V.col(1) / 6;
     fixed = Eigen::MatrixXi::Zero(V.rows(), 3);
@@ -42,7 +42,7 @@ struct BoxParameterization {
 TEST(FoldLocation, FoldsUnderTheTopCutAreSaidToLieThereAndTheOptionIsNamed) {
   const BoxParameterization box;
   const std::vector<int> folded = box.tets_between(10, 11);  // in the second cell layer below the top (z = 12)
-  const FoldLocation at = fold_location(box.T, box.uvw, box.fixed, folded, 4);
+  const FoldLocation at = fold_location(box.mesh, box.uvw, box.fixed, folded, 4);
   EXPECT_EQ(at.folded, static_cast<int>(folded.size()));
   EXPECT_EQ(at.near_cut[3], at.folded);  // the top cut (v = 1)
   EXPECT_EQ(at.near_cut[2], 0);          // the bottom cut lies 10 cells away
@@ -58,8 +58,8 @@ TEST(FoldLocation, RingsBoundTheReachAndFoldsAwayFromEveryCutNameNone) {
   const BoxParameterization box;
   // Five cells below the top: within 6 rings of it, not within 2.
   const std::vector<int> lower = box.tets_between(6.5, 7);
-  EXPECT_EQ(fold_location(box.T, box.uvw, box.fixed, lower, 6).near_cut[3], static_cast<int>(lower.size()));
-  EXPECT_EQ(fold_location(box.T, box.uvw, box.fixed, lower, 2).near_cut[3], 0);
+  EXPECT_EQ(fold_location(box.mesh, box.uvw, box.fixed, lower, 6).near_cut[3], static_cast<int>(lower.size()));
+  EXPECT_EQ(fold_location(box.mesh, box.uvw, box.fixed, lower, 2).near_cut[3], 0);
   // The tets about the box's middle: their corners 2 cells or more from every cut, near none within 1 ring.
   std::vector<int> middle;
   for (Eigen::Index t = 0; t < box.T.rows(); ++t) {
@@ -68,10 +68,10 @@ TEST(FoldLocation, RingsBoundTheReachAndFoldsAwayFromEveryCutNameNone) {
     if ((c - Eigen::RowVector3d(3, 3, 6)).norm() < 1.0) middle.push_back(static_cast<int>(t));
   }
   ASSERT_FALSE(middle.empty());
-  const FoldLocation nowhere = fold_location(box.T, box.uvw, box.fixed, middle, 1);
+  const FoldLocation nowhere = fold_location(box.mesh, box.uvw, box.fixed, middle, 1);
   for (int cut = 0; cut < 4; ++cut) EXPECT_EQ(nowhere.near_cut[cut], 0) << cut;
   EXPECT_EQ(fold_location_text(nowhere), "");
-  EXPECT_EQ(fold_location_text(fold_location(box.T, box.uvw, box.fixed, {}, 4)), "");
+  EXPECT_EQ(fold_location_text(fold_location(box.mesh, box.uvw, box.fixed, {}, 4)), "");
 }
 
 }  // namespace
