@@ -45,6 +45,12 @@ constexpr double kMinNoseRelief = 4.0;  // mm
 // chin that the scan's first slice cuts, or a nose its field of view clips, shortens or lengthens it by a little.
 constexpr double kNoseToChin[2] = {30.0, 115.0};
 constexpr double kCheekOffset = 40.0;  // mm from the mid-sagittal plane
+// Rule 3b: the forehead's front is read this far either side of the mid-plane (about the inner eye corners' span
+// and more, where a scan's tilted end crosses the forehead first), and a front that recedes more steeply than this,
+// mm per mm of height (about 72 degrees from vertical), is no forehead's.
+constexpr double kForeheadHalfWidth = 25.0;  // mm
+constexpr double kForeheadEndSlope = 3.0;
+constexpr double kForeheadEndRise = 3.0;  // mm
 
 const double kNone = std::numeric_limits<double>::quiet_NaN();
 
@@ -345,6 +351,35 @@ void find_ear_front(const Mask& head, const Mask& without_ears, FaceAnatomy& ana
   if (!std::isfinite(anatomy.ear_front_y)) not_found("the ears", "--posterior-cut");
 }
 
+// Rule 3b: the forehead's end, looked for from height `from` up to slice `top`. The front is compared across a rise of
+// kForeheadEndRise (two slices at least), since a slice's front moves by whole voxels.
+double forehead_end(const Sections& s, const FaceAnatomy& anatomy, double from, int top) {
+  const GridGeometry& g = s.g;
+  const int first = std::max(0, static_cast<int>(std::ceil((from - g.origin.z()) / g.spacing.z())));
+  const int rise = std::max(2, static_cast<int>(std::ceil(kForeheadEndRise / g.spacing.z())));
+  const double recession = kForeheadEndSlope * rise * g.spacing.z();
+  std::vector<double> ends;  // per column
+  for (int i = 0; i < g.dims[0]; ++i) {
+    if (std::abs(g.point(i, 0, 0).x() - anatomy.centre_at(from)) > kForeheadHalfWidth) continue;
+    const auto front = [&](int k) { return s.front[s.at(i, k)]; };
+    if (std::isnan(front(first))) continue;
+    ends.push_back(std::numeric_limits<double>::infinity());
+    for (int k = first + 1; k <= top; ++k) {
+      const int base = std::max(first, k - rise);
+      if (!std::isnan(front(k)) && !(front(base) - front(k) >= recession)) continue;
+      // The front is whole up to the last level within a voxel of the base's.
+      int whole = k - 1;
+      while (whole > base && !(front(whole) >= front(base) - g.spacing.y())) --whole;
+      ends.back() = g.point(0, 0, whole).z();
+      break;
+    }
+  }
+  if (ends.empty()) return std::numeric_limits<double>::infinity();
+  const auto quarter = ends.begin() + static_cast<long>(ends.size() / 4);
+  std::nth_element(ends.begin(), quarter, ends.end());
+  return *quarter;
+}
+
 }  // namespace
 
 HeadTurn find_head_turn(const Mask& head) {
@@ -488,6 +523,7 @@ FaceAnatomy find_face_anatomy(const Mask& head, const Mask& without_ears, const 
   anatomy.glabella = hollow ? *profile.extreme(n->z() + kBrowReach[0], n->z() + kBrowReach[1], true, tie)
                             : *profile.extreme(prn->z(), z_hi, true, tie);
   anatomy.highest_head_z = z_hi;
+  anatomy.forehead_end_z = forehead_end(sections, anatomy, anatomy.brow_unseen ? prn->z() + 15 : n->z(), top);
   find_chin(bone, profile, bottom, anatomy);
   // A profile read off the face (a head frame turned far from the head's, a misread plane) can show a "nose" and a
   // "chin" that stand out enough but lie at no face's distance apart.
@@ -522,6 +558,7 @@ std::string face_anatomy_text(const FaceAnatomy& a) {
       << (a.tragi[side] ? point_text(a.tragi[side]->point) + (a.tragi[side]->estimated ? " (estimated)" : "")
                         : std::string("unseen"));
   if (a.lowest_head_z > -std::numeric_limits<double>::infinity()) s << ", head sections above z " << a.lowest_head_z;
+  if (std::isfinite(a.forehead_end_z)) s << ", the forehead's front whole up to z " << a.forehead_end_z;
   return s.str();
 }
 

@@ -27,6 +27,14 @@
 //     no point has a brow above it (the scan ends below the brow, or a field-of-view cut flattens the face),
 //     brow_unseen: the glabella is the most anterior point from the pronasale up and the top cut is the head's top
 //     (face_cuts.h);
+//  3b. the forehead's end: going up from the nasion (15 mm above the pronasale when the brow is unseen), in each
+//     column within kForeheadHalfWidth of the plane, the first level that is empty or whose front lies further behind
+//     the front a few mm below it (kForeheadEndRise, two slices at least) than kForeheadEndSlope times that rise: a
+//     forehead recedes less steeply, and what does is where the scan ends across the forehead with its slices tilted
+//     against the head (a head pitched in the scanner, slices resampled from a tilted gantry) or, far above, the
+//     head's vertex. That column's front is whole up to the last level within a voxel of the front below the rise;
+//     forehead_end_z is the lowest level a quarter of the columns end at (one or two columns at a strap's or a hair
+//     clip's corner do not decide), and the top cut stays below it (face_cuts.h);
 //  4. the bony chin: going down from 30 mm below the pronasale (below the head levels too), the levels where bone near
 //     the mid-plane (within kChinHalfWidth) lies at most kChinSoftTissue behind the skin profile, joined into runs
 //     over gaps of at most kChinGap; the chin's run is the tallest (the upper teeth and alveolar bone make a shorter
@@ -73,6 +81,8 @@ struct FaceAnatomy {
   Tragi tragi;                // rule 6: right (-x) and left (+x), none where not seen
   double lowest_head_z = 0;   // below this the slices are shoulders or a support
   double highest_head_z = 0;  // the highest level of the head in the scan
+  // Rule 3b: the highest level at which the forehead's front is whole; +infinity if it is up to the head's top.
+  double forehead_end_z = std::numeric_limits<double>::infinity();
 
   // The mid-sagittal plane's x at height z.
   double centre_at(double z) const;

@@ -150,7 +150,7 @@ FaceCuts find_face_cuts(const Mask& head, const Mask& without_ears, const Mask& 
     cuts.top_z = *options.top_z;
   } else {
     const FaceAnatomy& a = *cuts.anatomy;
-    cuts.top_z = std::min(z_max, a.highest_head_z - options.border_margin);
+    cuts.top_z = std::min({z_max, a.highest_head_z - options.border_margin, a.forehead_end_z - options.border_margin});
     if (!a.brow_unseen) cuts.top_z = std::min(cuts.top_z, a.glabella.z() + options.brow_clearance);
   }
   if (!(cuts.top_z > cuts.bottom_z + 10.0))

@@ -20,9 +20,11 @@
 //   bottom_z    = the menton (lowest point of the bony chin) minus chin_clearance, but at least border_margin above
 //                 the CT's bottom and above its lowest slice with any body in it (a scan that starts within the
 //                 chin: a cut below the body would leave the model no bottom side);
-//   top_z       = the glabella plus brow_clearance (above the eyebrows), but at least border_margin below the CT's top
-//                 and below the head's highest level (a scan that ends within the forehead); the head's highest
-//                 level less border_margin when the profile shows no brow (FaceAnatomy::brow_unseen);
+//   top_z       = the glabella plus brow_clearance (above the eyebrows), but at least border_margin below the CT's top,
+//                 below the head's highest level (a scan that ends within the forehead) and below the highest level at
+//                 which the forehead's front is whole (face_anatomy.h rule 3b: a scan whose last slice leans across
+//                 the forehead); the lowest of those three less border_margin when the profile shows no brow
+//                 (FaceAnatomy::brow_unseen);
 //   posterior_y = the line in front of the ears (ears_line: through the tragi, core/segment/tragus.h) moved
 //                 ear_clearance forward, each side the same distance in front of its own ear (a face's asymmetry, or
 //                 what is left of a turn of the head, moves them apart);

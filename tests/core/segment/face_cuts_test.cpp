@@ -367,6 +367,42 @@ TEST(FaceCuts, AScanEndingInTheForeheadKeepsTheTopCutInsideTheHead) {
   EXPECT_FALSE(whole_cuts.anatomy->brow_unseen);
 }
 
+// Clears the masks where `cut` holds, as a scan that ends there leaves them.
+void clear_where(Head& h, const std::function<bool(const Eigen::Vector3d&)>& cut) {
+  const GridGeometry& g = h.head.geometry;
+  for (int k = 0; k < g.dims[2]; ++k)
+    for (int j = 0; j < g.dims[1]; ++j)
+      for (int i = 0; i < g.dims[0]; ++i)
+        if (cut(g.point(i, j, k))) h.head(i, j, k) = h.bone(i, j, k) = 0;
+}
+
+TEST(FaceCuts, AScanEndingAcrossTheForeheadTiltedKeepsTheTopCutBelowTheForeheadsFront) {
+  // The scan's end leans 5 degrees against the head, rising backwards from z 150 at the forehead's front (y 92): the
+  // head's highest level is 156 at its back, and a top cut there less border_margin would leave the front of the
+  // forehead ending in the scan's tilted end instead of the cut.
+  const double lean = std::tan(5 * M_PI / 180);
+  Head tilted;
+  clear_where(tilted, [&](const Eigen::Vector3d& p) { return p.z() > 150 + (92 - p.y()) * lean; });
+  const FaceCuts cuts = cuts_of(tilted.head, tilted.bone, FaceCutOptions());
+  ASSERT_TRUE(cuts.anatomy);
+  EXPECT_NEAR(cuts.anatomy->highest_head_z, 156, 1e-9);
+  EXPECT_NEAR(cuts.anatomy->forehead_end_z, 150, 1e-9);
+  EXPECT_NEAR(cuts.top_z, 147, 1e-9);  // below the forehead's front by border_margin
+  EXPECT_NE(face_anatomy_text(*cuts.anatomy).find("the forehead's front whole up to z 150.0"), std::string::npos)
+      << face_anatomy_text(*cuts.anatomy);
+  // A forehead that recedes as steeply as one does (45 degrees from z 150) is whole up to the head's top, and so is
+  // the untouched head: their top cuts stay 15 mm above the glabella.
+  Head receding;
+  clear_where(receding, [](const Eigen::Vector3d& p) { return p.z() > 150 && p.y() > 92 - (p.z() - 150); });
+  const Head whole;
+  for (const Head* h : std::vector<const Head*>{&receding, &whole}) {
+    const FaceCuts c = cuts_of(h->head, h->bone, FaceCutOptions());
+    ASSERT_TRUE(c.anatomy);
+    EXPECT_GE(c.anatomy->forehead_end_z, 170);
+    EXPECT_NEAR(c.top_z, 155, 1e-9);
+  }
+}
+
 TEST(FaceCuts, AScanStartingWithinTheChinKeepsTheBottomCutInsideTheBody) {
   // Air below z = 30 (a field of view that starts within the chin, or a volume resampled into a larger box): the
   // menton's rule would cut at 25, below the body, leaving the model no bottom side.

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <string>
 
@@ -19,6 +20,7 @@
 #include "core/util/error.h"
 #include "core/util/resources.h"
 #include "tests/core/segment/phantom.h"
+#include "tests/core/segment/pitched_ct.h"
 
 namespace facehex {
 namespace {
@@ -111,15 +113,7 @@ TEST(PatientInput, AFaceFoundNeitherInTheCtsFrameNorPitchedBackIsAnErrorNamingBo
   // The bundled CT with its chin lowered 25 degrees more, on its own grid (what turns out of the field of view is
   // lost): no nose stands out of its profile in the CT's frame, and pitched back by its palate's slope the field of
   // view's tilted ends leave a face whose landmarks are implausible. The error says both, and names the option.
-  const CtVolume upright = read_ct_volume(default_ct());
-  HeadTurn scan;  // from the upright CT to the pitched one
-  scan.pitch = 25;
-  scan.axis = Eigen::Vector2d(100.8, 100.8);
-  scan.axis_z = 69;
-  CtVolume ct = upright;
-  ct.intensity = resample_mapped(
-      upright.intensity, upright.intensity.geometry, [&](const Eigen::Vector3d& p) { return scan.to_model(p); },
-      *std::min_element(upright.intensity.data.begin(), upright.intensity.data.end()));
+  const CtVolume ct = testing::pitched_on_its_grid(read_ct_volume(default_ct()), testing::bundled_ct_pitch(25));
   const fs::path path = fs::temp_directory_path() / ("facehex-pitched-bundled-" + std::to_string(::getpid()) + ".mha");
   write_ct_volume(path.string(), ct);
   SegmentOptions options;
@@ -158,20 +152,20 @@ TEST(PatientInput, TheBundledCtPitchedAFewDegreesHasItsLipsFoundBelowItsLeaningC
   SegmentOptions options;
   options.tets.target_edge_length = 4.0;
   for (const double pitch : {-8.0, -5.0, 8.0}) {
-    HeadTurn scan;  // from the upright CT to the pitched one
-    scan.pitch = pitch;
-    scan.axis = Eigen::Vector2d(100.8, 100.8);
-    scan.axis_z = 69;
-    CtVolume ct = upright;
-    ct.intensity = resample_mapped(
-        upright.intensity, upright.intensity.geometry, [&](const Eigen::Vector3d& p) { return scan.to_model(p); },
-        *std::min_element(upright.intensity.data.begin(), upright.intensity.data.end()));
-    const PatientModel m = build_patient_model(ct, options);
+    const HeadTurn scan = testing::bundled_ct_pitch(pitch);  // from the upright CT to the pitched one
+    const PatientModel m = build_patient_model(testing::pitched_on_its_grid(upright, scan), options);
     const FaceLandmarks l = find_face_landmarks(m.mesh.V, side_mask_of(m.mesh), landmark_options_for(m.mesh, "model"));
     EXPECT_FALSE(std::isnan(l.clipped_from)) << pitch;
     for (const char* name : {"subnasale", "labrale superius", "stomion", "labrale inferius"})
       EXPECT_LT((l.points.at(name) - scan.to_head(reference.at(name))).norm(), 3.0) << name << ", pitch " << pitch;
     EXPECT_NO_THROW(check_plausible(l, "")) << pitch;
+    // The model lies within what the scan holds, below its tilted last slice: the top cut stays below where that
+    // slice crosses the forehead's front (face_anatomy.h, rule 3b). Cut at the head's highest level less the margin,
+    // the forehead's front at +8 degrees reached 1.8 mm beyond it.
+    double highest = -std::numeric_limits<double>::infinity();
+    for (int v = 0; v < m.mesh.num_vertices(); ++v)
+      highest = std::max(highest, scan.to_model(m.mesh.V.row(v).transpose()).z());
+    EXPECT_LT(highest, upright.intensity.geometry.upper(2) - 1.0) << pitch;
   }
 }
 
