@@ -50,12 +50,14 @@ json to_json(const CorrespondenceCaseResult& r) {
   j.update({{"patient_tets", r.patient_tets},
             {"error_mm", to_json(r.error)},
             {"mapping_error_mm", to_json(r.mapping_error)},
+            {"skin_error_split_mm", {{"across", r.skin_split.across}, {"along", r.skin_split.along}}},
             {"warp_mean_mm", r.warp_mean},
             {"moved_by_relaxation_mm", {{"mean", r.moved_by_relaxation_mean}, {"max", r.moved_by_relaxation_max}}},
             {"inverted", r.inverted},
             {"folded_parametric_tets", r.folded_parametric_tets},
             {"shape_mean", r.shape_mean},
             {"standard_shape_mean", r.standard_shape_mean},
+            {"truth_shape_mean", r.truth_shape_mean},
             {"dihedral_change_mean_deg", r.dihedral_change_mean},
             {"skin_correspondence_used", r.registered_skin ? "registered" : "features"},
             {"registered_failure", r.registered_failure},
@@ -132,23 +134,27 @@ std::string markdown(const std::vector<CorrespondenceCaseResult>& results, const
   std::ostringstream md;
   md << "Transfer options: " << setting << ".\n\n"
      << "| case | model tets | error mean / p95 / max (mm) | within 1 mm | plain mapping mean (mm) | landmarks | "
-        "worst opening rim | skin | bone | warp moves (mm) | folded parametric tets | inverted | shape / standard's | "
-        "dihedral change (°) | "
-        "time (s) |\n"
-     << "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+        "worst opening rim | skin | skin: across / along | bone | inner face | warp moves (mm) | folded parametric "
+        "tets | inverted | "
+        "shape / standard's | the truth's shape / standard's | dihedral change (°) | time (s) |\n"
+     << "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | "
+        "---: | ---: | ---: |\n";
   for (const CorrespondenceCaseResult& r : results) {
     md << "| " << r.kind << ": " << r.name
        << (r.registered_failure.empty() ? "" : " (feature lines: the registered skin failed)") << " | ";
     if (!r.failure.empty()) {
-      md << "failed" << (r.warp.empty() ? "" : " (" + r.warp + ")") << ": " << r.failure << " ||||||||||||||\n";
+      md << "failed" << (r.warp.empty() ? "" : " (" + r.warp + ")") << ": " << r.failure << " |||||||||||||||||\n";
       continue;
     }
     md << r.patient_tets << " | " << triple(r.error.all) << " | " << fmt("%.0f %%", 100 * r.error.all.within_1mm)
        << " | " << fmt("%.2f", r.mapping_error.all.mean) << " | " << region_mean(r.error, "landmarks") << " | "
        << worst_region(r.error, "rim: ") << " | " << region_mean(r.error, "skin") << " | "
-       << region_mean(r.error, "bone") << " | " << fmt("%.2f", r.warp_mean) << " | " << r.folded_parametric_tets
-       << " | " << r.inverted << " | " << fmt("%.3f", r.shape_mean / r.standard_shape_mean) << " | "
-       << fmt("%.1f", r.dihedral_change_mean) << " | " << fmt("%.0f", r.seconds) << " |\n";
+       << fmt("%.2f", r.skin_split.across) << " / " << fmt("%.2f", r.skin_split.along) << " | "
+       << region_mean(r.error, "bone") << " | " << region_mean(r.error, "inner face") << " | "
+       << fmt("%.2f", r.warp_mean) << " | " << r.folded_parametric_tets << " | " << r.inverted << " | "
+       << fmt("%.3f", r.shape_mean / r.standard_shape_mean) << " | "
+       << fmt("%.3f", r.truth_shape_mean / r.standard_shape_mean) << " | " << fmt("%.1f", r.dihedral_change_mean)
+       << " | " << fmt("%.0f", r.seconds) << " |\n";
   }
   md << input_shifts_markdown(results);
   return md.str();

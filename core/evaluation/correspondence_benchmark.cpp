@@ -9,6 +9,7 @@
 #include "core/face/automatic_constraints.h"
 #include "core/face/face_landmarks.h"
 #include "core/mesh/sides.h"
+#include "core/quality/hex_quality.h"
 #include "core/quality/surface_distance.h"
 #include "core/segment/ct_volume.h"
 #include "core/standard/standard_features.h"
@@ -72,6 +73,7 @@ CorrespondenceCaseResult measure(const StandardSetup& standard, const PatientSet
   r.vertex_error = vertex_errors(t.patient_hex.V, truth);
   r.error = correspondence_error(r.vertex_error, regions);
   r.mapping_error = correspondence_error(vertex_errors(t.run.mapped_hex.V, truth), regions);
+  r.skin_split = skin_error_split(standard.mesh, t.patient_hex.V, truth);
   const DistanceSummary moved = summarize_distances(moved_from_mapping(t.run));
   r.moved_by_relaxation_mean = moved.mean;
   r.moved_by_relaxation_max = moved.max;
@@ -79,6 +81,9 @@ CorrespondenceCaseResult measure(const StandardSetup& standard, const PatientSet
   r.folded_parametric_tets = t.run.patient.health.inverted + t.run.patient.health.degenerate;
   r.shape_mean = t.patient_quality.summary.shape_mean;
   r.standard_shape_mean = t.standard_quality.summary.shape_mean;
+  VolumeMesh landed = t.patient_hex;
+  landed.V = truth;
+  r.truth_shape_mean = summarize(landed, element_quality(landed)).shape_mean;
   r.dihedral_change_mean = t.patient_quality.distortion.mean_deg;
   r.registered_skin = t.registration.has_value();
   r.registered_failure = t.registered_failure;

@@ -60,12 +60,16 @@ struct CorrespondenceCaseResult {
   int patient_tets = 0;
   CorrespondenceError error;          // of the result
   CorrespondenceError mapping_error;  // of the plain mapping, before relaxation and repair
+  SkinErrorSplit skin_split;          // of the result, across and along the true skin
   Eigen::VectorXd vertex_error;       // #Vs, mm, of the result
   double warp_mean = 0;               // mm the warp moves the standard's vertices (the error of doing nothing)
   double moved_by_relaxation_mean = 0, moved_by_relaxation_max = 0;  // mm, relaxation and repair together
   int inverted = 0;                                                  // inverted or degenerate cells of the result
   int folded_parametric_tets = 0;  // the patient's parametric tets inverted or degenerate (param_health.h)
   double shape_mean = 0, standard_shape_mean = 0, dihedral_change_mean = 0;
+  // The mean shape of the standard's cells at the true positions: what a transfer that lands exactly would have (the
+  // standard's own on a self-map; a warp changes it).
+  double truth_shape_mean = 0;
   double seconds = 0;  // the transfer (and the CT's segmentation)
   // CT cases: how far what the segmentation and the landmark finder found on the warped CT lies from the warp of what
   // they found on the original, the transfer's inputs. Per landmark found on both: the distance (mm). Per cut

@@ -59,6 +59,9 @@ TEST(CorrespondenceBenchmark, FastSubsetOfThePlainMapping) {
   const auto& nose = find_case(results, "nose on split");
   EXPECT_EQ(self.warp_mean, 0);
   EXPECT_GT(nose.warp_mean, 0.3);
+  // The truth's shape: the standard's own on the self-map, another under the warp.
+  EXPECT_NEAR(self.truth_shape_mean, self.standard_shape_mean, 1e-12);
+  EXPECT_GT(std::abs(nose.truth_shape_mean - nose.standard_shape_mean), 1e-4);
   // The plain mapping is the result when nothing follows it.
   EXPECT_EQ(self.error.all.mean, self.mapping_error.all.mean);
   EXPECT_EQ(self.vertex_error.size(), standard.mesh.num_vertices());

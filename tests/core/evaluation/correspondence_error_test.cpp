@@ -3,10 +3,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "core/fields/constraint_set.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh/sides.h"
 #include "core/util/resources.h"
+#include "tests/core/test_meshes.h"
 
 namespace facehex {
 namespace {
@@ -41,14 +44,45 @@ TEST(CorrespondenceError, VertexErrorsAndRegions) {
   EXPECT_EQ(c.regions[2].error.count, 0);
 }
 
+TEST(CorrespondenceError, SkinErrorsSplitAcrossAndAlongTheTrueSkin) {
+  // hex_box's skin is its y = sy face, normal +y: a shift (0.3, -1.2, 0.4) is 1.2 across it and 0.5 along it, whatever
+  // the shift does elsewhere; a shift within the face is along it only.
+  const VolumeMesh box = test::hex_box(3, 2, 4, 30, 20, 40);
+  Eigen::MatrixXd shifted = box.V;
+  shifted.rowwise() += Eigen::RowVector3d(0.3, -1.2, 0.4);
+  SkinErrorSplit split = skin_error_split(box, shifted, box.V);
+  EXPECT_NEAR(split.across, 1.2, 1e-12);
+  EXPECT_NEAR(split.along, 0.5, 1e-12);
+  shifted = box.V;
+  shifted.col(2).array() += 2.0;
+  split = skin_error_split(box, shifted, box.V);
+  EXPECT_NEAR(split.across, 0, 1e-12);
+  EXPECT_NEAR(split.along, 2, 1e-12);
+}
+
 TEST(CorrespondenceError, TheBundledStandardsRegions) {
   const VolumeMesh standard = read_volume_mesh(find_standard("artisynth-refface").mesh);
   const Eigen::VectorXi mask = side_mask_of(standard);
   const std::vector<VertexRegion> regions = correspondence_regions(standard);
   std::map<std::string, const VertexRegion*> by_name;
   for (const VertexRegion& r : regions) by_name[r.name] = &r;
-  for (const char* name : {"skin", "bone", "landmarks", "rim: eye at -x", "rim: eye at +x", "rim: mouth"})
+  for (const char* name : {"skin", "bone", "landmarks", "inner face", "rim: eye at -x", "rim: eye at +x", "rim: mouth"})
     ASSERT_TRUE(by_name.count(name)) << name;
+  // The inner face keeps kInnerFaceDepth from every cut side's vertex, and holds the eyes and the mouth (but for a few
+  // vertices of their rims' deep ends, near the jaw's and the top cut).
+  const int cut_sides = side_bit(U0) | side_bit(U1) | side_bit(V0) | side_bit(V1);
+  std::set<int> inner(by_name["inner face"]->vertices.begin(), by_name["inner face"]->vertices.end());
+  for (int c = 0; c < standard.num_vertices(); ++c) {
+    if (!(mask(c) & cut_sides)) continue;
+    for (const int v : inner) ASSERT_GE((standard.V.row(v) - standard.V.row(c)).norm(), kInnerFaceDepth);
+  }
+  for (const char* name : {"rim: eye at -x", "rim: eye at +x", "rim: mouth"}) {
+    const std::vector<int>& rim = by_name[name]->vertices;
+    const auto held = std::count_if(rim.begin(), rim.end(), [&](int v) { return inner.count(v) > 0; });
+    EXPECT_GE(static_cast<double>(held), 0.9 * static_cast<double>(rim.size())) << name;
+  }
+  EXPECT_GT(inner.size(), standard.num_vertices() / 2u);
+  EXPECT_LT(inner.size(), static_cast<size_t>(standard.num_vertices()));
   for (const int v : by_name["skin"]->vertices) EXPECT_TRUE(mask(v) & side_bit(W1));
   for (const int v : by_name["landmarks"]->vertices) EXPECT_TRUE(mask(v) & side_bit(W1));
   EXPECT_GE(by_name["landmarks"]->vertices.size(), 7u);  // at least one vertex at each landmark
