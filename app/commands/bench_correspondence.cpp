@@ -1,10 +1,12 @@
 #include "app/commands/bench_correspondence.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <numeric>
 #include <sstream>
 
 #include "app/error_map_png.h"
@@ -62,6 +64,15 @@ json to_json(const CorrespondenceCaseResult& r) {
             {"skin_correspondence_used", r.registered_skin ? "registered" : "features"},
             {"registered_failure", r.registered_failure},
             {"seconds", r.seconds}});
+  // The vertices the error's maximum and tail come from, to look at (ids of the standard's vertices).
+  std::vector<int> order(static_cast<size_t>(r.vertex_error.size()));
+  std::iota(order.begin(), order.end(), 0);
+  const size_t shown = std::min<size_t>(10, order.size());
+  std::partial_sort(order.begin(), order.begin() + static_cast<long>(shown), order.end(),
+                    [&](int a, int b) { return r.vertex_error(a) > r.vertex_error(b); });
+  json largest = json::array();
+  for (size_t i = 0; i < shown; ++i) largest.push_back({{"vertex", order[i]}, {"mm", r.vertex_error(order[i])}});
+  j["largest_errors"] = largest;
   if (!r.landmark_shift.empty()) j["landmark_shift_mm"] = r.landmark_shift;
   if (!r.cut_shift.empty()) j["cut_shift_mm"] = r.cut_shift;
   if (!r.landmarks_problem.empty()) j["landmarks_problem"] = r.landmarks_problem;

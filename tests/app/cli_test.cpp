@@ -120,7 +120,20 @@ TEST_F(Cli, AStronglyWarpedCtTransfersWithTheRegisteredSkin) {
   }
   EXPECT_LT(shift, 4.0) << warped["landmark_shift_mm"];
   EXPECT_FALSE(warped.contains("landmarks_problem")) << warped["landmarks_problem"];  // said only when none are found
-  EXPECT_NE(r.output.find("| headsq.mhd warp 2 |"), std::string::npos) << r.output;   // the input shifts' table
+  // Where the error lies: the largest ones by vertex (the first is the maximum), the skin's error across the true skin
+  // (the segmentation's surface) well below its error along it (the correspondence), the inner face's, the truth's
+  // own shape.
+  const auto& largest = warped["largest_errors"];
+  ASSERT_EQ(largest.size(), 10u);
+  EXPECT_DOUBLE_EQ(largest[0]["mm"].get<double>(), warped["error_mm"]["all"]["max"].get<double>());
+  for (size_t i = 1; i < largest.size(); ++i)
+    EXPECT_LE(largest[i]["mm"].get<double>(), largest[i - 1]["mm"].get<double>());
+  EXPECT_LT(2 * warped["skin_error_split_mm"]["across"].get<double>(),
+            warped["skin_error_split_mm"]["along"].get<double>())
+      << warped["skin_error_split_mm"];
+  EXPECT_TRUE(warped["error_mm"]["regions"].contains("inner face"));
+  EXPECT_GT(warped["truth_shape_mean"].get<double>(), 0.5 * warped["standard_shape_mean"].get<double>());
+  EXPECT_NE(r.output.find("| headsq.mhd warp 2 |"), std::string::npos) << r.output;  // the input shifts' table
 }
 
 // The bundled demo with the paper's feature lines and with the registered skin held through the relaxation: the
