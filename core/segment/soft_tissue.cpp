@@ -230,12 +230,20 @@ void check_topology(const PatientModel& model) {
     throw Error("segment", "the model is " + std::to_string(pieces) +
                                " separate solids; raise --cavity-closing or --smoothing, or move the cuts");
   const int chi = euler_characteristic(model.boundary_faces);
-  if (chi != 2)
+  if (chi != 2) {
+    // A cut that grazes thin tissue can open a tunnel that a cut a few millimetres away does not: the cuts are named
+    // with the values the surface was made with.
+    std::ostringstream cuts;
+    cuts.precision(1);
+    cuts << std::fixed << "top z " << model.cuts.top_z << ", bottom z " << model.cuts.bottom_z << ", posterior y "
+         << model.cuts.posterior_y;
     throw Error("segment", "the model's boundary has Euler characteristic " + std::to_string(chi) +
                                " instead of 2 (it has tunnels or voids" +
                                (model.repair.empty() ? std::string() : "; " + model.repair) +
-                               "); raise --min-thickness, --bone-gap, --cavity-closing or --smoothing, or lower "
-                               "--max-depth");
+                               "); raise --min-thickness, --bone-gap, --cavity-closing or --smoothing, lower "
+                               "--max-depth, or move the cuts it was made with (" +
+                               cuts.str() + ") with --top-cut, --bottom-cut or --posterior-cut");
+  }
   for (int s = 0; s < kNumSides; ++s) {
     const int n = count_patches(model.boundary_faces, model.boundary_sides, s);
     if (n != 1)

@@ -25,9 +25,9 @@ namespace {
 // Seeds 10 and 51 of these warps (moderate: scale within 8 %, shear 0.04, bumps up to 4 mm, about the bundled model's
 // skin) thin the tissue somewhere until its first surface has a tunnel; the segmentation repairs it and says so. With
 // the end slices kept flat, a skin threshold set high and the posterior cut given at y 92 mm, seed 7's tunnel outlasts
-// both repairs: the error names the options that change it. Coarse tets: the surface, not TetGen, is under test. In the
-// CT's own frame: the warps' shear turns the head a little, and the head frame resamples the CT, which moves the thin
-// places.
+// both repairs: the error names the options that change it and the cuts the surface was made with. Coarse tets: the
+// surface, not TetGen, is under test. In the CT's own frame: the warps' shear turns the head a little, and the head
+// frame resamples the CT, which moves the thin places.
 TEST(WarpedCtSegmentation, ThinTissueThatPiercesTheSurfaceIsRepairedAndSaidSo) {
   const CtVolume ct = read_ct_volume(default_ct());
   const VolumeMesh patient = read_volume_mesh(resource_dir() + "/patients/headsq/patient.vtu");
@@ -66,6 +66,10 @@ TEST(WarpedCtSegmentation, ThinTissueThatPiercesTheSurfaceIsRepairedAndSaidSo) {
     EXPECT_NE(what.find("the first surface had tunnels"), std::string::npos) << what;
     EXPECT_NE(what.find("which left tunnels too"), std::string::npos) << what;
     EXPECT_NE(what.find("--min-thickness"), std::string::npos) << what;
+    // The cuts the surface was made with, the posterior one as given, and the options that move them.
+    EXPECT_NE(what.find("move the cuts it was made with (top z "), std::string::npos) << what;
+    EXPECT_NE(what.find("posterior y 92.0) with --top-cut, --bottom-cut or --posterior-cut"), std::string::npos)
+        << what;
   }
 }
 
