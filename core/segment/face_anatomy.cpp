@@ -46,11 +46,8 @@ constexpr double kMinNoseRelief = 4.0;  // mm
 constexpr double kNoseToChin[2] = {30.0, 115.0};
 constexpr double kCheekOffset = 40.0;  // mm from the mid-sagittal plane
 // Rule 3b: the forehead's front is read this far either side of the mid-plane (about the inner eye corners' span
-// and more, where a scan's tilted end crosses the forehead first), and a front that recedes more steeply than this,
-// mm per mm of height (about 72 degrees from vertical), is no forehead's.
+// and more, where a scan's tilted end crosses the forehead first).
 constexpr double kForeheadHalfWidth = 25.0;  // mm
-constexpr double kForeheadEndSlope = 3.0;
-constexpr double kForeheadEndRise = 3.0;  // mm
 
 const double kNone = std::numeric_limits<double>::quiet_NaN();
 
@@ -352,12 +349,12 @@ void find_ear_front(const Mask& head, const Mask& without_ears, FaceAnatomy& ana
 }
 
 // Rule 3b: the forehead's end, looked for from height `from` up to slice `top`. The front is compared across a rise of
-// kForeheadEndRise (two slices at least), since a slice's front moves by whole voxels.
+// kScanEndRise (two slices at least), since a slice's front moves by whole voxels.
 double forehead_end(const Sections& s, const FaceAnatomy& anatomy, double from, int top) {
   const GridGeometry& g = s.g;
   const int first = std::max(0, static_cast<int>(std::ceil((from - g.origin.z()) / g.spacing.z())));
-  const int rise = std::max(2, static_cast<int>(std::ceil(kForeheadEndRise / g.spacing.z())));
-  const double recession = kForeheadEndSlope * rise * g.spacing.z();
+  const int rise = std::max(2, static_cast<int>(std::ceil(kScanEndRise / g.spacing.z())));
+  const double recession = kScanEndSlope * rise * g.spacing.z();
   std::vector<double> ends;  // per column
   for (int i = 0; i < g.dims[0]; ++i) {
     if (std::abs(g.point(i, 0, 0).x() - anatomy.centre_at(from)) > kForeheadHalfWidth) continue;

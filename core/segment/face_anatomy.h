@@ -29,7 +29,7 @@
 //     (face_cuts.h);
 //  3b. the forehead's end: going up from the nasion (15 mm above the pronasale when the brow is unseen), in each
 //     column within kForeheadHalfWidth of the plane, the first level that is empty or whose front lies further behind
-//     the front a few mm below it (kForeheadEndRise, two slices at least) than kForeheadEndSlope times that rise: a
+//     the front a few mm below it (kScanEndRise, two slices at least) than kScanEndSlope times that rise: a
 //     forehead recedes less steeply, and what does is where the scan ends across the forehead with its slices tilted
 //     against the head (a head pitched in the scanner, slices resampled from a tilted gantry) or, far above, the
 //     head's vertex. That column's front is whole up to the last level within a voxel of the front below the rise;
@@ -64,6 +64,13 @@
 #include "core/segment/voxel_grid.h"
 
 namespace facehex {
+
+// A front, or a section's mean depth, that recedes more steeply than this over a rise of kScanEndRise (two slices at
+// least, since a slice's front moves by whole voxels) is where a scan ends across the head, not anatomy: a forehead
+// recedes at about 1 mm per mm at most below the head's vertex, and a scan end tilted by less than about 18 degrees
+// against the head takes away more than 3.
+constexpr double kScanEndSlope = 3.0;  // mm per mm of height
+constexpr double kScanEndRise = 3.0;   // mm
 
 struct FaceAnatomy {
   double centre_x = 0;      // mid-sagittal plane at the pronasale's level

@@ -29,6 +29,35 @@ std::optional<double> tragi_roll_degrees(const Tragi& tragi) {
   return std::atan2(-d.z(), d.x()) * 180 / M_PI;
 }
 
+// The face region's end (face_cuts.h, top_z): going up from `from`, the section's area (mm^2) per level and the width
+// of its base level; where the area lost over a rise, per mm of the base's width, exceeds kScanEndSlope times the
+// rise, the section is whole up to the last level within a voxel's depth of the base.
+double section_end(const Mask& head, const FaceCuts& cuts, double from) {
+  const GridGeometry& g = head.geometry;
+  const int first = std::max(0, static_cast<int>(std::ceil((from - g.origin.z()) / g.spacing.z())));
+  const double voxel_area = g.spacing.x() * g.spacing.y();
+  std::vector<double> area(g.dims[2], 0), width(g.dims[2], 0);
+  for (int k = first; k < g.dims[2]; ++k)
+    for (int i = 0; i < g.dims[0]; ++i) {
+      int in_front = 0;
+      for (int j = 0; j < g.dims[1]; ++j)
+        in_front += head(i, j, k) && g.point(i, j, k).y() > cuts.posterior_y_at(g.point(i, j, k).x());
+      area[k] += in_front * voxel_area;
+      width[k] += in_front > 0 ? g.spacing.x() : 0;
+    }
+  const int rise = std::max(2, static_cast<int>(std::ceil(kScanEndRise / g.spacing.z())));
+  for (int k = first + 1; k < g.dims[2]; ++k) {
+    const int base = std::max(first, k - rise);
+    if (!(width[base] > 0)) return std::numeric_limits<double>::infinity();
+    const auto receded = [&](int at) { return (area[base] - area[at]) / width[base]; };  // mm of mean depth
+    if (!(receded(k) > kScanEndSlope * (k - base) * g.spacing.z())) continue;
+    int whole = k - 1;
+    while (whole > base && receded(whole) > g.spacing.y()) --whole;
+    return g.point(0, 0, whole).z();
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
 }  // namespace
 
 std::vector<CutPlane> FaceCuts::planes() const {
@@ -150,7 +179,9 @@ FaceCuts find_face_cuts(const Mask& head, const Mask& without_ears, const Mask& 
     cuts.top_z = *options.top_z;
   } else {
     const FaceAnatomy& a = *cuts.anatomy;
-    cuts.top_z = std::min({z_max, a.highest_head_z - options.border_margin, a.forehead_end_z - options.border_margin});
+    cuts.section_end_z = section_end(head, cuts, a.brow_unseen ? a.pronasale.z() + 15 : a.nasion.z());
+    cuts.top_z = std::min({z_max, a.highest_head_z - options.border_margin, a.forehead_end_z - options.border_margin,
+                           cuts.section_end_z - options.border_margin});
     if (!a.brow_unseen) cuts.top_z = std::min(cuts.top_z, a.glabella.z() + options.brow_clearance);
   }
   if (!(cuts.top_z > cuts.bottom_z + 10.0))

@@ -23,7 +23,10 @@
 //   top_z       = the glabella plus brow_clearance (above the eyebrows), but at least border_margin below the CT's top,
 //                 below the head's highest level (a scan that ends within the forehead) and below the highest level at
 //                 which the forehead's front is whole (face_anatomy.h rule 3b: a scan whose last slice leans across
-//                 the forehead); the lowest of those three less border_margin when the profile shows no brow
+//                 the forehead) and the face region's section is (section_end_z: going up from the nasion, the head
+//                 voxels in front of the posterior cut lose less than kScanEndSlope mm of mean depth per mm of height;
+//                 a last slice leaning across the region, down to the back or to the front, takes a wedge from it
+//                 level by level); the lowest of those less border_margin when the profile shows no brow
 //                 (FaceAnatomy::brow_unseen);
 //   posterior_y = the line in front of the ears (ears_line: through the tragi, core/segment/tragus.h) moved
 //                 ear_clearance forward, each side the same distance in front of its own ear (a face's asymmetry, or
@@ -92,6 +95,8 @@ struct FaceCuts {
   std::optional<double> scan_edge_y;
   bool scan_edge_at_disc = false;  // that place is on the edge of the CT's reconstruction disc, not of its box
   bool posterior_at_scan_edge = false;
+  // The highest level at which the face region's section is whole (top_z above); +infinity up to the grid's top.
+  double section_end_z = std::numeric_limits<double>::infinity();
   std::optional<FaceAnatomy> anatomy;  // what the automatic cuts were placed by; empty if all given
 
   std::vector<CutPlane> planes() const;

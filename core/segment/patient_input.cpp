@@ -126,6 +126,7 @@ std::string segmentation_summary(const CtSegmentation& segmentation) {
     text << " at the mid-plane, turned " << cuts.posterior_turn_degrees() << " deg to pass in front of both ears";
   text << ", mid-plane x " << cuts.centre_x;
   if (std::isfinite(cuts.jaw_z)) text << ", jaw cut rising to z " << cuts.jaw_z << " at the posterior cut";
+  if (std::isfinite(cuts.section_end_z)) text << ", the face region's section whole up to z " << cuts.section_end_z;
   if (cuts.anatomy) text << "; found: " << face_anatomy_text(*cuts.anatomy);
   if (cuts.palate_pitch)
     text << "; hard palate " << std::abs(*cuts.palate_pitch) << " deg " << (*cuts.palate_pitch >= 0 ? "up" : "down")

@@ -63,6 +63,19 @@ class Cli : public ::testing::Test {
   void TearDown() override { fs::remove_all(dir_); }
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
   void write(const std::string& name, const std::string& text) const { std::ofstream(path(name)) << text; }
+  // The one case of `facehex bench --correspondence` on the bundled CT under the warp `seed` with `ranges`, from its
+  // report (the command's output in `output`).
+  nlohmann::json ct_warp_case(int seed, const std::string& ranges, std::string& output) const {
+    const Result r = run("bench --correspondence -o " + path("bench") +
+                         " --models none --deformation-models none --warps none --ct-seeds " + std::to_string(seed) +
+                         " --ct-ranges " + ranges);
+    output = r.output;
+    EXPECT_EQ(r.status, 0) << r.output;
+    nlohmann::json report;
+    std::ifstream(path("bench/correspondence.json")) >> report;
+    EXPECT_EQ(report["cases"].size(), 1u) << r.output;
+    return report["cases"].empty() ? nlohmann::json::object() : report["cases"][0];
+  }
   fs::path dir_;
 };
 
@@ -91,13 +104,9 @@ TEST_F(Cli, TheRegisteredTransferIsTheSameOnOneThreadAndOnTwo) {
 // vertex further than twice its edges in the standard (a side vertex sliding along its side's tangent plane would leave
 // the patient), so the registered skin gives a usable mesh of the warped face.
 TEST_F(Cli, AStronglyWarpedCtTransfersWithTheRegisteredSkin) {
-  const Result r = run("bench --correspondence -o " + path("bench") +
-                       " --models none --deformation-models none --warps none --ct-seeds 2 --ct-ranges 0.10,0.04,6,10");
-  ASSERT_EQ(r.status, 0) << r.output;
-  nlohmann::json report;
-  std::ifstream(path("bench/correspondence.json")) >> report;
-  ASSERT_EQ(report["cases"].size(), 1u);
-  const auto& warped = report["cases"][0];
+  std::string output;
+  const nlohmann::json warped = ct_warp_case(2, "0.10,0.04,6,10", output);
+  ASSERT_TRUE(warped.contains("inverted")) << output;
   EXPECT_EQ(warped["skin_correspondence_used"], "registered") << warped.dump();
   EXPECT_EQ(warped["inverted"], 0);
   EXPECT_GT(warped["folded_parametric_tets"].get<int>(), 300);  // the case is a hard one
@@ -133,7 +142,7 @@ TEST_F(Cli, AStronglyWarpedCtTransfersWithTheRegisteredSkin) {
       << warped["skin_error_split_mm"];
   EXPECT_TRUE(warped["error_mm"]["regions"].contains("inner face"));
   EXPECT_GT(warped["truth_shape_mean"].get<double>(), 0.5 * warped["standard_shape_mean"].get<double>());
-  EXPECT_NE(r.output.find("| headsq.mhd warp 2 |"), std::string::npos) << r.output;  // the input shifts' table
+  EXPECT_NE(output.find("| headsq.mhd warp 2 |"), std::string::npos) << output;  // the input shifts' table
 }
 
 // The bundled demo with the paper's feature lines and with the registered skin held through the relaxation: the
@@ -560,6 +569,19 @@ TEST_F(Cli, TheBundledCtPitchedOnItsGridIsCutBelowItsTiltedLastSlice) {
   std::ifstream(path("run/report.json")) >> report;
   EXPECT_EQ(report["patient_hex"]["quality"]["inverted"].get<int>(), 0);
   EXPECT_EQ(report["patient_hex"]["quality"]["degenerate"].get<int>(), 0);
+}
+
+// The bundled CT under a warp that pitches it 7.3 degrees with the chin raised (the benchmark's pitched ranges, seed
+// 3): the warped volume ends where the original's tilted last slice does, which crosses the face region from the
+// posterior cut (z 133) to the forehead (z 141). A top cut at 138.3 left the back of the region ending in that slice,
+// and the registered skin's fields folded there (half the folds at the top cut), the feature lines diverged: no mesh.
+// Below where the region's section is whole (face_cuts.h, section_end_z), the transfer makes one with no inverted cell.
+TEST_F(Cli, ACtWhoseLastSliceLeansAcrossTheFaceRegionIsCutBelowIt) {
+  std::string output;
+  const nlohmann::json pitched = ct_warp_case(3, "0.08,0.04,4,0,15", output);
+  ASSERT_FALSE(pitched.contains("failure")) << pitched["failure"];
+  EXPECT_EQ(pitched["skin_correspondence_used"], "registered");
+  EXPECT_EQ(pitched["inverted"], 0);
 }
 
 // The bundled CT stored with other voxel axes (the face towards the file's -z, the top of the head towards +y), read

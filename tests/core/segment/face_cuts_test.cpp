@@ -403,6 +403,25 @@ TEST(FaceCuts, AScanEndingAcrossTheForeheadTiltedKeepsTheTopCutBelowTheForeheads
   }
 }
 
+TEST(FaceCuts, AScanEndingAcrossTheFaceRegionTiltedToTheBackKeepsTheTopCutBelowIt) {
+  // The scan's end leans 10 degrees down to the back from z 158 at the forehead's front (y 92): the front is whole up
+  // to the top cut 15 mm above the glabella (155), but the end crosses the face region (in front of the posterior
+  // cut, y 72) from z 154.5 at the cut: its section loses a wedge level by level above that, and the top cut stays
+  // border_margin below the last level where it is whole.
+  const double lean = std::tan(10 * M_PI / 180);
+  Head tilted;
+  clear_where(tilted, [&](const Eigen::Vector3d& p) { return p.z() > 158 + (p.y() - 92) * lean; });
+  const FaceCuts cuts = cuts_of(tilted.head, tilted.bone, FaceCutOptions());
+  ASSERT_TRUE(cuts.anatomy);
+  EXPECT_NEAR(cuts.posterior_y, 72, 1e-9);
+  EXPECT_GE(cuts.anatomy->forehead_end_z, 158);  // the front is whole
+  EXPECT_NEAR(cuts.section_end_z, 154, 1e-9);
+  EXPECT_NEAR(cuts.top_z, 151, 1e-9);
+  // The untouched head's section is whole up to its top (z 170).
+  const Head whole;
+  EXPECT_GE(cuts_of(whole.head, whole.bone, FaceCutOptions()).section_end_z, 170);
+}
+
 TEST(FaceCuts, AScanStartingWithinTheChinKeepsTheBottomCutInsideTheBody) {
   // Air below z = 30 (a field of view that starts within the chin, or a volume resampled into a larger box): the
   // menton's rule would cut at 25, below the body, leaving the model no bottom side.
