@@ -81,6 +81,14 @@ std::string number(double v) {
   return s.str();
 }
 
+// "top z 135.0, bottom z 3.0, posterior y 102.0": the cut planes as the errors name them, to the tenth of a mm.
+std::string cut_planes_text(const FaceCuts& cuts) {
+  std::ostringstream s;
+  s.precision(1);
+  s << std::fixed << "top z " << cuts.top_z << ", bottom z " << cuts.bottom_z << ", posterior y " << cuts.posterior_y;
+  return s.str();
+}
+
 // Degrees as the summary prints them.
 std::string degrees(double v) {
   std::ostringstream s;
@@ -230,20 +238,15 @@ void check_topology(const PatientModel& model) {
     throw Error("segment", "the model is " + std::to_string(pieces) +
                                " separate solids; raise --cavity-closing or --smoothing, or move the cuts");
   const int chi = euler_characteristic(model.boundary_faces);
-  if (chi != 2) {
-    // A cut that grazes thin tissue can open a tunnel that a cut a few millimetres away does not: the cuts are named
-    // with the values the surface was made with.
-    std::ostringstream cuts;
-    cuts.precision(1);
-    cuts << std::fixed << "top z " << model.cuts.top_z << ", bottom z " << model.cuts.bottom_z << ", posterior y "
-         << model.cuts.posterior_y;
+  // A cut that grazes thin tissue can open a tunnel that a cut a few millimetres away does not: the cuts are named
+  // with the values the surface was made with.
+  if (chi != 2)
     throw Error("segment", "the model's boundary has Euler characteristic " + std::to_string(chi) +
                                " instead of 2 (it has tunnels or voids" +
                                (model.repair.empty() ? std::string() : "; " + model.repair) +
                                "); raise --min-thickness, --bone-gap, --cavity-closing or --smoothing, lower "
                                "--max-depth, or move the cuts it was made with (" +
-                               cuts.str() + ") with --top-cut, --bottom-cut or --posterior-cut");
-  }
+                               cut_planes_text(model.cuts) + ") with --top-cut, --bottom-cut or --posterior-cut");
   for (int s = 0; s < kNumSides; ++s) {
     const int n = count_patches(model.boundary_faces, model.boundary_sides, s);
     if (n != 1)
@@ -272,12 +275,8 @@ SurfaceMesh level_surface_with_cuts(const Mask& tissue, FaceCuts& cuts, const Se
     } catch (const NonManifoldSurface&) {
     }
   }
-  std::ostringstream where;
-  where.precision(1);
-  where << std::fixed << "top z " << cuts.top_z << ", bottom z " << cuts.bottom_z << ", posterior y "
-        << cuts.posterior_y;
-  throw Error("segment", "the soft-tissue surface between the cuts (" + where.str() + ", each moved by up to " +
-                             number(0.6 * options.working_spacing) +
+  throw Error("segment", "the soft-tissue surface between the cuts (" + cut_planes_text(cuts) +
+                             ", each moved by up to " + number(0.6 * options.working_spacing) +
                              " mm) is not a closed manifold; raise --smoothing or place the cuts with --top-cut, "
                              "--bottom-cut, --posterior-cut");
 }
