@@ -198,7 +198,7 @@ Profile skin_profile(const Eigen::MatrixXd& V, const std::vector<int>& skin, con
 // wide enough.
 double mirror_plane(const Eigen::MatrixXd& V, const std::vector<int>& skin, const Eigen::Vector3d& first, double zlo,
                     double zhi) {
-  constexpr double kColumn = 1.0, kRow = 2.0, kReach = 45.0, kSearch = 30.0;
+  constexpr double kColumn = 1.0, kRow = 2.0, kReach = 45.0, kSearch = 30.0, kMaxGap = 8.0;
   const double x0 = first.x() - kSearch - kReach - 1;
   const int columns = static_cast<int>(2 * (kSearch + kReach + 1) / kColumn) + 1;
   const int rows = static_cast<int>((zhi - zlo) / kRow) + 1;
@@ -211,10 +211,15 @@ double mirror_plane(const Eigen::MatrixXd& V, const std::vector<int>& skin, cons
   }
   std::vector<double> centres;
   for (auto& row : front) {
-    // A column between the mesh's vertices takes its neighbours' mean, so the front has no holes.
-    for (int i = 1; i + 1 < columns; ++i)
-      if (std::isnan(row[i]) && !std::isnan(row[i - 1]) && !std::isnan(row[i + 1]))
-        row[i] = 0.5 * (row[i - 1] + row[i + 1]);
+    // Columns between the mesh's vertices (a few mm apart on a hex standard) are interpolated from the nearest
+    // filled ones either side, so the front has no holes.
+    int last = -1;
+    for (int i = 0; i < columns; ++i) {
+      if (std::isnan(row[i])) continue;
+      if (last >= 0 && i - last > 1 && (i - last) * kColumn <= kMaxGap)
+        for (int k = last + 1; k < i; ++k) row[k] = row[last] + (row[i] - row[last]) * (k - last) / (i - last);
+      last = i;
+    }
     if (const auto c = mirror_centre(row, x0, kColumn, first.x(), kSearch, kReach)) centres.push_back(*c);
   }
   if (centres.empty()) return first.x();

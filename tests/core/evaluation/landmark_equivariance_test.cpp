@@ -26,5 +26,26 @@ TEST(LandmarkEquivariance, TheLipsFollowALongerNoseAForwardChinAndRandomWarps) {
   }
 }
 
+// A face swollen on one side (the skin's x range no longer centred on the face) with its nose deviated to the other,
+// on the standard's sparse hex skin, moved 4 mm along x: the mid-sagittal plane is the face's mirror plane, not the
+// middle of the skin's x range, and the lips are found on it.
+TEST(LandmarkEquivariance, AnAsymmetricFaceKeepsTheMidSagittalPlaneOnItsMidline) {
+  const StandardSetup standard = load_standard("artisynth-refface");
+  const VolumeMesh& m = standard.mesh;
+  const FaceLandmarks base = find_face_landmarks(m.V, side_mask_of(m));
+  Eigen::Index widest = 0;
+  m.V.col(0).maxCoeff(&widest);
+  const SmoothWarp swollen = local_warp(m.V.row(widest).transpose(), Eigen::Vector3d(12, 0, 0), 15.0);
+  const SmoothWarp deviated = local_warp(base.points.at("pronasale"), Eigen::Vector3d(-5, 0, 0), 10.0);
+  Eigen::MatrixXd V = deviated.apply_rows(swollen.apply_rows(m.V));
+  V.col(0).array() += 4.0;
+  const FaceLandmarks found = find_face_landmarks(V, side_mask_of(m));
+  EXPECT_NEAR(found.plane.x_at(0, 0), 4.0, 1.0);
+  for (const std::string name : {"labrale superius", "stomion", "labrale inferius"}) {
+    const Eigen::Vector3d truth = base.points.at(name) + Eigen::Vector3d(4, 0, 0);
+    EXPECT_LT((found.points.at(name) - truth).norm(), 1.5) << name;
+  }
+}
+
 }  // namespace
 }  // namespace facehex
