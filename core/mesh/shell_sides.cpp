@@ -1,6 +1,7 @@
 #include "core/mesh/shell_sides.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <vector>
@@ -39,6 +40,45 @@ std::array<int, 3> chord_end(const VolumeMesh& mesh, const FaceNeighbors& nb, in
     face = next_face;
   }
   return {-1, -1, 0};
+}
+
+// Connected components, through shared edges, of the faces `member` selects: the component of each face (-1 for
+// faces not selected) and each component's face count (faces of one mesh have comparable sizes: counting them is
+// enough to rank components). across_cells: two faces of one cell (meeting at the cell's edge, e.g. its top and the
+// wall of an opening beside it) are not connected through that edge.
+std::pair<std::vector<int>, std::vector<int>> face_components(const std::vector<BoundaryFace>& faces,
+                                                              const std::vector<char>& member, bool across_cells) {
+  std::map<std::pair<int, int>, std::vector<int>> edge_faces;
+  const auto edge = [&](const std::vector<int>& v, size_t k) {
+    return std::make_pair(std::min(v[k], v[(k + 1) % v.size()]), std::max(v[k], v[(k + 1) % v.size()]));
+  };
+  for (size_t i = 0; i < faces.size(); ++i)
+    if (member[i])
+      for (size_t k = 0; k < faces[i].v.size(); ++k) edge_faces[edge(faces[i].v, k)].push_back(static_cast<int>(i));
+  std::vector<int> component(faces.size(), -1), size;
+  for (size_t seed = 0; seed < faces.size(); ++seed) {
+    if (!member[seed] || component[seed] >= 0) continue;
+    const int id = static_cast<int>(size.size());
+    size.push_back(0);
+    std::vector<int> stack = {static_cast<int>(seed)};
+    component[seed] = id;
+    while (!stack.empty()) {
+      const int i = stack.back();
+      stack.pop_back();
+      ++size[id];
+      for (size_t k = 0; k < faces[i].v.size(); ++k)
+        for (int j : edge_faces[edge(faces[i].v, k)])
+          if (component[j] < 0 && !(across_cells && faces[j].cell == faces[i].cell)) {
+            component[j] = id;
+            stack.push_back(j);
+          }
+    }
+  }
+  return {component, size};
+}
+
+int largest(const std::vector<int>& size) {
+  return size.empty() ? -1 : static_cast<int>(std::max_element(size.begin(), size.end()) - size.begin());
 }
 
 }  // namespace
@@ -89,39 +129,21 @@ ShellSides label_shell_sides(const VolumeMesh& mesh, const ShellFrame& frame) {
     side[i] = i_outer ? W1 : W0;
     side[j] = i_outer ? W0 : W1;
   }
-  // 2. Strips: connected components of the remaining faces through shared edges.
-  std::map<std::pair<int, int>, std::vector<int>> edge_faces;
-  for (size_t i = 0; i < faces.size(); ++i) {
-    if (side[i] != kUnknown) continue;
-    const auto& v = faces[i].v;
-    for (size_t k = 0; k < v.size(); ++k)
-      edge_faces[{std::min(v[k], v[(k + 1) % v.size()]), std::max(v[k], v[(k + 1) % v.size()])}].push_back(
-          static_cast<int>(i));
+  // 2. The skin and the bone are each one surface, connected from cell to cell (holed by the openings); a patch of
+  //    chords of the common length apart from it lies in the walls of openings (e.g. across the columella between
+  //    the nostrils) and is left to the strips.
+  for (const Side w : {W0, W1}) {
+    std::vector<char> on_side(faces.size());
+    for (size_t i = 0; i < faces.size(); ++i) on_side[i] = side[i] == w;
+    const auto [component, size] = face_components(faces, on_side, true);
+    for (size_t i = 0; i < faces.size(); ++i)
+      if (on_side[i] && component[i] != largest(size)) side[i] = kUnknown;
   }
-  std::vector<int> strip(faces.size(), -1);
-  std::vector<double> strip_area;
-  for (size_t seed = 0; seed < faces.size(); ++seed) {
-    if (side[seed] != kUnknown || strip[seed] >= 0) continue;
-    const int id = static_cast<int>(strip_area.size());
-    strip_area.push_back(0);
-    std::vector<int> stack = {static_cast<int>(seed)};
-    strip[seed] = id;
-    while (!stack.empty()) {
-      const int i = stack.back();
-      stack.pop_back();
-      strip_area[id] += 1;  // faces of one mesh have comparable sizes: counting them is enough to rank strips
-      const auto& v = faces[i].v;
-      for (size_t k = 0; k < v.size(); ++k)
-        for (int j : edge_faces[{std::min(v[k], v[(k + 1) % v.size()]), std::max(v[k], v[(k + 1) % v.size()])}])
-          if (strip[j] < 0) {
-            strip[j] = id;
-            stack.push_back(j);
-          }
-    }
-  }
-  const int rim = strip_area.empty()
-                      ? -1
-                      : static_cast<int>(std::max_element(strip_area.begin(), strip_area.end()) - strip_area.begin());
+  // 3. Strips: connected components of the remaining faces through shared edges; the largest is the cut rim.
+  std::vector<char> unknown(faces.size());
+  for (size_t i = 0; i < faces.size(); ++i) unknown[i] = side[i] == kUnknown;
+  const auto [strip, strip_size] = face_components(faces, unknown, false);
+  const int rim = largest(strip_size);
   const double cos60 = 0.5;
   for (size_t i = 0; i < faces.size(); ++i) {
     if (side[i] != kUnknown) continue;
