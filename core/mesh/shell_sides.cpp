@@ -136,8 +136,9 @@ ShellSides label_shell_sides(const VolumeMesh& mesh, const ShellFrame& frame) {
     std::vector<char> on_side(faces.size());
     for (size_t i = 0; i < faces.size(); ++i) on_side[i] = side[i] == w;
     const auto [component, size] = face_components(faces, on_side, true);
+    const int surface = largest(size);
     for (size_t i = 0; i < faces.size(); ++i)
-      if (on_side[i] && component[i] != largest(size)) side[i] = kUnknown;
+      if (on_side[i] && component[i] != surface) side[i] = kUnknown;
   }
   // 3. Strips: connected components of the remaining faces through shared edges; the largest is the cut rim.
   std::vector<char> unknown(faces.size());

@@ -8,6 +8,9 @@
 // cannot be continued through a wedge).
 //  - chords of the most common length (at most max_layers cells): the face is on the outer (w1) or inner (w0) side;
 //    of the two ends of a chord, the outer one is the end whose outward normal points more away from frame.center.
+//    The skin and the bone are each one surface, connected from cell to cell (through edges shared by faces of two
+//    cells); a patch of such faces apart from the largest (chords across a pillar between two openings, such as the
+//    columella between the nostrils) lies in the openings' walls and goes to the strips.
 //  - the remaining faces form strips; the largest connected strip is the cut rim, split by its face normals
 //    against frame.up into the top cut (v1: n.up > cos 60deg), the bottom cut (v0: n.up < -cos 60deg) and the two
 //    lateral ends (u0 / u1 by the sign of (x - center).lateral). Smaller strips are walls of openings: left free.
