@@ -1,6 +1,7 @@
 #include "core/face/face_landmarks.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iomanip>
 #include <limits>
@@ -193,14 +194,13 @@ Profile skin_profile(const Eigen::MatrixXd& V, const std::vector<int>& skin, con
 }
 
 // The skin's mirror plane: per 2 mm row of z in [zlo, zhi], the plane x = c that best mirrors the front (the most
-// anterior skin point of each 1 mm column; core/util/mirror_symmetry.h) within 45 mm of it; the median of the rows'
-// c. Searched within 30 mm of the most anterior point near the middle (`first`), whose x it is when no row is
-// wide enough.
-double mirror_plane(const Eigen::MatrixXd& V, const std::vector<int>& skin, const Eigen::Vector3d& first, double zlo,
-                    double zhi) {
-  constexpr double kColumn = 1.0, kRow = 2.0, kReach = 45.0, kSearch = 30.0, kMaxGap = 8.0;
-  const double x0 = first.x() - kSearch - kReach - 1;
-  const int columns = static_cast<int>(2 * (kSearch + kReach + 1) / kColumn) + 1;
+// anterior skin point of each 1 mm column; core/util/mirror_symmetry.h) within `reach` of it; the median of the rows'
+// c. Searched within `search` of x_start, which it is when no row is wide enough.
+double mirror_plane(const Eigen::MatrixXd& V, const std::vector<int>& skin, double x_start, double zlo, double zhi,
+                    double reach, double search) {
+  constexpr double kColumn = 1.0, kRow = 2.0, kMaxGap = 8.0;
+  const double x0 = x_start - search - reach - 1;
+  const int columns = static_cast<int>(2 * (search + reach + 1) / kColumn) + 1;
   const int rows = static_cast<int>((zhi - zlo) / kRow) + 1;
   std::vector<std::vector<double>> front(rows, std::vector<double>(columns, std::numeric_limits<double>::quiet_NaN()));
   for (int v : skin) {
@@ -220,9 +220,9 @@ double mirror_plane(const Eigen::MatrixXd& V, const std::vector<int>& skin, cons
         for (int k = last + 1; k < i; ++k) row[k] = row[last] + (row[i] - row[last]) * (k - last) / (i - last);
       last = i;
     }
-    if (const auto c = mirror_centre(row, x0, kColumn, first.x(), kSearch, kReach)) centres.push_back(*c);
+    if (const auto c = mirror_centre(row, x0, kColumn, x_start, search, reach)) centres.push_back(*c);
   }
-  if (centres.empty()) return first.x();
+  if (centres.empty()) return x_start;
   std::nth_element(centres.begin(), centres.begin() + centres.size() / 2, centres.end());
   return centres[centres.size() / 2];
 }
@@ -257,6 +257,32 @@ constexpr double kNasionSubnasale[2] = {38.0, 70.0};
 // mm: profile points this close to the most or least anterior one are one flat stretch, whose middle is taken (a flat
 // nasion or brow, or a field-of-view cut above the nose).
 constexpr double kFlatTie = 0.5;
+
+// mm: the face's mirror plane mirrors each row's front within this reach, searched this far either side of the nose
+// tip; the mouth's own midline, within the mouth's half-width, searched this far either side of the plane.
+constexpr double kFaceMirrorReach = 45.0, kFaceMirrorSearch = 30.0;
+constexpr double kMouthMirrorReach = 20.0, kMouthMirrorSearch = 10.0;
+
+// The lips' four turns on `profile` going down from the nose (the subnasale's hollow, the upper lip, the stomion and
+// the lower lip; Profile::turns_below), or fewer when the profile does not show them all. Read in that order rather
+// than in windows of fixed height, they follow a face whose nose or lips are longer or shorter than the usual. The
+// coarsest simplification that shows the four: the lips' own turns rather than the skin's ripples, on lips as
+// pronounced as the standard's and on a flat profile alike.
+std::vector<Profile::Turn> lip_turns(const Profile& profile, double nose_z) {
+  std::vector<Profile::Turn> turns;
+  for (const double reach : kLipsReaches) {
+    for (const double tolerance : kTurnTolerances) {
+      turns = profile.turns_below(nose_z, reach, tolerance);
+      while (!turns.empty() && !turns.front().hollow) turns.erase(turns.begin());  // on the nose's own underside
+      // A ripple under the nose (a coarse scan's, or where a field-of-view cut ends) reads as a hollow and a bump
+      // closer together than any upper lip is tall: the lips lie below it.
+      while (turns.size() >= 4 && turns[0].point.z() - turns[2].point.z() < kMinUpperLipHeight)
+        turns.erase(turns.begin(), turns.begin() + 2);
+      if (turns.size() >= 4) return turns;
+    }
+  }
+  return turns;
+}
 
 // The subnasale: the profile point between the upper lip and the nose (`nose`: its tip, or the lowest point of a
 // field-of-view cut) deepest behind the chord joining them, moved up to where the columella meets the lip: the lip
@@ -390,7 +416,8 @@ FaceLandmarks find_in_head_frame(const Eigen::MatrixXd& V, const Eigen::VectorXi
     // The nose tip near the middle of the skin's x range, then the skin's mirror plane searched near it.
     const auto first = skin_profile(V, skin, {0.5 * (xmin + xmax), 0, 0}, 20.0)
                            .extreme(zmin + 0.1 * height, zmax - 0.1 * height, true);
-    l.plane.x = mirror_plane(V, skin, require(first, "nose tip"), zmin + 0.1 * height, zmax - 0.1 * height);
+    l.plane.x = mirror_plane(V, skin, require(first, "nose tip").x(), zmin + 0.1 * height, zmax - 0.1 * height,
+                             kFaceMirrorReach, kFaceMirrorSearch);
     l.plane_source = "skin";
   }
   const Profile profile = skin_profile(V, skin, l.plane, options.profile_band);
@@ -420,24 +447,8 @@ FaceLandmarks find_in_head_frame(const Eigen::MatrixXd& V, const Eigen::VectorXi
   }
   // The nose as the profile shows it: its tip, or the lowest point of the cut.
   const Eigen::Vector3d nose = cut ? require(profile.extreme(cut->first - 1, cut->first + 1, true), "nose") : front;
-  // The lips: going down from the nose, the profile's turns (Profile::turns_below) are the subnasale's hollow, the
-  // upper lip, the stomion and the lower lip. Read in that order rather than in windows of fixed height, they follow
-  // a face whose nose or lips are longer or shorter than the usual.
-  // The coarsest simplification that shows the four: the lips' own turns rather than the skin's ripples, on lips as
-  // pronounced as the standard's and on a flat profile alike.
-  std::vector<Profile::Turn> turns;
-  for (const double reach : kLipsReaches) {
-    for (const double tolerance : kTurnTolerances) {
-      turns = profile.turns_below(nose.z(), reach, tolerance);
-      while (!turns.empty() && !turns.front().hollow) turns.erase(turns.begin());  // on the nose's own underside
-      // A ripple under the nose (a coarse scan's, or where a field-of-view cut ends) reads as a hollow and a bump
-      // closer together than any upper lip is tall: the lips lie below it.
-      while (turns.size() >= 4 && turns[0].point.z() - turns[2].point.z() < kMinUpperLipHeight)
-        turns.erase(turns.begin(), turns.begin() + 2);
-      if (turns.size() >= 4) break;
-    }
-    if (turns.size() >= 4) break;
-  }
+  // The lips: going down from the nose, the profile's turns.
+  std::vector<Profile::Turn> turns = lip_turns(profile, nose.z());
   const char* lips[] = {"subnasale", "upper lip", "stomion", "lower lip"};
   if (turns.size() < 4) {
     if (!cut) require(std::nullopt, lips[turns.size()]);
@@ -450,9 +461,25 @@ FaceLandmarks find_in_head_frame(const Eigen::MatrixXd& V, const Eigen::VectorXi
   }
   // The upper lip's front can be flat, and its turn then a corner of the lip's rise: labrale superius is the most
   // anterior point between the hollows either side of it.
-  const Eigen::Vector3d st = turns[2].point, li = turns[3].point;
-  const Eigen::Vector3d ls = require(profile.extreme(st.z(), turns[0].point.z(), true), "upper lip");
-  const Eigen::Vector3d sn = subnasale(profile, ls, nose);
+  const auto lip_points = [&](const Profile& on, const std::vector<Profile::Turn>& t) {
+    const Eigen::Vector3d upper = require(on.extreme(t[2].point.z(), t[0].point.z(), true), "upper lip");
+    return std::array<Eigen::Vector3d, 4>{subnasale(on, upper, nose), upper, t[2].point, t[3].point};
+  };
+  std::array<Eigen::Vector3d, 4> mouth = lip_points(profile, turns);  // sn, ls, st, li
+  // The mouth's own midline: where a face is not symmetric about one plane (a bent midline, a swelling on one side)
+  // the plane can pass beside the mouth, and the lips read on it lie beside their midline. The lips' rows' own mirror
+  // plane, when it lies further from the plane than the profile's band, is where they are read.
+  const double plane_at_mouth = l.plane.x_at(mouth[2].y(), mouth[2].z());
+  const double mouth_x =
+      mirror_plane(V, skin, plane_at_mouth, mouth[3].z(), mouth[0].z(), kMouthMirrorReach, kMouthMirrorSearch);
+  if (std::abs(mouth_x - plane_at_mouth) > options.profile_band) {
+    MidSagittalPlane through_mouth = l.plane;
+    through_mouth.x += mouth_x - plane_at_mouth;
+    const Profile mouth_profile = skin_profile(V, skin, through_mouth, options.profile_band);
+    const std::vector<Profile::Turn> mouth_turns = lip_turns(mouth_profile, nose.z());
+    if (mouth_turns.size() >= 4) mouth = lip_points(mouth_profile, mouth_turns);
+  }
+  const Eigen::Vector3d &sn = mouth[0], &ls = mouth[1], &st = mouth[2], &li = mouth[3];
   // Above the nose: found above a cut that ends below the top of the skin, else placed by typical adult proportions
   // on the cut (nose tip 15 mm above the subnasale, nasion 40 mm above the tip, glabella 12 mm above the nasion).
   // The profile's front at height z, on the plane: where typical proportions place a landmark the scan does not show.
@@ -491,7 +518,7 @@ FaceLandmarks find_in_head_frame(const Eigen::MatrixXd& V, const Eigen::VectorXi
   l.points = {{"pronasale", prn},       {"subnasale", sn},        {"nasion", n},  {"glabella", g},
               {"labrale superius", ls}, {"labrale inferius", li}, {"stomion", st}};
   add_chin(profile, skin, V, l);
-  if (const auto corners = mouth_corners(V, skin, l.plane.x_at(st.y(), st.z()), st, ls)) {
+  if (const auto corners = mouth_corners(V, skin, st.x(), st, ls)) {
     l.points["cheilion right"] = corners->first;
     l.points["cheilion left"] = corners->second;
   }

@@ -47,5 +47,24 @@ TEST(LandmarkEquivariance, AnAsymmetricFaceKeepsTheMidSagittalPlaneOnItsMidline)
   }
 }
 
+// A mouth set to one side of the face's mirror plane (a bent midline: the lower face shifted along x, 6 mm at the
+// mouth and fading over a few centimetres, the upper face not): the lips are read on the mouth's own midline, not
+// beside it on the face's plane.
+TEST(LandmarkEquivariance, TheLipsAreReadOnTheMouthsOwnMidline) {
+  const StandardSetup standard = load_standard("artisynth-refface");
+  const VolumeMesh& m = standard.mesh;
+  const FaceLandmarks base = find_face_landmarks(m.V, side_mask_of(m));
+  const SmoothWarp bent = local_warp(base.points.at("stomion"), Eigen::Vector3d(6, 0, 0), 35.0);
+  const FaceLandmarks found = find_face_landmarks(bent.apply_rows(m.V), side_mask_of(m));
+  EXPECT_LT(std::abs(found.plane.x), 3.0);  // the face's plane stays between the eyes
+  for (const std::string name : {"subnasale", "labrale superius", "stomion", "labrale inferius"}) {
+    const Eigen::Vector3d truth = bent.apply(base.points.at(name));
+    EXPECT_LT((found.points.at(name) - truth).norm(), 1.5) << name;
+  }
+  // The mouth corners are traced from the mouth's midline and stay symmetric about it.
+  const double corners_mid = 0.5 * (found.points.at("cheilion left").x() + found.points.at("cheilion right").x());
+  EXPECT_NEAR(corners_mid, bent.apply(base.points.at("stomion")).x(), 1.5);
+}
+
 }  // namespace
 }  // namespace facehex
