@@ -467,11 +467,14 @@ FaceLandmarks find_in_head_frame(const Eigen::MatrixXd& V, const Eigen::VectorXi
   };
   std::array<Eigen::Vector3d, 4> mouth = lip_points(profile, turns);  // sn, ls, st, li
   // The mouth's own midline: where a face is not symmetric about one plane (a bent midline, a swelling on one side)
-  // the plane can pass beside the mouth, and the lips read on it lie beside their midline. The lips' rows' own mirror
-  // plane, when it lies further from the plane than the profile's band, is where they are read.
+  // the skin's mirror plane can pass beside the mouth, and the lips read on it lie beside their midline. The lips'
+  // rows' own mirror plane, when it lies further from it than the profile's band, is where they are read. Not on a
+  // model that carries its plane (a CT's, from the whole head's symmetry): on a scan a few mm coarse the lips' rows
+  // alone place their mirror plane millimetres apart from one scan to a warp of it (docs/results.md).
   const double plane_at_mouth = l.plane.x_at(mouth[2].y(), mouth[2].z());
-  const double mouth_x =
-      mirror_plane(V, skin, plane_at_mouth, mouth[3].z(), mouth[0].z(), kMouthMirrorReach, kMouthMirrorSearch);
+  const double mouth_x = l.plane_source == "skin" ? mirror_plane(V, skin, plane_at_mouth, mouth[3].z(), mouth[0].z(),
+                                                                 kMouthMirrorReach, kMouthMirrorSearch)
+                                                  : plane_at_mouth;
   if (std::abs(mouth_x - plane_at_mouth) > options.profile_band) {
     MidSagittalPlane through_mouth = l.plane;
     through_mouth.x += mouth_x - plane_at_mouth;
