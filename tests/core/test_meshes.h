@@ -14,9 +14,12 @@ namespace facehex::test {
 // A box [0,sx]x[0,sy]x[0,sz] as an nx x ny x nz grid of hexahedra (VTK order, positively oriented), with
 // "side_mask" set from the box faces: x=0 -> u0, x=sx -> u1, y=0 -> w0, y=sy -> w1, z=0 -> v0, z=sz -> v1.
 // (The face-like convention: +x lateral, +y outward (anterior), +z up.)
+// The index of hex_box's grid vertex (i, j, k).
+inline int hex_box_vertex(int nx, int ny, int i, int j, int k) { return (k * (ny + 1) + j) * (nx + 1) + i; }
+
 inline VolumeMesh hex_box(int nx, int ny, int nz, double sx = 1, double sy = 1, double sz = 1) {
   VolumeMesh m;
-  auto id = [&](int i, int j, int k) { return (k * (ny + 1) + j) * (nx + 1) + i; };
+  auto id = [&](int i, int j, int k) { return hex_box_vertex(nx, ny, i, j, k); };
   m.V.resize((nx + 1) * (ny + 1) * (nz + 1), 3);
   Eigen::MatrixXd mask = Eigen::MatrixXd::Zero(m.V.rows(), 1);
   for (int k = 0; k <= nz; ++k)
@@ -44,9 +47,9 @@ inline VolumeMesh hex_box(int nx, int ny, int nz, double sx = 1, double sy = 1, 
   return m;
 }
 
-// hex_box's cells split into tets, without the cells (i, j, k) that `removed` picks, with the box's side labels: the
-// walls of what is removed lie on no side (a tunnel from back to front is an opening through the shell).
-inline VolumeMesh tet_box_without(int nx, int ny, int nz, double sx, double sy, double sz,
+// hex_box without the cells (i, j, k) that `removed` picks (the box's side labels kept: the walls of what is removed
+// lie on no side; a tunnel from back to front is an opening through the shell).
+inline VolumeMesh hex_box_without(int nx, int ny, int nz, double sx, double sy, double sz,
                                   const std::function<bool(int i, int j, int k)>& removed) {
   const VolumeMesh hex = hex_box(nx, ny, nz, sx, sy, sz);
   std::vector<int> kept;
@@ -58,8 +61,15 @@ inline VolumeMesh tet_box_without(int nx, int ny, int nz, double sx, double sy, 
   cut.C.resize(static_cast<Eigen::Index>(kept.size()), 8);
   for (size_t c = 0; c < kept.size(); ++c) cut.C.row(static_cast<Eigen::Index>(c)) = hex.C.row(kept[c]);
   cut.types.assign(kept.size(), CellType::Hex);
+  return cut;
+}
+
+// hex_box_without's cells split into tets, with the box's side labels.
+inline VolumeMesh tet_box_without(int nx, int ny, int nz, double sx, double sy, double sz,
+                                  const std::function<bool(int i, int j, int k)>& removed) {
+  const VolumeMesh cut = hex_box_without(nx, ny, nz, sx, sy, sz, removed);
   VolumeMesh tets = VolumeMesh::from_tets(cut.V, split_into_tets(cut).T);
-  tets.point_data = hex.point_data;
+  tets.point_data = cut.point_data;
   return tets;
 }
 
