@@ -39,6 +39,10 @@ struct UntangleOptions {
   bool whole_mesh = false;
   int rings = 2;
   int max_sweeps = 60;
+  // The sweeps also stop once one lowers the energy by less than this share of what all of them together have
+  // lowered it by (0: never): a whole-mesh smoothing's long tail moves every vertex a little every sweep and changes
+  // the shapes by little (relaxation_options).
+  double settled_energy_share = 0;
   // The line search starts from this multiple of the Newton step, then halves (successive over-relaxation): long,
   // smooth moves, which Gauss-Seidel sweeps propagate slowly, need fewer sweeps. A repair keeps 1, since longer steps
   // can leave a fold inverted that plain steps untangle (relaxation_options sets the relaxation's).
@@ -59,11 +63,13 @@ struct UntangleOptions {
 };
 
 // The shape relaxation's settings, from a repair's (`repair`: its bounds, targets, threads): every movable vertex
-// moves, for 40 sweeps; steps start at 1.8 times the Newton step (long, smooth moves go further per sweep, so the
-// budget reaches the shapes that plain steps reach in more sweeps: docs/benchmarks.md); no good cell drops below
-// a scaled Jacobian of 0.05 (while folds remain, the energy's regularization weakens its barrier against flat corners,
-// so a cell far from any fold could otherwise come out nearly flat); the plain sum of the corners' energies (the
-// relaxation evens out all cells; a higher power is for a repair's worst ones).
+// moves, for at most 40 sweeps and until a sweep lowers the energy by less than a thousandth of what the sweeps
+// before it did (whatever folds are left, which the repair then takes on); steps start at 1.8 times the Newton step
+// (long, smooth moves go further per sweep, so the budget reaches the shapes that plain steps reach in more sweeps:
+// docs/benchmarks.md); no good cell drops below a scaled Jacobian of 0.05 (while folds remain, the energy's
+// regularization weakens its barrier against flat corners, so a cell far from any fold could otherwise come out nearly
+// flat); the plain sum of the corners' energies (the relaxation evens out all cells; a higher power is for a repair's
+// worst ones).
 UntangleOptions relaxation_options(UntangleOptions repair);
 
 struct UntangleReport {

@@ -45,9 +45,9 @@ struct CellState {
   double scaled_jacobian = 0;
 };
 
-// One Gauss-Seidel step at a vertex: how far it moved and its typical edge length.
+// One Gauss-Seidel step at a vertex: how far it moved, its typical edge length and how much it lowered the energy.
 struct Step {
-  double moved = 0, edge = 0;
+  double moved = 0, edge = 0, lowered = 0;
 };
 
 // One call of untangle(): the free vertices, the corners around them with their target shapes, the state of the cells
@@ -86,6 +86,7 @@ class LocalShapeSolver {
     std::vector<char> next_active(nv, 0);
     std::vector<Step> steps(nv);
     int sweeps = 0, fewest_unusable = std::numeric_limits<int>::max(), since_fewer = 0;
+    double lowered_by_all = 0;  // the energy the sweeps so far took off
     while (sweeps < options_.max_sweeps) {
       update_delta();
       int visited = 0;
@@ -103,10 +104,11 @@ class LocalShapeSolver {
       }
       // The next sweep visits the vertices around those that moved.
       std::fill(next_active.begin(), next_active.end(), 0);
-      double moved = 0, size = 0;
+      double moved = 0, size = 0, lowered = 0;  // summed in vertex order: the same for every thread count
       for (int v : free_vertices_) {
         moved = std::max(moved, steps[v].moved);
         size = std::max(size, steps[v].edge);
+        lowered += steps[v].lowered;
         if (steps[v].moved > kMovedBy * steps[v].edge)
           for (int c : cells_of_[v])
             for (int i = 0; i < node_count(mesh_.types[c]); ++i) next_active[mesh_.C(c, i)] = 1;
@@ -115,8 +117,10 @@ class LocalShapeSolver {
       int unusable_left = 0;
       for (int c : touched_cells_) unusable_left += cell_state_[c].unusable;
       ++sweeps;
+      lowered_by_all += lowered;
       report_progress(options_.progress, "untangling", static_cast<double>(sweeps) / options_.max_sweeps);
       if (unusable_left == 0 && (visited == 0 || moved < kSettledBy * size || sweeps > kFairSweeps)) break;
+      if (lowered < options_.settled_energy_share * lowered_by_all) break;
       since_fewer = unusable_left < fewest_unusable ? 0 : since_fewer + 1;
       fewest_unusable = std::min(fewest_unusable, unusable_left);
       stalled_ = unusable_left > 0 && !options_.whole_mesh && since_fewer >= stalled_after_;
@@ -330,6 +334,7 @@ class LocalShapeSolver {
     thread_local std::vector<CellState> trial;
     trial.resize(cells_of_[v].size());
     bool improved = false;
+    double lowered = 0;
     double t = options_.over_relaxation;
     for (int halving = 0; halving < kHalvings && !improved; ++halving, t *= 0.5) {
       Eigen::Vector3d x;
@@ -337,14 +342,15 @@ class LocalShapeSolver {
       const Eigen::Vector3d p = p0 + t * step;
       if (!placement_.place(v, p, x, unused)) continue;
       mesh_.V.row(v) = x.transpose();
-      improved =
-          vertex_energy(v, nullptr, nullptr) < e0 + kArmijo * t * g.dot(step) && still_valid(v, unusable_before, trial);
+      const double e = vertex_energy(v, nullptr, nullptr);
+      improved = e < e0 + kArmijo * t * g.dot(step) && still_valid(v, unusable_before, trial);
       if (!improved) continue;
       placement_.p.row(v) = p.transpose();
       for (size_t i = 0; i < cells_of_[v].size(); ++i) cell_state_[cells_of_[v][i]] = trial[i];
+      lowered = e0 - e;
     }
     if (!improved) mesh_.V.row(v) = x0;
-    return Step{(mesh_.V.row(v) - x0).norm(), edge};
+    return Step{(mesh_.V.row(v) - x0).norm(), edge, lowered};
   }
 
   VolumeMesh& mesh_;
@@ -376,6 +382,7 @@ UntangleOptions relaxation_options(UntangleOptions repair) {
   relax.keep_above = 0.05;
   relax.corner_power = 1;
   relax.max_sweeps = 40;
+  relax.settled_energy_share = 1e-3;
   return relax;
 }
 

@@ -255,6 +255,26 @@ TEST(ShapeRelaxation, ATetherTradesTheTargetsShapeForStayingWhereTheMappingPutTh
   EXPECT_LT((relaxed(at_target) - target.V).cwiseAbs().maxCoeff(), 1e-3 * 4);
 }
 
+// A relaxation told to stop once its sweeps lower the energy by little stops before the sweeps that only creep on,
+// near where they would have taken the mesh; with the share 0 it sweeps until the vertices stop moving.
+TEST(ShapeRelaxation, StopsOnceASweepLowersTheEnergyByLittle) {
+  VolumeMesh target = test::hex_box(6, 6, 6, 6, 6, 6);
+  test::jitter_interior(target, 0.25);
+  VolumeMesh start = target;
+  test::jitter_interior(start, 0.3, 11);
+  const auto mean_off_target = [&](const VolumeMesh& m) { return (m.V - target.V).rowwise().norm().mean(); };
+  UntangleOptions relax = relaxation_towards(target, 200);
+  VolumeMesh full = start;
+  const UntangleReport until_still = untangle_with_fixed_boundary(full, relax);
+  relax.settled_energy_share = 1e-2;
+  VolumeMesh settled = start;
+  const UntangleReport until_settled = untangle_with_fixed_boundary(settled, relax);
+  EXPECT_LT(until_settled.sweeps, until_still.sweeps / 2);
+  EXPECT_GT(until_settled.sweeps, 2);
+  EXPECT_LT(mean_off_target(settled), 0.2 * mean_off_target(start));
+  EXPECT_GT(mean_off_target(settled), mean_off_target(full));
+}
+
 TEST(ShapeRelaxation, GivesTheSameMeshOnOneThreadAndOnTwo) {
   // Long in x, so that the free vertices are cut into several slabs that step in parallel.
   VolumeMesh target = test::hex_box(16, 6, 6, 16, 6, 6);
