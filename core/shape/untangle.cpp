@@ -76,6 +76,8 @@ class LocalShapeSolver {
   int free_vertex_count() const { return static_cast<int>(free_vertices_.size()); }
   // The last run() stopped because its unusable cells stopped becoming fewer.
   bool stalled() const { return stalled_; }
+  // The last run() stopped because a sweep lowered the energy by little (UntangleOptions::settled_energy_share).
+  bool settled() const { return settled_; }
 
   // Sweeps until nothing is unusable and the smoothing has settled, the repair has stalled (stalled()), or max_sweeps;
   // returns the sweeps made.
@@ -120,7 +122,8 @@ class LocalShapeSolver {
       lowered_by_all += lowered;
       report_progress(options_.progress, "untangling", static_cast<double>(sweeps) / options_.max_sweeps);
       if (unusable_left == 0 && (visited == 0 || moved < kSettledBy * size || sweeps > kFairSweeps)) break;
-      if (lowered < options_.settled_energy_share * lowered_by_all) break;
+      settled_ = lowered < options_.settled_energy_share * lowered_by_all;
+      if (settled_) break;
       since_fewer = unusable_left < fewest_unusable ? 0 : since_fewer + 1;
       fewest_unusable = std::min(fewest_unusable, unusable_left);
       stalled_ = unusable_left > 0 && !options_.whole_mesh && since_fewer >= stalled_after_;
@@ -359,6 +362,7 @@ class LocalShapeSolver {
   const CellBounds& bounds_;
   int threads_ = 1;
   bool stalled_ = false;
+  bool settled_ = false;
   int stalled_after_ = kStalledSweeps;  // sweeps without fewer unusable cells after which a repair stops
   CornerEnergy energy_;                 // delta2 follows the worst corner (update_delta)
   std::vector<int> free_vertices_;
@@ -407,6 +411,7 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
   report.free_vertices = solver.free_vertex_count();
   report.sweeps = solver.run();
   report.stalled_passes = solver.stalled();
+  report.settled = solver.settled();
   tally(report.inverted_after, report.degenerate_after, report.bad_after, report.min_scaled_jacobian_after);
   return report;
 }

@@ -64,6 +64,7 @@ json untangle_json(const UntangleReport& u) {
           {"released_feature_vertices", u.released_feature_vertices},
           {"released_side_vertices", u.released_side_vertices},
           {"sweeps", u.sweeps},
+          {"settled", u.settled},
           {"stalled_passes", u.stalled_passes}};
 }
 
@@ -244,7 +245,8 @@ std::string run_summary_text(const TransferRun& run, const MeshQualityReport& st
   if (run.relaxation.sweeps > 0) {
     const DistanceSummary moved = summarize_distances(moved_from_mapping(run));
     os << "shape relaxation: " << run.relaxation.free_vertices << " vertices, " << run.relaxation.sweeps
-       << " sweeps, inverted cells " << run.relaxation.inverted_before << " -> " << run.relaxation.inverted_after
+       << (run.relaxation.settled ? " sweeps (settled)" : " sweeps (the limit)") << ", inverted cells "
+       << run.relaxation.inverted_before << " -> " << run.relaxation.inverted_after
        << "; vertices moved from the mapping by " << fmt("%.2f", moved.mean) << " mm on average (p95 "
        << fmt("%.2f", moved.p95) << ", max " << fmt("%.1f", moved.max) << ")\n";
   }

@@ -269,6 +269,8 @@ TEST(ShapeRelaxation, StopsOnceASweepLowersTheEnergyByLittle) {
   relax.settled_energy_share = 1e-2;
   VolumeMesh settled = start;
   const UntangleReport until_settled = untangle_with_fixed_boundary(settled, relax);
+  EXPECT_TRUE(until_settled.settled);
+  EXPECT_FALSE(until_still.settled);
   EXPECT_LT(until_settled.sweeps, until_still.sweeps / 2);
   EXPECT_GT(until_settled.sweeps, 2);
   EXPECT_LT(mean_off_target(settled), 0.2 * mean_off_target(start));
