@@ -107,16 +107,18 @@ std::string region_mean(const CorrespondenceError& e, const std::string& name) {
   return "–";
 }
 
-// The CT cases' input shifts (CorrespondenceCaseResult::landmark_shift, cut_shift); empty without CT cases.
+// The cases' input shifts (CorrespondenceCaseResult::landmark_shift, cut_shift, landmarks_problem); empty when no case
+// has any (true landmarks only).
 std::string input_shifts_markdown(const std::vector<CorrespondenceCaseResult>& results) {
   std::ostringstream md, problems;
   bool any = false;
   for (const CorrespondenceCaseResult& r : results) {
-    if (r.landmark_shift.empty() && r.cut_shift.empty()) continue;
+    if (r.landmark_shift.empty() && r.cut_shift.empty() && r.landmarks_problem.empty()) continue;
     if (!r.landmarks_problem.empty()) problems << "- " << r.name << ": no landmarks (" << r.landmarks_problem << ")\n";
     if (!any)
-      md << "\nWhat the segmentation and the landmark finder found on each warped CT against the warp of what they "
-            "found on the original (mm; cuts signed, along the plane's axis):\n\n"
+      md << "\nWhat the landmark finder found on each model against where it should (mm): on a self-map or a "
+            "deformation the standard's own landmarks moved by the warp; on a warped CT the warp of what it, and the "
+            "segmentation, found on the original CT (cuts signed, along the plane's axis):\n\n"
          << "| case | landmarks mean | worst landmark | top cut | bottom cut | posterior cut | mid-sagittal plane |\n"
          << "| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n";
     any = true;

@@ -108,15 +108,27 @@ FaceLandmarks standard_feature_landmarks(const StandardSetup& standard) {
   return l;
 }
 
+// How far each landmark found on `patient` lies from the same landmark of `reference` moved by `warp`
+// (CorrespondenceCaseResult::landmark_shift), or why none were found (landmarks_problem).
+void measure_landmark_shifts(const FaceLandmarks& reference, const PatientSetup& patient, const SmoothWarp& warp,
+                             CorrespondenceCaseResult& r) {
+  if (!patient.landmarks) {
+    r.landmarks_problem = patient.features_problem;
+    return;
+  }
+  for (const auto& [name, point] : reference.points) {
+    const auto found = patient.landmarks->points.find(name);
+    if (found != patient.landmarks->points.end()) r.landmark_shift[name] = (found->second - warp.apply(point)).norm();
+  }
+}
+
 // The CT case's input shifts (CorrespondenceCaseResult::landmark_shift, cut_shift).
 void measure_input_shifts(const PatientSetup& original, const PatientSetup& warped, const SmoothWarp& warp,
                           CorrespondenceCaseResult& r) {
-  if (!warped.landmarks) r.landmarks_problem = warped.features_problem;
-  if (original.landmarks && warped.landmarks)
-    for (const auto& [name, point] : original.landmarks->points) {
-      const auto found = warped.landmarks->points.find(name);
-      if (found != warped.landmarks->points.end()) r.landmark_shift[name] = (found->second - warp.apply(point)).norm();
-    }
+  if (original.landmarks)
+    measure_landmark_shifts(*original.landmarks, warped, warp, r);
+  else if (!warped.landmarks)
+    r.landmarks_problem = warped.features_problem;
   if (!original.segmentation || !warped.segmentation || !original.landmarks) return;
   const FaceCuts &a = original.segmentation->cuts, &b = warped.segmentation->cuts;
   const auto& points = original.landmarks->points;
@@ -238,6 +250,7 @@ std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const Standar
           patient.landmarks = moved;
         }
         r = measure(standard, patient, truth, regions, options, progress);
+        if (!options.true_landmarks) measure_landmark_shifts(standard_landmarks, patient, warp, r);
         r.warp_mean = (truth - standard.mesh.V).rowwise().norm().mean();
         if (!p.warp.empty()) r.warp = warp_description(warp);
         r.model = p.model;

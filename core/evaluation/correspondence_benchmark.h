@@ -71,13 +71,15 @@ struct CorrespondenceCaseResult {
   // standard's own on a self-map; a warp changes it).
   double truth_shape_mean = 0;
   double seconds = 0;  // the transfer (and the CT's segmentation)
-  // CT cases: how far what the segmentation and the landmark finder found on the warped CT lies from the warp of what
-  // they found on the original, the transfer's inputs. Per landmark found on both: the distance (mm). Per cut
+  // How far the landmark finder's points, a transfer's input, lie from where they should: on a self-map or a
+  // deformation (without true_landmarks), from the standard's own landmarks (those its constraint set places its
+  // features at) moved by the warp; on a CT case, from the warp of what the finder found on the original. Per
+  // landmark found on both: the distance (mm). CT cases also compare the segmentation's cuts: per cut
   // ("top", "bottom", "posterior", "mid-sagittal"): the warped CT's plane minus the warp of the original's, along its
   // normal (mm, signed; each plane in its CT's head frame, core/mesh/head_turn.h), at the original's nasion (the
   // pronasale when there is none) moved onto that plane.
   std::map<std::string, double> landmark_shift, cut_shift;
-  std::string landmarks_problem;   // CT cases: why no landmarks were found on the warped CT (empty when they were)
+  std::string landmarks_problem;   // why no landmarks were found on the model (empty when they were, or were given)
   bool registered_skin = false;    // the transfer used the registered skin
   std::string registered_failure;  // why it used the feature lines though the registered skin was asked for
 };
