@@ -245,7 +245,7 @@ std::string run_summary_text(const TransferRun& run, const MeshQualityReport& st
   if (run.relaxation.sweeps > 0) {
     const DistanceSummary moved = summarize_distances(moved_from_mapping(run));
     os << "shape relaxation: " << run.relaxation.free_vertices << " vertices, " << run.relaxation.sweeps
-       << (run.relaxation.settled ? " sweeps (settled)" : " sweeps (the limit)") << ", inverted cells "
+       << (run.relaxation.settled ? " sweeps (settled)" : " sweeps") << ", inverted cells "
        << run.relaxation.inverted_before << " -> " << run.relaxation.inverted_after
        << "; vertices moved from the mapping by " << fmt("%.2f", moved.mean) << " mm on average (p95 "
        << fmt("%.2f", moved.p95) << ", max " << fmt("%.1f", moved.max) << ")\n";
