@@ -242,6 +242,7 @@ class Repair {
   }
 
   void run(VertexPlacement& placement) {
+    unrepaired_ = run_.patient_hex.V;
     run_.untangle = pass(placement, pass_);
     widen_and_release(placement);
     last_resort(false);
@@ -279,6 +280,7 @@ class Repair {
     set_state(again);
     run_.untangle.free_vertices = std::max(run_.untangle.free_vertices, again.free_vertices);
     run_.untangle.sweeps += again.sweeps;
+    run_.untangle.vertex_steps += again.vertex_steps;
     run_.untangle.stalled_passes += again.stalled_passes;
   }
 
@@ -358,7 +360,8 @@ class Repair {
   }
 
   // Vertices the repair moved off what pins them (a side, a feature line, a landmark held where the mapping put it:
-  // the passes after the first release feature pins, the last resort's free passes side pins) step back towards
+  // the passes after the first release feature pins, the last resort's free passes side pins; a vertex the repair did
+  // not move is where the pinned placement put it) step back towards
   // it: towards the patient's point with the vertex's own parameters but for those pinned (which places it exactly
   // on its sides, feature and landmark), as far of the way (all, half, a quarter, an eighth) as keeps every cell
   // around it usable and no cell at or above the relaxation's floor below it. A vertex whose fold is still in the way
@@ -379,7 +382,7 @@ class Repair {
     for (int round = 0; round < kRounds; ++round) {
       int moved = 0;
       for (int v = 0; v < nv; ++v) {
-        if (!run_.standard.fixed.row(v).any()) continue;
+        if (!run_.standard.fixed.row(v).any() || mesh.V.row(v) == unrepaired_.row(v)) continue;
         const Eigen::Vector3d x = mesh.V.row(v).transpose();
         const ParamLocator::Hit hit = in_space.locate(x);
         if (hit.tet < 0) continue;
@@ -437,7 +440,8 @@ class Repair {
   const VolumeMesh& standard_;
   const PatientMap& patient_map_;
   const TransferOptions& options_;
-  const Eigen::MatrixXd uvw_;  // the standard's hex vertex parameters
+  const Eigen::MatrixXd uvw_;   // the standard's hex vertex parameters
+  Eigen::MatrixXd unrepaired_;  // the vertices as the repair found them
   UntangleOptions pass_;
   ProgressCallback progress_;
   int passes_ = 0;
