@@ -51,7 +51,8 @@ Eigen::Matrix3d slot_matrix(CellType type, const CellNodes& X, int slot) {
                              : corner_jacobian(type, X, slot);
 }
 
-CornerTargets::CornerTargets(const VolumeMesh& mesh, const UntangleOptions& options, const std::vector<char>& needed) {
+CornerTargets::CornerTargets(const VolumeMesh& mesh, const UntangleOptions& options, const std::vector<char>& needed,
+                             int threads) {
   if (!options.target) return;
   const int nc = mesh.num_cells();
   target_inverse_.resize(static_cast<size_t>(nc) * kCellSlots);
@@ -60,6 +61,7 @@ CornerTargets::CornerTargets(const VolumeMesh& mesh, const UntangleOptions& opti
     const double distortion = std::isfinite(eta) && eta > 0 ? std::clamp(1 - 1 / eta, 0.0, 1.0) : 1.0;
     return target_corner_inverse(W, ideal_inv, options.target_towards_ideal * distortion);
   };
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 256)
   for (int c = 0; c < nc; ++c) {
     if (!needed[c]) continue;
     const CellType type = mesh.types[c];

@@ -34,10 +34,10 @@ constexpr int kCellSlots = kSampleSlot + 9;
 
 // W^-1 of each corner and interior sample of the cells flagged in `needed` (#C): the ideal cell's, or with
 // options.target the target's moved towards the ideal by options.target_towards_ideal times the corner's distortion
-// in `mesh` as given (shape_options.h).
+// in `mesh` as given (shape_options.h). Computed on `threads` threads.
 class CornerTargets {
  public:
-  CornerTargets(const VolumeMesh& mesh, const UntangleOptions& options, const std::vector<char>& needed);
+  CornerTargets(const VolumeMesh& mesh, const UntangleOptions& options, const std::vector<char>& needed, int threads);
   const Eigen::Matrix3d& inverse(const VolumeMesh& mesh, int cell, int slot) const;
 
  private:

@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <optional>
 
 #include "core/mesh/corner_jacobian.h"
 
@@ -31,74 +30,89 @@ double normalized_determinant(const Eigen::Matrix3d& S) {
 
 namespace {
 
-// What both evaluations need of S: s^2 = |S|_F^2 / 3 (f) and its powers, det S, sigma, and the energy phi(sigma) =
-// h(sigma)^-q (q = 2 power / 3) with, if `derivatives`, its first two derivatives by sigma (the line search asks for
-// the energy alone); empty where the energy is infinite.
-struct SigmaTerms {
-  double f, f32, d, sigma, energy, dphi = 0, d2phi = 0;
-};
-
 // h^(-2 power / 3): by a cube root and multiplications for the small whole powers the solvers use (the relaxation's
 // 1, the template repair's 8), cheaper than std::pow; std::pow otherwise.
-double inverse_power_two_thirds(double h, double power) {
-  constexpr double kLargestWholePower = 16;
-  if (!(power >= 1 && power <= kLargestWholePower && power == std::floor(power)))
-    return std::pow(h, -2.0 * power / 3.0);
-  const int whole = static_cast<int>(power);
-  const double root = std::cbrt(h);
-  const double base = 1.0 / (root * root);
-  double result = base;
-  for (int i = 1; i < whole; ++i) result *= base;
-  return result;
-}
+class InversePowerTwoThirds {
+ public:
+  explicit InversePowerTwoThirds(double power) : power_(power) {
+    constexpr double kLargestWholePower = 16;
+    whole_ = power >= 1 && power <= kLargestWholePower && power == std::floor(power) ? static_cast<int>(power) : 0;
+  }
+  double operator()(double h) const {
+    if (whole_ == 0) return std::pow(h, -2.0 * power_ / 3.0);
+    const double root = std::cbrt(h);
+    const double base = 1.0 / (root * root);
+    double result = base;
+    for (int i = 1; i < whole_; ++i) result *= base;
+    return result;
+  }
 
-std::optional<SigmaTerms> sigma_terms(const Eigen::Matrix3d& S, double delta2, double power, bool derivatives) {
-  SigmaTerms t;
-  t.f = S.squaredNorm() / 3;
-  if (!(t.f > 0)) return std::nullopt;
-  t.f32 = t.f * std::sqrt(t.f);
-  t.d = S.determinant();
-  t.sigma = t.d / t.f32;
-  const double root = std::sqrt(t.sigma * t.sigma + 4 * delta2);
-  const double h = 0.5 * (t.sigma + root);
-  if (!(h > 0)) return std::nullopt;
-  const double q = 2.0 * power / 3.0;
-  t.energy = inverse_power_two_thirds(h, power);
-  if (!derivatives) return t;
-  const double dh = 0.5 * (1 + t.sigma / root), d2h = 2 * delta2 / (root * root * root);
-  t.dphi = -q * t.energy / h * dh;
-  t.d2phi = q * (q + 1) * t.energy / (h * h) * dh * dh - q * t.energy / h * d2h;
-  return t;
+ private:
+  double power_;
+  int whole_;
+};
+
+double finite_or_infinity(double total) {
+  return std::isfinite(total) ? total : std::numeric_limits<double>::infinity();
 }
 
 }  // namespace
 
-double CornerEnergy::operator()(const Eigen::Matrix3d& A, const Eigen::Matrix3d& Winv,
-                                Eigen::Matrix3d* gradient) const {
+// A collapsed corner (f = 0) gives sigma = NaN, a flat or inverted one without regularization h = 0: either makes
+// the sum NaN or infinite, which is returned as infinity.
+double CornerEnergy::sum(const Eigen::Matrix3d* S, int n) const {
+  const InversePowerTwoThirds phi(power);
+  double total = 0;
+  for (int i = 0; i < n; ++i) {
+    const double f = S[i].squaredNorm() / 3;
+    const double sigma = S[i].determinant() / (f * std::sqrt(f));
+    total += phi(0.5 * (sigma + std::sqrt(sigma * sigma + 4 * delta2)));
+  }
+  return finite_or_infinity(total);
+}
+
+// With f = |S|^2 / 3, d = det S, sigma = d / f^(3/2) and phi(sigma) = h(sigma)^-q (q = 2 power / 3): S moves with the
+// node as S + x w^T, so df/dx = (2/3) S w and dd/dx = cof(S) w (det S is linear in x); the chain rule through sigma
+// gives the gradient phi' dsigma and the Hessian phi'' dsigma dsigma^T + phi' d2sigma.
+double CornerEnergy::sum(const Eigen::Matrix3d* S, const Eigen::Vector3d* w, int n, Eigen::Vector3d& gradient,
+                         Eigen::Matrix3d& hessian) const {
+  const InversePowerTwoThirds phi(power);
+  const double q = 2.0 * power / 3.0;
+  double total = 0;
+  gradient.setZero();
+  hessian.setZero();
+  for (int i = 0; i < n; ++i) {
+    const double f = S[i].squaredNorm() / 3, f32 = f * std::sqrt(f), f52 = f32 * f, f72 = f52 * f;
+    const double d = S[i].determinant(), sigma = d / f32;
+    const double root = std::sqrt(sigma * sigma + 4 * delta2);
+    const double h = 0.5 * (sigma + root);
+    const double energy = phi(h);
+    const double dh = 0.5 * (1 + sigma / root), d2h = 2 * delta2 / (root * root * root);
+    const double dphi = -q * energy / h * dh;
+    const double d2phi = q * (q + 1) * energy / (h * h) * dh * dh - q * energy / h * d2h;
+    const Eigen::Vector3d df = (2.0 / 3.0) * S[i] * w[i];
+    const Eigen::Vector3d dd = cofactor(S[i]) * w[i];
+    const Eigen::Vector3d dsigma = dd / f32 - 1.5 * d / f52 * df;
+    Eigen::Matrix3d d2sigma =
+        -1.5 / f52 * (dd * df.transpose() + df * dd.transpose()) + 3.75 * d / f72 * df * df.transpose();
+    d2sigma.diagonal().array() -= d / f52 * w[i].squaredNorm();
+    total += energy;
+    gradient += dphi * dsigma;
+    hessian += d2phi * dsigma * dsigma.transpose() + dphi * d2sigma;
+  }
+  return finite_or_infinity(total);
+}
+
+double CornerEnergy::operator()(const Eigen::Matrix3d& A, const Eigen::Matrix3d& Winv) const {
   const Eigen::Matrix3d S = A * Winv;
-  const std::optional<SigmaTerms> t = sigma_terms(S, delta2, power, gradient != nullptr);
-  if (!t) return std::numeric_limits<double>::infinity();
-  if (gradient) *gradient = t->dphi * (cofactor(S) / t->f32 - t->sigma * S / t->f) * Winv.transpose();
-  return t->energy;
+  return sum(&S, 1);
 }
 
 double CornerEnergy::node(const Eigen::Matrix3d& A, const Eigen::Matrix3d& Winv, const Eigen::Vector3d& coefficient,
                           Eigen::Vector3d& gradient, Eigen::Matrix3d& hessian) const {
   const Eigen::Matrix3d S = A * Winv;
-  const std::optional<SigmaTerms> t = sigma_terms(S, delta2, power, true);
-  if (!t) return std::numeric_limits<double>::infinity();
-  const double f52 = t->f32 * t->f, f72 = f52 * t->f;
-  // S moves with the node as S + x w^T, w = Winv^T c: |S|^2 is quadratic in x and det S linear (a rank-one update).
   const Eigen::Vector3d w = Winv.transpose() * coefficient;
-  const Eigen::Vector3d df = (2.0 / 3.0) * S * w;
-  const Eigen::Vector3d dd = cofactor(S) * w;
-  const Eigen::Vector3d dsigma = dd / t->f32 - 1.5 * t->d / f52 * df;
-  Eigen::Matrix3d d2sigma =
-      -1.5 / f52 * (dd * df.transpose() + df * dd.transpose()) + 3.75 * t->d / f72 * df * df.transpose();
-  d2sigma.diagonal().array() -= t->d / f52 * w.squaredNorm();
-  gradient = t->dphi * dsigma;
-  hessian = t->d2phi * dsigma * dsigma.transpose() + t->dphi * d2sigma;
-  return t->energy;
+  return sum(&S, &w, 1, gradient, hessian);
 }
 
 const Eigen::Matrix3d& ideal_corner_inverse(CellType type, int k) {

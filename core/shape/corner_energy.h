@@ -26,15 +26,22 @@ struct CornerEnergy {
   double power = 1;
 
   // The energy of corner A against target W (given as W^-1); infinite for a collapsed corner (S = 0) or, with
-  // delta = 0, a flat or inverted one. Optionally its gradient (3 x 3, the derivative by each entry of A).
-  double operator()(const Eigen::Matrix3d& A, const Eigen::Matrix3d& Winv, Eigen::Matrix3d* gradient = nullptr) const;
+  // delta = 0, a flat or inverted one.
+  double operator()(const Eigen::Matrix3d& A, const Eigen::Matrix3d& Winv) const;
 
   // The energy and its gradient and Hessian by the position x of one node of the corner, where A = A_0 + x c^T
   // (c = `coefficient`: the node's column pattern in a corner matrix, corner_jacobian.h, or its weights at an
-  // interior sample). Exact: det A is linear and |A|^2 quadratic in x. Gradient and Hessian are left unset when the
+  // interior sample). Exact: det A is linear and |A|^2 quadratic in x. Gradient and Hessian mean nothing when the
   // energy is infinite.
   double node(const Eigen::Matrix3d& A, const Eigen::Matrix3d& Winv, const Eigen::Vector3d& coefficient,
               Eigen::Vector3d& gradient, Eigen::Matrix3d& hessian) const;
+
+  // The same summed over n corners that move with one node, each given as S_i = A_i W_i^-1 and, for the derivatives,
+  // w_i = W_i^-T c_i (S_i moves as S_i + x w_i^T). One loop over plain arrays: the corners' square roots, cube roots
+  // and divisions, which bound the work, overlap from one corner to the next.
+  double sum(const Eigen::Matrix3d* S, int n) const;
+  double sum(const Eigen::Matrix3d* S, const Eigen::Vector3d* w, int n, Eigen::Vector3d& gradient,
+             Eigen::Matrix3d& hessian) const;
 };
 
 // W_k^-1 of the ideal cell's corner k (k < node_count(type); ideal_cell in corner_jacobian.h).

@@ -79,7 +79,8 @@ struct UntangleReport {
   double min_scaled_jacobian_before = 0, min_scaled_jacobian_after = 0;
   int free_vertices = 0;  // vertices allowed to move
   int sweeps = 0;
-  bool settled = false;  // the sweeps stopped on settled_energy_share, before max_sweeps
+  long vertex_steps = 0;  // Newton steps taken over all sweeps (a vertex is stepped in a sweep only if awake)
+  bool settled = false;   // the sweeps stopped on settled_energy_share, before max_sweeps
   // Passes stopped because their unusable cells had not become fewer for a while (untangle.h): what the report's
   // counts after them say is left is what those passes could not untangle.
   int stalled_passes = 0;

@@ -26,7 +26,7 @@ struct Corner {
 constexpr double kNearlyInverted = 0.1;  // normalized corner determinant below which a vertex is always revisited
 constexpr double kDeltaEpsilon = 1e-3;   // delta^2 = eps (eps - sigma_min) while sigma_min < eps (Escobar et al.)
 constexpr double kArmijo = 1e-4;         // sufficient decrease of a step, relative to its slope
-constexpr int kHalvings = 30;            // line search steps
+constexpr int kHalvings = 15;            // line search steps
 constexpr double kLongestStep = 0.5;     // a step moves its vertex at most this share of its mean edge
 constexpr double kMovedBy = 1e-4;        // a vertex that moved more than this share of its edge wakes its neighbours
 constexpr double kSettledBy = 1e-3;      // a sweep whose largest move is below this share of the edges has settled
@@ -78,6 +78,7 @@ class LocalShapeSolver {
   bool stalled() const { return stalled_; }
   // The last run() stopped because a sweep lowered the energy by little (UntangleOptions::settled_energy_share).
   bool settled() const { return settled_; }
+  long vertex_steps() const { return vertex_steps_; }
 
   // Sweeps until nothing is unusable and the smoothing has settled, the repair has stalled (stalled()), or max_sweeps;
   // returns the sweeps made.
@@ -104,14 +105,18 @@ class LocalShapeSolver {
             steps[v] = step_vertex(v);
           }
       }
-      // The next sweep visits the vertices around those that moved.
+      // The next sweep visits the vertices around those that moved and lowered the energy by at least their share
+      // of a settled sweep's decrease (settled_energy_share): a step that took off less has hardly moved its
+      // neighbours' optimum.
       std::fill(next_active.begin(), next_active.end(), 0);
       double moved = 0, size = 0, lowered = 0;  // summed in vertex order: the same for every thread count
+      for (int v : free_vertices_) lowered += steps[v].lowered;
+      lowered_by_all += lowered;
+      const double settled_step = options_.settled_energy_share * lowered_by_all / free_vertex_count();
       for (int v : free_vertices_) {
         moved = std::max(moved, steps[v].moved);
         size = std::max(size, steps[v].edge);
-        lowered += steps[v].lowered;
-        if (steps[v].moved > kMovedBy * steps[v].edge)
+        if (steps[v].moved > kMovedBy * steps[v].edge && steps[v].lowered >= settled_step)
           for (int c : cells_of_[v])
             for (int i = 0; i < node_count(mesh_.types[c]); ++i) next_active[mesh_.C(c, i)] = 1;
       }
@@ -119,7 +124,7 @@ class LocalShapeSolver {
       int unusable_left = 0;
       for (int c : touched_cells_) unusable_left += cell_state_[c].unusable;
       ++sweeps;
-      lowered_by_all += lowered;
+      vertex_steps_ += visited;
       report_progress(options_.progress, "untangling", static_cast<double>(sweeps) / options_.max_sweeps);
       if (unusable_left == 0 && (visited == 0 || moved < kSettledBy * size || sweeps > kFairSweeps)) break;
       settled_ = lowered < options_.settled_energy_share * lowered_by_all;
@@ -183,7 +188,33 @@ class LocalShapeSolver {
         if (!cell_seen[corner.cell]) touched_cells_.push_back(corner.cell);
         cell_seen[corner.cell] = 1;
       }
-    targets_ = std::make_unique<CornerTargets>(mesh_, options_, cell_seen);
+    std::sort(touched_corners_.begin(), touched_corners_.end(), [](const Corner& a, const Corner& b) {
+      return a.cell < b.cell || (a.cell == b.cell && a.slot < b.slot);
+    });
+    targets_ = std::make_unique<CornerTargets>(mesh_, options_, cell_seen, threads_);
+    // Each corner's target and how it moves with the vertex: A = sum over the cell's nodes i of x_i c_i^T, so S = A
+    // W^-1 moves by x w^T with w = W^-T c, c the vertex's coefficient (summed over the nodes that are the vertex).
+    corner_targets_.assign(mesh_.num_vertices(), {});
+    corner_weights_.assign(mesh_.num_vertices(), {});
+    for (int v : free_vertices_)
+      for (const Corner& corner : corners_of_[v]) {
+        const CellType type = mesh_.types[corner.cell];
+        Eigen::Vector3d coefficient = Eigen::Vector3d::Zero();
+        if (corner.slot >= kSampleSlot) {
+          const SampleWeights& W = interior_sample_weights(type)[corner.slot - kSampleSlot];
+          for (int i = 0; i < node_count(type); ++i)
+            if (mesh_.C(corner.cell, i) == v) coefficient += W.row(i).transpose();
+        } else {  // A = [x_a - x_k, x_b - x_k, x_c - x_k]: column j is +x_(n[j+1]) and -x_(n[0])
+          const auto& n = corner_nodes(type, corner.slot);
+          for (int j = 0; j < 3; ++j) {
+            if (mesh_.C(corner.cell, n[j + 1]) == v) coefficient(j) += 1;
+            if (mesh_.C(corner.cell, n[0]) == v) coefficient(j) -= 1;
+          }
+        }
+        const Eigen::Matrix3d& Winv = targets_->inverse(mesh_, corner.cell, corner.slot);
+        corner_targets_[v].push_back(&Winv);
+        corner_weights_[v].push_back(Winv.transpose() * coefficient);
+      }
     sigma_.resize(touched_corners_.size());
     // Each cell's state is kept current by the steps: a step changes only the cells around its vertex, and the
     // vertices stepped at the same time share no cell.
@@ -203,45 +234,21 @@ class LocalShapeSolver {
   // The energy of the corners around v and, optionally, its gradient and Hessian by x_v (corner_energy.h; both or
   // neither).
   double vertex_energy(int v, Eigen::Vector3d* gradient, Eigen::Matrix3d* hessian) const {
-    double e = 0;
-    if (gradient) {
-      gradient->setZero();
-      hessian->setZero();
-    }
+    const std::vector<Corner>& corners = corners_of_[v];
+    const int n = static_cast<int>(corners.size());
+    thread_local std::vector<Eigen::Matrix3d> S;
+    S.resize(n);
     int gathered = -1;  // corners_of_[v] lists each cell's corners together: gather its nodes once
     CellNodes X;
-    for (const Corner& corner : corners_of_[v]) {
-      const CellType type = mesh_.types[corner.cell];
-      if (corner.cell != gathered) {
-        X = cell_nodes(mesh_, corner.cell);
-        gathered = corner.cell;
+    for (int i = 0; i < n; ++i) {
+      if (corners[i].cell != gathered) {
+        X = cell_nodes(mesh_, corners[i].cell);
+        gathered = corners[i].cell;
       }
-      Eigen::Matrix3d A;
-      const Eigen::Matrix3d& Winv = corner_matrix(corner, X, A);
-      if (!gradient) {
-        e += energy_(A, Winv);
-        continue;
-      }
-      // A = sum over the cell's nodes i of x_i c_i^T: v's coefficient c (summed over the nodes that are v).
-      Eigen::Vector3d coefficient = Eigen::Vector3d::Zero();
-      if (corner.slot >= kSampleSlot) {
-        const SampleWeights& W = interior_sample_weights(type)[corner.slot - kSampleSlot];
-        for (int i = 0; i < node_count(type); ++i)
-          if (mesh_.C(corner.cell, i) == v) coefficient += W.row(i).transpose();
-      } else {  // A = [x_a - x_k, x_b - x_k, x_c - x_k]: column j is +x_(n[j+1]) and -x_(n[0])
-        const auto& n = corner_nodes(type, corner.slot);
-        for (int j = 0; j < 3; ++j) {
-          if (mesh_.C(corner.cell, n[j + 1]) == v) coefficient(j) += 1;
-          if (mesh_.C(corner.cell, n[0]) == v) coefficient(j) -= 1;
-        }
-      }
-      Eigen::Vector3d g;
-      Eigen::Matrix3d H;
-      e += energy_.node(A, Winv, coefficient, g, H);
-      if (!std::isfinite(e)) break;
-      *gradient += g;
-      *hessian += H;
+      S[i].noalias() = slot_matrix(mesh_.types[corners[i].cell], X, corners[i].slot) * *corner_targets_[v][i];
     }
+    double e =
+        gradient ? energy_.sum(S.data(), corner_weights_[v].data(), n, *gradient, *hessian) : energy_.sum(S.data(), n);
     if (!tether_scale_.empty() && tether_scale_[v] > 0) {
       const Eigen::Vector3d d = (mesh_.V.row(v) - options_.tether.row(v)).transpose();
       e += tether_scale_[v] * d.squaredNorm();
@@ -259,12 +266,22 @@ class LocalShapeSolver {
   void update_delta() {
     const int n = static_cast<int>(touched_corners_.size());
     double sigma_min = std::numeric_limits<double>::infinity();
-#pragma omp parallel for num_threads(threads_) reduction(min : sigma_min)
-    for (int i = 0; i < n; ++i) {
-      Eigen::Matrix3d A;
-      const Eigen::Matrix3d& Winv = corner_matrix(touched_corners_[i], cell_nodes(mesh_, touched_corners_[i].cell), A);
-      sigma_[i] = normalized_determinant(A * Winv);
-      sigma_min = std::min(sigma_min, sigma_[i]);
+#pragma omp parallel num_threads(threads_) reduction(min : sigma_min)
+    {
+      int gathered = -1;  // touched_corners_ lists each cell's corners together: gather its nodes once
+      CellNodes X;
+#pragma omp for schedule(static)
+      for (int i = 0; i < n; ++i) {
+        const Corner& corner = touched_corners_[i];
+        if (corner.cell != gathered) {
+          X = cell_nodes(mesh_, corner.cell);
+          gathered = corner.cell;
+        }
+        Eigen::Matrix3d A;
+        const Eigen::Matrix3d& Winv = corner_matrix(corner, X, A);
+        sigma_[i] = normalized_determinant(A * Winv);
+        sigma_min = std::min(sigma_min, sigma_[i]);
+      }
     }
     for (int i = 0; i < n; ++i) {
       if (!(sigma_[i] < kNearlyInverted)) continue;
@@ -363,11 +380,14 @@ class LocalShapeSolver {
   int threads_ = 1;
   bool stalled_ = false;
   bool settled_ = false;
+  long vertex_steps_ = 0;
   int stalled_after_ = kStalledSweeps;  // sweeps without fewer unusable cells after which a repair stops
   CornerEnergy energy_;                 // delta2 follows the worst corner (update_delta)
   std::vector<int> free_vertices_;
   std::vector<std::vector<int>> cells_of_, slabs_;
   std::vector<std::vector<Corner>> corners_of_;
+  std::vector<std::vector<const Eigen::Matrix3d*>> corner_targets_;  // #V, per corner of corners_of_: its W^-1
+  std::vector<std::vector<Eigen::Vector3d>> corner_weights_;         // #V, per corner of corners_of_: its w
   std::vector<Corner> touched_corners_;
   std::vector<int> touched_cells_;
   std::unique_ptr<CornerTargets> targets_;
@@ -412,6 +432,7 @@ UntangleReport untangle(VolumeMesh& mesh, VertexPlacement& placement, const Unta
   report.sweeps = solver.run();
   report.stalled_passes = solver.stalled();
   report.settled = solver.settled();
+  report.vertex_steps = solver.vertex_steps();
   tally(report.inverted_after, report.degenerate_after, report.bad_after, report.min_scaled_jacobian_after);
   return report;
 }

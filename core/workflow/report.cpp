@@ -64,6 +64,7 @@ json untangle_json(const UntangleReport& u) {
           {"released_feature_vertices", u.released_feature_vertices},
           {"released_side_vertices", u.released_side_vertices},
           {"sweeps", u.sweeps},
+          {"vertex_steps", u.vertex_steps},
           {"settled", u.settled},
           {"stalled_passes", u.stalled_passes}};
 }

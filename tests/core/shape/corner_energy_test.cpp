@@ -7,6 +7,7 @@
 #include <Eigen/LU>
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "core/mesh/corner_jacobian.h"
 #include "core/shape/cell_bounds.h"
@@ -43,10 +44,6 @@ TEST(CornerEnergy, NodeGradientAndHessianMatchFiniteDifferences) {
           const double e = energy.node(A0, Winv, c, g, H);
           ASSERT_TRUE(std::isfinite(e));
           EXPECT_NEAR(e, energy(A0, Winv), 1e-12 * e);
-          // The node gradient is the corner gradient through A = A_0 + x c^T.
-          Eigen::Matrix3d dA;
-          energy(A0, Winv, &dA);
-          EXPECT_LT((g - dA * c).norm(), 1e-10 * (1 + g.norm()));
           const double h = 1e-6;
           for (int k = 0; k < 3; ++k) {
             const Eigen::Vector3d step = h * Eigen::Vector3d::Unit(k);
@@ -62,6 +59,45 @@ TEST(CornerEnergy, NodeGradientAndHessianMatchFiniteDifferences) {
           EXPECT_LT((H - H.transpose()).norm(), 1e-10 * (1 + H.norm()));
         }
       }
+}
+
+// The summed form is the sum of the corners' own energies and derivatives; one collapsed, or (unregularized)
+// inverted, corner makes the sum infinite.
+TEST(CornerEnergy, SumsTheCornersAroundANode) {
+  std::mt19937 rng(7);
+  for (const double delta2 : {0.0, 1e-3})
+    for (const double power : {1.0, 2.5}) {
+      const CornerEnergy energy{delta2, power};
+      std::vector<Eigen::Matrix3d> S;
+      std::vector<Eigen::Vector3d> w;
+      double expected = 0;
+      Eigen::Vector3d expected_g = Eigen::Vector3d::Zero();
+      Eigen::Matrix3d expected_H = Eigen::Matrix3d::Zero();
+      for (int i = 0; i < 9; ++i) {
+        const Eigen::Matrix3d A = random_corner(rng, 0.4), Winv = random_corner(rng, 0.3).inverse();
+        const Eigen::Vector3d c = coefficients()[i % 3];
+        Eigen::Vector3d g;
+        Eigen::Matrix3d H;
+        expected += energy.node(A, Winv, c, g, H);
+        expected_g += g;
+        expected_H += H;
+        S.push_back(A * Winv);
+        w.push_back(Winv.transpose() * c);
+      }
+      Eigen::Vector3d g;
+      Eigen::Matrix3d H;
+      const double e = energy.sum(S.data(), w.data(), 9, g, H);
+      EXPECT_NEAR(e, expected, 1e-12 * expected);
+      EXPECT_NEAR(energy.sum(S.data(), 9), expected, 1e-12 * expected);
+      EXPECT_LT((g - expected_g).norm(), 1e-10 * (1 + g.norm()));
+      EXPECT_LT((H - expected_H).norm(), 1e-10 * (1 + H.norm()));
+      S[4].setZero();
+      EXPECT_TRUE(std::isinf(energy.sum(S.data(), 9)));
+      EXPECT_TRUE(std::isinf(energy.sum(S.data(), w.data(), 9, g, H)));
+      S[4] = Eigen::Matrix3d::Identity();
+      S[4](2, 2) = -0.5;
+      EXPECT_EQ(std::isinf(energy.sum(S.data(), 9)), delta2 == 0);
+    }
 }
 
 TEST(CornerEnergy, IsOneAndFlatAtTheTargetShapeWhateverItsSizeAndRotation) {
