@@ -66,9 +66,12 @@ Eigen::Vector3i ParamLocator::cell_of(const Eigen::Vector3d& q) const {
 bool ParamLocator::barycentric(int t, const Eigen::Vector3d& q, Eigen::Vector4d& bary) const {
   if (!usable_[t]) return false;
   const Eigen::Vector3d p0 = P_.row(T_(t, 0));
-  Eigen::Matrix3d D;
-  for (int k = 0; k < 3; ++k) D.col(k) = P_.row(T_(t, k + 1)).transpose() - p0;
-  const Eigen::Vector3d l = D.partialPivLu().solve(q - p0);
+  const Eigen::Vector3d a = P_.row(T_(t, 1)).transpose() - p0, b = P_.row(T_(t, 2)).transpose() - p0,
+                        c = P_.row(T_(t, 3)).transpose() - p0, d = q - p0;
+  // Cramer's rule by triple products: the tet is not degenerate (usable_), so det is well away from zero.
+  const Eigen::Vector3d bc = b.cross(c);
+  const double inv_det = 1.0 / a.dot(bc);
+  const Eigen::Vector3d l(d.dot(bc) * inv_det, a.dot(d.cross(c)) * inv_det, a.dot(b.cross(d)) * inv_det);
   bary << 1.0 - l.sum(), l;
   return true;
 }
@@ -77,7 +80,13 @@ ParamLocator::Hit ParamLocator::locate(const Eigen::Vector3d& q, int hint) const
   constexpr double kInside = -1e-12;
   Hit best;
   best.violation = std::numeric_limits<double>::infinity();
+  // A tet overlaps several grid cells: the grid's search tries each once per query (stamps per thread: the untangler
+  // locates from several threads).
+  thread_local std::vector<unsigned> tried;
+  thread_local unsigned query = 0;
   auto consider = [&](int t) {
+    if (tried[t] == query) return false;
+    tried[t] = query;
     Eigen::Vector4d b;
     if (!barycentric(t, q, b)) return false;
     const double v = std::max(0.0, -b.minCoeff());
@@ -102,6 +111,11 @@ ParamLocator::Hit ParamLocator::locate(const Eigen::Vector3d& q, int hint) const
   }
 
   // Grid: the cell of q, then growing shells of cells around it while nothing contains q.
+  if (tried.size() < static_cast<size_t>(T_.rows())) tried.assign(T_.rows(), 0);
+  if (++query == 0) {  // the stamps wrapped around
+    std::fill(tried.begin(), tried.end(), 0);
+    query = 1;
+  }
   const Eigen::Vector3i c = cell_of(q);
   const int max_ring = std::max(2, dims_.maxCoeff() / 8);
   for (int ring = 0; ring <= max_ring; ++ring) {

@@ -2,8 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/LU>
 #include <algorithm>
+#include <limits>
 #include <random>
+#include <vector>
 
 #include "core/fields/harmonic_fields.h"
 #include "core/mapping/param_locator.h"
@@ -45,6 +48,45 @@ TEST(ParamLocator, PointsOutsideGetTheNearestTet) {
   ASSERT_GE(hit.tet, 0);
   EXPECT_GT(hit.violation, 0);
   EXPECT_LT(hit.violation, 0.1);
+}
+
+// A point in a hole of the image (where a fold leaves no tet, or an opening of the model) gets the tet that violates
+// least, as a search over every tet finds it; also when queried again, and after another locator's queries.
+TEST(ParamLocator, APointInAHoleGetsTheLeastViolatingTet) {
+  const VolumeMesh hex = test::hex_box(6, 6, 6);
+  const Eigen::MatrixXi all = split_into_tets(hex).T;
+  std::vector<int> kept;
+  for (int t = 0; t < all.rows(); ++t) {
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 4; ++k) centroid += hex.V.row(all(t, k)).transpose() / 4;
+    if ((centroid.array() - 0.5).abs().maxCoeff() > 1.0 / 6) kept.push_back(t);  // a hole of 2 x 2 x 2 cells
+  }
+  Eigen::MatrixXi T(kept.size(), 4);
+  for (size_t i = 0; i < kept.size(); ++i) T.row(i) = all.row(kept[i]);
+  const ParamLocator holed(hex.V, T), whole(hex.V, all);
+  const auto least_violation = [&](const Eigen::Vector3d& q) {
+    double least = std::numeric_limits<double>::infinity();
+    for (int t = 0; t < T.rows(); ++t) {
+      Eigen::Matrix3d D;
+      for (int k = 0; k < 3; ++k) D.col(k) = (hex.V.row(T(t, k + 1)) - hex.V.row(T(t, 0))).transpose();
+      const Eigen::Vector3d l = D.inverse() * (q - hex.V.row(T(t, 0)).transpose());
+      least = std::min(least, std::max(0.0, -std::min(1 - l.sum(), l.minCoeff())));
+    }
+    return least;
+  };
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> in_hole(0.5 - 0.15, 0.5 + 0.15);
+  for (int i = 0; i < 20; ++i) {
+    const Eigen::Vector3d q(in_hole(rng), in_hole(rng), in_hole(rng));
+    const double expected = least_violation(q);
+    ASSERT_GT(expected, 0);
+    for (int again = 0; again < 2; ++again) {
+      const ParamLocator::Hit hit = holed.locate(q, 0);
+      ASSERT_GE(hit.tet, 0);
+      EXPECT_NEAR(hit.violation, expected, 1e-12) << i;
+      EXPECT_EQ(whole.locate(q).violation, 0.0);
+    }
+  }
 }
 
 TransferOptions default_options() { return TransferOptions{}; }
