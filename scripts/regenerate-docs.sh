@@ -374,16 +374,20 @@ def corr_table(report, mapping_only):
                region(c, "bone"), f(c["warp_mean_mm"]), n(c["folded_parametric_tets"]) if "folded_parametric_tets" in c else "–"]
         if not mapping_only:
             row += [f(c["mapping_error_mm"]["all"]["mean"]), f(c["moved_by_relaxation_mm"]["mean"], 1),
-                    c["inverted"], f(c["shape_mean"] / c["standard_shape_mean"], 3),
+                    f"{c['inverted_after_mapping']}, {c['inverted']}", f(c["shape_mean"] / c["standard_shape_mean"], 3),
                     f(c["dihedral_change_mean_deg"], 1)]
-        row.append(f(c["seconds"], 0))
+            row.append(f"{f(c['seconds'], 0)}, {f(c['shape_solver_seconds'], 1)}")
+        else:
+            row.append(f(c["seconds"], 0))
         rows.append(row)
     header = ["case", "patient tets", "error mean / p95 / max (mm)", "within 1 mm", "landmarks", "worst opening rim",
               "skin", "bone", "the warp moves", "folded parametric tets"]
     if not mapping_only:
-        header += ["plain mapping mean", "moved by relaxation + repair, mean", "inverted cells",
-                   "mean shape / standard's", "dihedral change (°)"]
-    return table(header + ["time (s)"], rows)
+        header += ["plain mapping mean", "moved by relaxation + repair, mean", "inverted cells: mapped, result",
+                   "mean shape / standard's", "dihedral change (°)", "time (s): case, relaxation + repair"]
+    else:
+        header.append("time (s)")
+    return table(header, rows)
 
 
 if only in ("", "correspondence"):

@@ -78,6 +78,9 @@ CorrespondenceCaseResult measure(const StandardSetup& standard, const PatientSet
   r.moved_by_relaxation_mean = moved.mean;
   r.moved_by_relaxation_max = moved.max;
   r.inverted = t.patient_quality.summary.inverted + t.patient_quality.summary.degenerate;
+  r.inverted_after_mapping = t.plain_mapping_quality.summary.inverted + t.plain_mapping_quality.summary.degenerate;
+  for (const char* stage : {"shape_relaxation", "untangle"})
+    if (t.run.seconds.count(stage)) r.shape_solver_seconds += t.run.seconds.at(stage);
   r.folded_parametric_tets = t.run.patient.health.inverted + t.run.patient.health.degenerate;
   r.shape_mean = t.patient_quality.summary.shape_mean;
   r.standard_shape_mean = t.standard_quality.summary.shape_mean;

@@ -65,12 +65,14 @@ struct CorrespondenceCaseResult {
   double warp_mean = 0;               // mm the warp moves the standard's vertices (the error of doing nothing)
   double moved_by_relaxation_mean = 0, moved_by_relaxation_max = 0;  // mm, relaxation and repair together
   int inverted = 0;                                                  // inverted or degenerate cells of the result
+  int inverted_after_mapping = 0;  // inverted or degenerate cells of the plain mapping, which the shape solver takes
   int folded_parametric_tets = 0;  // the patient's parametric tets inverted or degenerate (param_health.h)
   double shape_mean = 0, standard_shape_mean = 0, dihedral_change_mean = 0;
   // The mean shape of the standard's cells at the true positions: what a transfer that lands exactly would have (the
   // standard's own on a self-map; a warp changes it).
   double truth_shape_mean = 0;
-  double seconds = 0;  // the transfer (and the CT's segmentation)
+  double seconds = 0;               // the transfer (and the CT's segmentation)
+  double shape_solver_seconds = 0;  // of which the shape relaxation and the repair
   // How far the landmark finder's points, a transfer's input, lie from where they should: on a self-map or a
   // deformation (without true_landmarks), from the standard's own landmarks (those its constraint set places its
   // features at) moved by the warp; on a CT case, from the warp of what the finder found on the original. Per

@@ -110,6 +110,9 @@ TEST_F(Cli, AStronglyWarpedCtTransfersWithTheRegisteredSkin) {
   EXPECT_EQ(warped["skin_correspondence_used"], "registered") << warped.dump();
   EXPECT_EQ(warped["inverted"], 0);
   EXPECT_GT(warped["folded_parametric_tets"].get<int>(), 300);  // the case is a hard one
+  EXPECT_GT(warped["inverted_after_mapping"].get<int>(), 0);    // ... which the relaxation and the repair untangle
+  EXPECT_GT(warped["shape_solver_seconds"].get<double>(), 0);
+  EXPECT_LT(warped["shape_solver_seconds"].get<double>(), warped["seconds"].get<double>());
   // The transfer's inputs against the warp of the original's: the warp keeps the scan's end slices flat, so the bottom
   // cut, the CT's bottom plus a margin on this scan, moves with it; the landmarks found on both are compared (the mouth
   // corners, found off the mid-sagittal profile, follow the turned head).
