@@ -59,29 +59,48 @@ std::vector<float> squared_distance_to(const Mask& features, std::vector<std::in
     if (nearest) near[i] = features.data[i] ? static_cast<std::int64_t>(i) : -1;
   }
   const size_t stride[3] = {1, static_cast<size_t>(g.dims[0]), static_cast<size_t>(g.dims[0]) * g.dims[1]};
-  for (int axis = 0; axis < 3; ++axis) {
+  // Along x the values are 0 (a feature) or infinite: each voxel's nearest feature on its line, by one scan each way,
+  // is the lower envelope of parabolas of equal height (the nearer, the left one on a tie).
+  const int nx = g.dims[0];
+  const double hx = g.spacing(0);
+#pragma omp parallel
+  {
+    std::vector<int> left(nx);
+#pragma omp for schedule(static)
+    for (size_t start = 0; start < n; start += nx) {
+      int last = -1;
+      for (int x = 0; x < nx; ++x) left[x] = last = features.data[start + x] ? x : last;
+      int next = -1;
+      for (int x = nx - 1; x >= 0; --x) {
+        if (features.data[start + x]) next = x;
+        const int q = left[x] >= 0 && (next < 0 || x - left[x] <= next - x) ? left[x] : next;
+        if (q < 0) continue;  // no feature on the line: infinite, as initialized
+        const double dx = hx * (x - q);
+        sq[start + x] = static_cast<float>(dx * dx);
+        if (nearest) near[start + x] = static_cast<std::int64_t>(start + q);
+      }
+    }
+  }
+  for (int axis = 1; axis < 3; ++axis) {
     const int len = g.dims[axis];
     // Lines along y and z are strided in memory: they are taken kBlock neighbours in x at a time, so that each cache
-    // line read serves kBlock lines rather than one. Along x a line is contiguous already.
-    const int block = axis == 0 ? 1 : kBlock;
-    const int a_outer = axis == 2 ? 1 : 2;  // the axis other than x and this one (for x: z)
-    const int inner_lines = axis == 0 ? g.dims[1] : g.dims[0];
-    const size_t inner_stride = axis == 0 ? stride[1] : 1;
+    // line read serves kBlock lines rather than one.
+    const int a_outer = axis == 2 ? 1 : 2;  // the axis other than x and this one
     // The lines of one pass are independent: split over threads, each with its own line buffers.
 #pragma omp parallel
     {
-      const size_t block_size = static_cast<size_t>(len) * block;
+      const size_t block_size = static_cast<size_t>(len) * kBlock;
       std::vector<double> f(block_size), d(block_size), z(len + 1);
       std::vector<int> arg(block_size), v(len);
       std::vector<std::int64_t> line_near(nearest ? block_size : 0);
 #pragma omp for schedule(static)
       for (int o = 0; o < g.dims[a_outer]; ++o)
-        for (int w0 = 0; w0 < inner_lines; w0 += block) {
-          const int lines = std::min(block, inner_lines - w0);
-          const size_t start = static_cast<size_t>(o) * stride[a_outer] + static_cast<size_t>(w0) * inner_stride;
+        for (int w0 = 0; w0 < nx; w0 += kBlock) {
+          const int lines = std::min(kBlock, nx - w0);
+          const size_t start = static_cast<size_t>(o) * stride[a_outer] + static_cast<size_t>(w0);
           for (int x = 0; x < len; ++x)
             for (int b = 0; b < lines; ++b) {
-              const size_t at = start + b * inner_stride + x * stride[axis];
+              const size_t at = start + b + x * stride[axis];
               f[static_cast<size_t>(b) * len + x] = sq[at];
               if (nearest) line_near[static_cast<size_t>(b) * len + x] = near[at];
             }
@@ -91,7 +110,7 @@ std::vector<float> squared_distance_to(const Mask& features, std::vector<std::in
           }
           for (int x = 0; x < len; ++x)
             for (int b = 0; b < lines; ++b) {
-              const size_t at = start + b * inner_stride + x * stride[axis], line = static_cast<size_t>(b) * len;
+              const size_t at = start + b + x * stride[axis], line = static_cast<size_t>(b) * len;
               sq[at] = static_cast<float>(d[line + x]);
               if (nearest) near[at] = arg[line + x] < 0 ? -1 : line_near[line + arg[line + x]];
             }
