@@ -7,10 +7,15 @@ namespace {
 
 constexpr double kRadians = M_PI / 180;
 
+// Counter-clockwise about +z by the angle of cosine c and sine s.
+Eigen::Vector2d rotated(const Eigen::Vector2d& v, double c, double s) {
+  return {c * v.x() - s * v.y(), s * v.x() + c * v.y()};
+}
+
 // Counter-clockwise about +z by `degrees`.
 Eigen::Vector2d rotated(const Eigen::Vector2d& v, double degrees) {
-  const double a = degrees * kRadians, c = std::cos(a), s = std::sin(a);
-  return {c * v.x() - s * v.y(), s * v.x() + c * v.y()};
+  const double a = degrees * kRadians;
+  return rotated(v, std::cos(a), std::sin(a));
 }
 
 // (y, z) turned about +x by `degrees` (from +y towards +z) about the line through (y, z) = centre.
@@ -45,9 +50,23 @@ Eigen::Vector3d HeadTurn::to_head(const Eigen::Vector3d& p) const {
   return pitch == 0 ? yawed : pitched(yawed, Eigen::Vector2d(axis.y(), axis_z), -pitch);
 }
 
-Eigen::Vector3d HeadTurn::to_model(const Eigen::Vector3d& head) const {
-  const Eigen::Vector3d q = pitch == 0 ? head : pitched(head, Eigen::Vector2d(axis.y(), axis_z), pitch);
-  const Eigen::Vector2d r = axis + rotated(q.head<2>() - axis, -degrees);
+Eigen::Vector3d HeadTurn::to_model(const Eigen::Vector3d& head) const { return ModelFromHead(*this)(head); }
+
+ModelFromHead::ModelFromHead(const HeadTurn& turn)
+    : turn_(turn),
+      pitch_cos_(std::cos(turn.pitch * kRadians)),
+      pitch_sin_(std::sin(turn.pitch * kRadians)),
+      turn_cos_(std::cos(-turn.degrees * kRadians)),
+      turn_sin_(std::sin(-turn.degrees * kRadians)) {}
+
+// Pitched about the lateral line (axis.y, axis_z), then turned about the vertical one.
+Eigen::Vector3d ModelFromHead::operator()(const Eigen::Vector3d& head) const {
+  Eigen::Vector3d q = head;
+  if (turn_.pitch != 0) {
+    const Eigen::Vector2d centre(turn_.axis.y(), turn_.axis_z);
+    q.tail<2>() = centre + rotated(head.tail<2>() - centre, pitch_cos_, pitch_sin_);
+  }
+  const Eigen::Vector2d r = turn_.axis + rotated(q.head<2>() - turn_.axis, turn_cos_, turn_sin_);
   return {r.x(), r.y(), q.z()};
 }
 

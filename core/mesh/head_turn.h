@@ -33,6 +33,18 @@ struct HeadTurn {
   MidSagittalPlane to_model(const MidSagittalPlane& head) const;
 };
 
+// HeadTurn::to_model with the turn's and the pitch's cosines and sines computed once, for maps of many points (a CT
+// resampled in the head frame); the same points as to_model.
+class ModelFromHead {
+ public:
+  explicit ModelFromHead(const HeadTurn& turn);
+  Eigen::Vector3d operator()(const Eigen::Vector3d& head) const;
+
+ private:
+  HeadTurn turn_;
+  double pitch_cos_, pitch_sin_, turn_cos_, turn_sin_;
+};
+
 // The turn whose head frame has the plane unturned and unpitched, about the vertical and the lateral line through the
 // plane's point.
 HeadTurn head_turn_of(const MidSagittalPlane& plane);

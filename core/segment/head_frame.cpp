@@ -49,8 +49,9 @@ Field turned_to_head_frame(const Field& field, const HeadTurn& turn, double spac
     target.origin(a) = lo(a) + first * spacing;
     target.dims[a] = last - first + 1;
   }
+  const ModelFromHead to_model(turn);
   return resample_mapped(
-      field, target, [&turn](const Eigen::Vector3d& p) { return turn.to_model(p); }, outside);
+      field, target, [&to_model](const Eigen::Vector3d& p) { return to_model(p); }, outside);
 }
 
 }  // namespace facehex
