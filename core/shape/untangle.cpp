@@ -26,7 +26,7 @@ struct Corner {
 constexpr double kNearlyInverted = 0.1;  // normalized corner determinant below which a vertex is always revisited
 constexpr double kDeltaEpsilon = 1e-3;   // delta^2 = eps (eps - sigma_min) while sigma_min < eps (Escobar et al.)
 constexpr double kArmijo = 1e-4;         // sufficient decrease of a step, relative to its slope
-constexpr int kHalvings = 15;            // line search steps
+constexpr int kHalvings = 15;            // line search trials (the last is 2^-14 of the first step)
 constexpr double kLongestStep = 0.5;     // a step moves its vertex at most this share of its mean edge
 constexpr double kMovedBy = 1e-4;        // a vertex that moved more than this share of its edge wakes its neighbours
 constexpr double kSettledBy = 1e-3;      // a sweep whose largest move is below this share of the edges has settled
