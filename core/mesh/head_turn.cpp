@@ -54,8 +54,8 @@ Eigen::Vector3d HeadTurn::to_model(const Eigen::Vector3d& head) const { return M
 
 ModelFromHead::ModelFromHead(const HeadTurn& turn)
     : turn_(turn),
-      pitch_cos_(std::cos(turn.pitch * kRadians)),
-      pitch_sin_(std::sin(turn.pitch * kRadians)),
+      pitch_cos_(turn.pitch == 0 ? 1.0 : std::cos(turn.pitch * kRadians)),  // unpitched: no trigonometry per call
+      pitch_sin_(turn.pitch == 0 ? 0.0 : std::sin(turn.pitch * kRadians)),
       turn_cos_(std::cos(-turn.degrees * kRadians)),
       turn_sin_(std::sin(-turn.degrees * kRadians)) {}
 

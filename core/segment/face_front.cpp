@@ -21,8 +21,9 @@ FaceFront::FaceFront(const Field& ct, double skin_threshold, const HeadTurn& fra
       nz_(static_cast<int>(std::lround((z1 - z0) / kGrid)) + 1),
       y_(static_cast<size_t>(nx_) * nz_, kNaN) {
   const GridGeometry& g = ct.geometry;
+  const ModelFromHead to_model(frame);
   const auto skin = [&](double x, double y, double z) {
-    const Eigen::Vector3d p = frame.to_model(Eigen::Vector3d(x, y, z));
+    const Eigen::Vector3d p = to_model(Eigen::Vector3d(x, y, z));
     for (int a = 0; a < 3; ++a)
       if (p(a) < g.lower(a) || p(a) > g.upper(a)) return false;
     return sample(ct, p) >= skin_threshold;

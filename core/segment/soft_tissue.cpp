@@ -508,8 +508,9 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   }
   model.mesh = std::move(tets.mesh);
   // Back into the CT's frame, so that the model overlays the CT; its plane says how the head is turned.
+  const ModelFromHead to_model(turn);
   for (int v = 0; v < model.mesh.V.rows(); ++v)
-    model.mesh.V.row(v) = turn.to_model(model.mesh.V.row(v).transpose()).transpose();
+    model.mesh.V.row(v) = to_model(model.mesh.V.row(v).transpose()).transpose();
   MidSagittalPlane plane = landmark_plane(model.cuts, options.cuts);
   plane.y = turn.axis.y();
   set_mid_sagittal_plane(model.mesh, turn.to_model(plane));
@@ -521,7 +522,7 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
     if (surface_mask(v) & side_bit(W1)) on_skin.push_back(static_cast<int>(v));
   Eigen::MatrixXd skin(static_cast<Eigen::Index>(on_skin.size()), 3);
   for (size_t i = 0; i < on_skin.size(); ++i)
-    skin.row(static_cast<Eigen::Index>(i)) = turn.to_model(surface.V.row(on_skin[i]).transpose()).transpose();
+    skin.row(static_cast<Eigen::Index>(i)) = to_model(surface.V.row(on_skin[i]).transpose()).transpose();
   set_skin_points(model.mesh, skin);
   CtLandmarks found;
   if (model.cuts.anatomy) {
