@@ -8,12 +8,12 @@
 #   scripts/regenerate-docs.sh [--only benchmarks|results|correspondence|registered|landmarks|landing] [--keep DIR]
 #                              [--from DIR]
 #     --only benchmarks|results|correspondence|registered|landmarks|landing  run and write one part only (correspondence:
-#                                the correspondence section of docs/results.md, from `facehex bench
-#                                --correspondence`; registered: its tables of the registered skin,
-#                                --skin-correspondence registered; landmarks: the automatic landmarks against the
-#                                hand-placed ones in docs/benchmarks.md, from `facehex segment` and `constraints`;
-#                                landing: where the standard's landmarks land on the real CTs' runs, by default and
-#                                with --pull-found-landmarks off, in docs/results.md)
+#                                the correspondence section of docs/results.md, the paper's feature lines: `facehex
+#                                bench --correspondence --skin-correspondence features`; registered: its tables of the
+#                                registered skin, --skin-correspondence registered; landmarks: the automatic landmarks against
+#                                the hand-placed ones in docs/benchmarks.md, from `facehex segment` and `constraints`; landing:
+#                                where the standard's landmarks land on the real CTs' runs, by default and with
+#                                --pull-found-landmarks off, in docs/results.md)
 #     --keep DIR                 keep the raw JSON, logs and plots in DIR (default: a temporary folder, removed)
 #     --from DIR                 run nothing: write the pages from the JSON a previous --keep DIR left
 #   FACEHEX=path/to/facehex overrides build/bin/facehex.
@@ -102,11 +102,14 @@ EOF
     done
   fi
   if want correspondence; then
-    # The benchmark at the defaults, the plain mapping alone (no relaxation, no repair), and the plain mapping with
-    # the standard's constraints placed by a patient's rules. stdout (the Markdown table) goes to NAME.json's place.
+    # The paper's feature lines (the fields free on the skin but for them; the registered skin, the default, is the
+    # "registered" part): the whole transfer, the plain mapping alone (no relaxation, no repair), and the plain
+    # mapping with the standard's constraints placed by a patient's rules. stdout (the Markdown table) goes to
+    # NAME.json's place.
     cts=resources/ct/headsq/headsq.mhd
     [ -f ../shared/data/ct/vhfemale-head.mha ] && cts="$cts,../shared/data/ct/vhfemale-head.mha"
     read -r -a extra <<<"${CORRESPONDENCE_ARGS:-}"
+    extra=(--skin-correspondence features "${extra[@]}")
     step correspondence "$facehex" bench --correspondence --cts "$cts" -o "$out/correspondence" "${extra[@]}"
     step correspondence-mapping "$facehex" bench --correspondence --mapping-only --cts "$cts" \
       -o "$out/correspondence-mapping" "${extra[@]}"
@@ -400,8 +403,9 @@ if only in ("", "correspondence"):
 
     blocks = {"results-correspondence-machine": machine_line()}
     full = corr("correspondence")
-    blocks["results-correspondence"] = (f"Defaults (`--shape-relaxation {full['shape_relaxation']}`, "
-                                        f"`--standard-domain {full['standard_domain']}`), standard {full['standard']}, "
+    blocks["results-correspondence"] = (f"`--skin-correspondence {full['skin_correspondence']}`, "
+                                        f"`--shape-relaxation {full['shape_relaxation']}`, "
+                                        f"`--standard-domain {full['standard_domain']}`, standard {full['standard']}, "
                                         f"constraints {constraints_of(full)}.\n\n"
                                         + corr_table(full, False))
     for key, name in (("mapping", "correspondence-mapping"), ("automatic", "correspondence-automatic"),
