@@ -8,17 +8,13 @@
 
 #include "core/face/face_landmarks.h"
 #include "core/util/error.h"
+#include "tests/core/io/io_test_util.h"
 
 namespace facehex {
 namespace {
 namespace fs = std::filesystem;
 
-// A scratch folder of this test's own.
-std::string scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("facehex-landmark-file-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return (dir / name).string();
-}
+std::string scratch(const std::string& name) { return (test::program_scratch_dir() / name).string(); }
 
 std::string write_text(const std::string& name, const std::string& text) {
   const std::string path = scratch(name);

@@ -53,6 +53,12 @@ class TempDir {
   fs::path path_;
 };
 
+// This test program's scratch folder, removed with everything in it when the program exits.
+inline const fs::path& program_scratch_dir() {
+  static const TempDir dir;
+  return dir.path();
+}
+
 inline void write_file(const std::string& path, const std::string& content) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out << content;

@@ -11,6 +11,7 @@
 
 #include "core/segment/voxel_grid.h"
 #include "core/util/error.h"
+#include "tests/core/io/io_test_util.h"
 
 namespace facehex {
 namespace {
@@ -32,10 +33,9 @@ std::string write_small_mhd(const std::filesystem::path& dir) {
   return (dir / "small.mhd").string();
 }
 
-// A folder of the running test's own: ctest runs each test as a process of its own, several at once.
+// A folder of the running test's own (ctest may run several tests of this program at once).
 std::filesystem::path scratch() {
-  return std::filesystem::temp_directory_path() /
-         ("facehex_ct_volume_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+  return test::program_scratch_dir() / ::testing::UnitTest::GetInstance()->current_test_info()->name();
 }
 
 TEST(CtVolume, ReadsMetaImageWithSpacingAndOrigin) {

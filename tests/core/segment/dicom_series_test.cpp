@@ -17,6 +17,7 @@
 #include "core/segment/patient_input.h"
 #include "core/util/error.h"
 #include "core/util/resources.h"
+#include "tests/core/io/io_test_util.h"
 #include "tests/core/segment/dicom_writer.h"
 
 namespace facehex {
@@ -28,7 +29,7 @@ using facehex::testing::write_bundled_series;
 using facehex::testing::write_slice;
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("facehex_dicom_test_" + name);
+  const fs::path dir = test::program_scratch_dir() / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;

@@ -11,6 +11,7 @@
 
 #include "core/segment/ct_volume.h"
 #include "core/util/error.h"
+#include "tests/core/io/io_test_util.h"
 
 namespace facehex {
 namespace {
@@ -45,9 +46,7 @@ struct NiftiFile {
       for (int c = 0; c < 4; ++c) set<float>(280 + 16 * r + 4 * c, rows[r][c]);
   }
   std::string write(const std::string& name) const {
-    const fs::path dir = fs::temp_directory_path() / ("facehex_nifti_test_" + std::to_string(::getpid()));
-    fs::create_directories(dir);
-    const std::string path = (dir / name).string();
+    const std::string path = (test::program_scratch_dir() / name).string();
     std::ofstream out(path, std::ios::binary);
     out.write(header.data(), header.size());
     for (int k = 0; k < 6; ++k)

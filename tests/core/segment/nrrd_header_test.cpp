@@ -11,6 +11,7 @@
 
 #include "core/segment/ct_volume.h"
 #include "core/util/error.h"
+#include "tests/core/io/io_test_util.h"
 
 namespace facehex {
 namespace {
@@ -20,9 +21,7 @@ namespace fs = std::filesystem;
 // A 12 x 5 x 6 int16 volume whose voxel (i, j, k) is i + 100 j + 1000 k, attached raw data after `fields`.
 std::string write_nrrd(const std::string& name, const std::string& fields, int voxels = 360,
                        const std::string& sizes = "12 5 6") {
-  const fs::path dir = fs::temp_directory_path() / ("facehex_nrrd_test_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const std::string path = (dir / name).string();
+  const std::string path = (test::program_scratch_dir() / name).string();
   std::ofstream out(path, std::ios::binary);
   out << "NRRD0004\n# a test volume\ntype: short\ndimension: 3\nsizes: " << sizes << "\nendian: little\nencoding: raw\n"
       << fields << "\n";
