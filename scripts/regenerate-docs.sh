@@ -17,8 +17,8 @@
 #     --keep DIR                 keep the raw JSON, logs and plots in DIR (default: a temporary folder, removed)
 #     --from DIR                 run nothing: write the pages from the JSON a previous --keep DIR left
 #   FACEHEX=path/to/facehex overrides build/bin/facehex.
-# Takes a few minutes on 2 cores (four `facehex compare` runs on the bundled patient, the bench up to ~200k tets, the
-# bundled CT's whole run), and the correspondence benchmark an hour or more (every case is a whole transfer); the
+# Takes a few minutes on 2 cores for each part (four `facehex compare` runs on the bundled patient, the bench up to
+# ~200k tets, the bundled CT's whole run; every case of the correspondence benchmark is a whole transfer); the
 # machine should be otherwise idle, since the times are wall-clock. CORRESPONDENCE_ARGS adds options to the
 # correspondence benchmark's runs (e.g. "--models split,closed-3 --warps nose" for a shorter one); a CT at
 # ../shared/data/ct/vhfemale-head.mha beside the repository is warped too.
@@ -80,6 +80,7 @@ EOF
     shift
     printf '%-28s' "$name" >&2
     if ! "$@" >"$out/$name.json" 2>"$out/$name.log"; then
+      cut -d' ' -f1 /proc/loadavg >>"$out/load.txt"
       if [ -f "$out/$name/correspondence.json" ]; then  # a benchmark with failed cases: they are results too
         echo " $((SECONDS - start)) s, some cases failed (see the tables)" >&2
         return 0
