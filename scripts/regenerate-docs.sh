@@ -157,23 +157,32 @@ EOF
           --write-landmarks "$out/landmarks-$key-turned$degrees.json"
         rm -f "$out/turned.mha"
       done
-      # A head pitched in the scanner (chin raised, lowered): found from the hard palate, with no option.
-      if [ -f ../shared/data/ct/vhfemale-head.mha ]; then
-        for degrees in 10 -10; do
-          /usr/bin/python3 scripts/turn_ct.py --pitch ../shared/data/ct/vhfemale-head.mha "$degrees" "$out/pitched.mha" \
-            tests/data/landmarks/vhfemale-head.json "$out/reference-vhf-pitched$degrees.json"
-          step "landmarks-vhf-pitched$degrees" "$facehex" segment "$out/pitched.mha" \
-            -o "$out/vhf-pitched$degrees.vtu" --write-landmarks "$out/landmarks-vhf-pitched$degrees.json"
-          rm -f "$out/pitched.mha"
+      # A head pitched in the scanner (chin raised, lowered: found from the hard palate) or tilted towards a shoulder
+      # (rolled: a leaning mid-sagittal plane), with no option.
+      tilts=(bundled-ct:resources/ct/headsq/headsq.mhd:headsq:rolled:10
+        bundled-ct:resources/ct/headsq/headsq.mhd:headsq:rolled:-12)
+      [ -f ../shared/data/ct/vhfemale-head.mha ] &&
+        for tilt in pitched:10 pitched:-10 rolled:10 rolled:-15; do
+          tilts+=("vhf:../shared/data/ct/vhfemale-head.mha:vhfemale-head:$tilt")
         done
-      fi
+      for tilt in "${tilts[@]}"; do
+        IFS=: read -r key ct reference how degrees <<<"$tilt"
+        axis=--pitch
+        [ "$how" = rolled ] && axis=--roll
+        /usr/bin/python3 scripts/turn_ct.py "$axis" "$ct" "$degrees" "$out/tilted.mha" \
+          "tests/data/landmarks/$reference.json" "$out/reference-$key-$how$degrees.json"
+        step "landmarks-$key-$how$degrees" "$facehex" segment "$out/tilted.mha" -o "$out/$key-$how$degrees.vtu" \
+          --write-landmarks "$out/landmarks-$key-$how$degrees.json"
+        rm -f "$out/tilted.mha"
+      done
     fi
     # The models with their sides and landmarks, pictured (needs xvfb-run and python3-vtk9).
     if command -v xvfb-run >/dev/null && /usr/bin/python3 -c 'import vtk' 2>/dev/null; then
       for model in bundled-ct:headsq:headsq:front,side,cuts vhf:vhfemale:vhfemale-head:front,side,cuts \
         bundled-ct-turned-20:headsq_turned-20:reference-bundled-ct-turned-20:front,cuts \
         vhf-turned15:vhfemale_turned15:reference-vhf-turned15:front,cuts \
-        vhf-pitched10:vhfemale_pitched10:reference-vhf-pitched10:side; do
+        vhf-pitched10:vhfemale_pitched10:reference-vhf-pitched10:side \
+        vhf-rolled-15:vhfemale_rolled-15:reference-vhf-rolled-15:front; do
         IFS=: read -r key picture reference views <<<"$model"
         [ -f "$out/$key.vtu" ] || continue
         reference_file="tests/data/landmarks/$reference.json"
@@ -445,11 +454,15 @@ if only in ("", "landmarks"):
     for key, label, degrees in [("vhf", "Visible Human", -10), ("vhf", "Visible Human", 15),
                                 ("bundled-ct", "bundled CT", 12), ("bundled-ct", "bundled CT", -20)]:
         columns.append((f"{label} turned {degrees} deg", f"{key}-turned{degrees}", f"reference-{key}-turned{degrees}.json"))
-    # Pitched about the lateral axis (scripts/turn_ct.py --pitch): the chin raised, lowered.
+    # Pitched about the lateral axis (scripts/turn_ct.py --pitch): the chin raised, lowered; rolled about the
+    # front-to-back axis (--roll): the top of the head towards +x (the patient's left), -x.
     for degrees in (10, -10):
         chin = "raised" if degrees > 0 else "lowered"
         columns.append((f"Visible Human pitched {degrees} deg (chin {chin})", f"vhf-pitched{degrees}",
                         f"reference-vhf-pitched{degrees}.json"))
+    for key, label, degrees in [("vhf", "Visible Human", 10), ("vhf", "Visible Human", -15),
+                                ("bundled-ct", "bundled CT", 10), ("bundled-ct", "bundled CT", -12)]:
+        columns.append((f"{label} rolled {degrees} deg", f"{key}-rolled{degrees}", f"reference-{key}-rolled{degrees}.json"))
     columns = [(label, landmarks(key), reference(ref)) for label, key, ref in columns if landmarks(key) is not None]
     names = []
     for _, _, ref in columns:

@@ -85,8 +85,11 @@ double interpolate_z(const std::vector<LinePoint>& line, double offset) {
 // One side's slit, in the head frame: side -1 the right eye (-x), +1 the left.
 class Slit {
  public:
-  Slit(const FaceFront& front, double centre, double nasion_z, int side)
-      : front_(front), centre_(centre), nasion_z_(nasion_z), side_(side) {
+  // lean: the plane's dx/dz in the head frame. A head tilted towards a shoulder has its eye line across the plane, not
+  // level: the slit's levels are heights on the line through the nasion across the plane, `offset` mm out lying
+  // rise(offset) above the nasion's level.
+  Slit(const FaceFront& front, double centre, double nasion_z, double lean, int side)
+      : front_(front), centre_(centre), nasion_z_(nasion_z), rise_per_mm_(-lean * side), side_(side) {
     for (double z = nasion_z - kBelow; z <= nasion_z + kAbove + 1e-9; z += 1) levels_.push_back(z);
   }
 
@@ -109,19 +112,22 @@ class Slit {
     }
     std::optional<CtLandmark> endo = seen ? nose_side(inner) : std::nullopt;
     if (!endo && exo) {
-      const double offset = kEstimatedEndoFraction * std::abs(exo->point.x() - centre_);
-      endo = on_front(offset, exo->point.z() - kCanthalDrop, true);
+      const double exo_offset = std::abs(exo->point.x() - centre_);
+      endo = on_front(kEstimatedEndoFraction * exo_offset, exo->point.z() - rise(exo_offset) - kCanthalDrop, true);
     }
     return {endo, exo};
   }
 
  private:
   double x_at(double offset) const { return centre_ + side_ * offset; }
+  double rise(double offset) const { return rise_per_mm_ * offset; }
+  // The front `offset` mm out at the slit's level z.
+  double front(double offset, double z) const { return front_(x_at(offset), z + rise(offset)); }
 
   std::optional<CtLandmark> on_front(double offset, double z, bool estimated) const {
-    const double x = x_at(offset), y = front_(x, z);
+    const double y = front(offset, z);
     if (std::isnan(y)) return std::nullopt;
-    return CtLandmark{Eigen::Vector3d(x, y, z), estimated};
+    return CtLandmark{Eigen::Vector3d(x_at(offset), y, z + rise(offset)), estimated};
   }
 
   // The notch depth at each level of the column `offset` mm out (a whole number), averaged over the columns 1 mm
@@ -131,13 +137,11 @@ class Slit {
     if (!fresh) return at->second;
     std::vector<double>& mean = at->second;
     mean.assign(levels_.size(), 0.0);
-    for (int column = offset - 1; column <= offset + 1; ++column) {
-      const double x = x_at(column);
+    for (int column = offset - 1; column <= offset + 1; ++column)
       for (size_t j = 0; j < levels_.size(); ++j) {
         const double z = levels_[j];
-        mean[j] += ((front_(x, z + kChord) + front_(x, z - kChord)) / 2 - front_(x, z)) / 3;
+        mean[j] += ((front(column, z + kChord) + front(column, z - kChord)) / 2 - front(column, z)) / 3;
       }
-    }
     return mean;
   }
 
@@ -181,7 +185,7 @@ class Slit {
         if (curvature < 0) dz = std::clamp(0.5 * (d[j - 1] - d[j + 1]) / curvature, -0.5, 0.5);
       }
       const double z = levels_[j] + dz;
-      line.push_back({static_cast<double>(offset), z, front_(x_at(offset), z)});
+      line.push_back({static_cast<double>(offset), z, front(offset, z)});
     }
     return line;
   }
@@ -189,8 +193,8 @@ class Slit {
   bool slit_seen(const std::vector<LinePoint>& outer) const {
     std::vector<double> depth;
     for (const LinePoint& p : outer) {
-      const double x = x_at(p.offset);
-      const double d = (front_(x, p.z + kNarrowChord) + front_(x, p.z - kNarrowChord)) / 2 - front_(x, p.z);
+      const double d =
+          (front(p.offset, p.z + kNarrowChord) + front(p.offset, p.z - kNarrowChord)) / 2 - front(p.offset, p.z);
       depth.push_back(std::isnan(d) ? 0.0 : d);
     }
     const std::vector<double> mean = running_mean3(depth);
@@ -199,12 +203,12 @@ class Slit {
     return false;
   }
 
-  // Rule 6.
-  double floor_height(double x, double z) const {
+  // Rule 6, at the slit's levels.
+  double floor_height(double offset, double z) const {
     std::vector<double> zs, ys;
     for (double dz = -kRefine; dz <= kRefine + 1e-9; dz += 0.5) {
       zs.push_back(z + dz);
-      ys.push_back(front_(x, z + dz));
+      ys.push_back(front(offset, z + dz));
       if (std::isnan(ys.back())) return z;
     }
     const int n = static_cast<int>(ys.size());
@@ -221,10 +225,10 @@ class Slit {
     std::vector<double> offsets, floor, floor_z;
     for (double offset = kExoInner; offset <= std::min(kExoOuter + kPitReach, outer.back().offset) + 1e-9;
          offset += 0.5) {
-      const double x = x_at(offset), z = interpolate_z(outer, offset);
+      const double z = interpolate_z(outer, offset);
       double rear = kNaN, rear_z = z;
       for (double dz = -kFloorBand; dz <= kFloorBand + 1e-9; dz += 0.25) {
-        const double y = front_(x, z + dz);
+        const double y = front(offset, z + dz);
         if (!std::isnan(y) && (std::isnan(rear) || y < rear)) {
           rear = y;
           rear_z = z + dz;
@@ -250,7 +254,7 @@ class Slit {
         highest = std::max(highest, smooth[r]);
       }
       if (defined && highest - smooth[i] >= kPitRise)
-        return on_front(offsets[i], floor_height(x_at(offsets[i]), floor_z[i]), false);
+        return on_front(offsets[i], floor_height(offsets[i], floor_z[i]), false);
     }
     return std::nullopt;
   }
@@ -259,12 +263,12 @@ class Slit {
   std::optional<CtLandmark> nose_side(const std::vector<LinePoint>& inner) const {
     for (size_t i = 1; i < inner.size(); ++i)
       if (inner[i].y - inner[i - 1].y > kWallSlope * std::abs(inner[i].offset - inner[i - 1].offset))
-        return on_front(inner[i - 1].offset, floor_height(x_at(inner[i - 1].offset), inner[i - 1].z), false);
+        return on_front(inner[i - 1].offset, floor_height(inner[i - 1].offset, inner[i - 1].z), false);
     return std::nullopt;
   }
 
   const FaceFront& front_;
-  double centre_, nasion_z_;
+  double centre_, nasion_z_, rise_per_mm_;
   int side_;
   std::vector<double> levels_;                // mm: the levels the line moves on, 1 mm apart
   std::map<int, std::vector<double>> notch_;  // by column offset
@@ -276,13 +280,15 @@ EyeCorners find_eye_corners(const Field& ct, double skin_threshold, const MidSag
                             const Eigen::Vector3d& nasion, const Eigen::Vector3d& pronasale) {
   const HeadTurn frame = head_turn_of(plane);
   const Eigen::Vector3d n = frame.to_head(nasion), tip = frame.to_head(pronasale);
-  const double centre = frame.to_head(plane).x_at(n.y(), n.z());
+  const MidSagittalPlane head_plane = frame.to_head(plane);
+  const double centre = head_plane.x_at(n.y(), n.z());
+  const double tilt = std::abs(head_plane.slope) * kFieldHalfWidth;  // the most a slit's levels rise or fall
   const FaceFront front(ct, skin_threshold, frame, centre - kFieldHalfWidth, centre + kFieldHalfWidth,
-                        n.z() - kBelow - kFieldMargin, n.z() + kAbove + kFieldMargin, tip.y() + kRayFront,
+                        n.z() - kBelow - kFieldMargin - tilt, n.z() + kAbove + kFieldMargin + tilt, tip.y() + kRayFront,
                         n.y() - kRayBack);
   EyeCorners corners;
   for (const int side : {-1, 1}) {
-    const auto [endo, exo] = Slit(front, centre, n.z(), side).corners();
+    const auto [endo, exo] = Slit(front, centre, n.z(), head_plane.slope, side).corners();
     const int first = side < 0 ? 0 : 2;  // kEyeCornerNames: right, then left
     for (const auto& [at, corner] : {std::pair{first, endo}, std::pair{first + 1, exo}})
       if (corner) corners[at] = CtLandmark{frame.to_model(corner->point), corner->estimated};

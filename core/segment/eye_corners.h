@@ -4,7 +4,9 @@
 // it, so the corners are read from the CT, where the notch is kept.
 //
 // In the head frame of the face's mid-sagittal plane (core/mesh/head_turn.h, +x the patient's left, +y anterior, +z
-// superior), with x = c the plane at the nasion's height and "offset" the distance |x - c|, each side on its own:
+// superior), with x = c the plane at the nasion's height and "offset" the distance |x - c|, each side on its own; on a
+// head tilted towards a shoulder (the plane leaning), the levels below are heights above the line through the nasion
+// across the plane (perpendicular to its trace), along which a tilted face's eye line runs:
 //  1. the front of the face (face_front.h), the rays cast from kRayFront in front of the pronasale, over
 //     kFieldHalfWidth either side of the plane and the levels from kBelow below to kAbove above the nasion (and
 //     kFieldMargin more);

@@ -27,8 +27,15 @@ constexpr double kChinGap = 8.0;          // mm of levels without such bone with
 constexpr double kChinDepth = 30.0;       // mm the mandible's lower border reaches back from the chin's front
 constexpr double kMaxRoll = 20.0;         // degrees a head tilts towards a shoulder in a scanner, at most
 constexpr double kLevelAgreement = 3.0;   // mm: a level whose mirror centre lies this close to the trace agrees
-constexpr double kMaxTurn = 40.0;         // degrees a head is looked for turned about the vertical axis
-constexpr double kTurnSampling = 2.0;     // mm between the head voxels compared for the turn
+// A trace leaning more than this is measured again across the leaning plane (across_leaning_plane), within
+// kLeaningRowSearch of it.
+constexpr double kLeaningRowsMinRoll = 5.0;     // degrees
+constexpr double kLeaningRowSearch = 10.0;      // mm
+constexpr int kLeaningRowPasses = 3;            // at most, each across the trace the last one gave
+constexpr double kLeaningRowSettled = 0.1;      // degrees: a pass that turns the trace less ends them
+constexpr double kLeaningRowSupport = 2.0 / 3;  // of the levels agreeing with the trace across the rows
+constexpr double kMaxTurn = 40.0;               // degrees a head is looked for turned about the vertical axis
+constexpr double kTurnSampling = 2.0;           // mm between the head voxels compared for the turn
 // The auricle is thin: the opening of the body removes it. Where the body stands out of its opening sideways by at
 // least kEarStandOut (more than the opening's rounding of the skin), over levels at least kEarMinHeight tall in one
 // coronal row (the auricle's front edge is taller; a skin fold or a strap's edge is not), the row holds the ear.
@@ -141,6 +148,43 @@ std::optional<LevelCentre> slice_symmetry(const Sections& s, int k, double x0) {
       mirror_centre(front, s.g.origin.x(), s.g.spacing.x(), x0, kSymmetrySearch, kSymmetryReach);
   if (!c) return std::nullopt;
   return LevelCentre{s.g.point(0, 0, k).z(), *c};
+}
+
+// Rule 2 on a head that leans: a horizontal level cuts its two sides at different heights, which moves the level's
+// mirror centre off the plane, so each level is measured again on the row across the leaning plane through its
+// centre (perpendicular to the trace in x-z; the plane's mirror image keeps such a row), the front interpolated
+// between the columns and slices; the centre found there is a point of the plane. Nothing where a row leaves the
+// head.
+std::vector<LevelCentre> across_leaning_plane(const Sections& s, const std::vector<LevelCentre>& levels,
+                                              const FaceAnatomy& anatomy) {
+  const GridGeometry& g = s.g;
+  const double h = g.spacing.x(), norm = std::hypot(1.0, anatomy.roll_slope);
+  const Eigen::Vector2d across(1 / norm, -anatomy.roll_slope / norm);  // (x, z)
+  const double reach = kLeaningRowSearch + kSymmetryReach + 2 * h;
+  const int n = 2 * static_cast<int>(std::ceil(reach / h)) + 1;
+  const auto front_at = [&](double x, double z) {
+    const double ti = (x - g.origin.x()) / h, tk = (z - g.origin.z()) / g.spacing.z();
+    const int i = static_cast<int>(std::floor(ti)), k = static_cast<int>(std::floor(tk));
+    if (i < 0 || k < 0 || i + 1 >= g.dims[0] || k + 1 >= g.dims[2]) return kNone;
+    const double fi = ti - i, fk = tk - k;
+    return (1 - fk) * ((1 - fi) * s.front[s.at(i, k)] + fi * s.front[s.at(i + 1, k)]) +
+           fk * ((1 - fi) * s.front[s.at(i, k + 1)] + fi * s.front[s.at(i + 1, k + 1)]);  // NaN if one is
+  };
+  std::vector<LevelCentre> out;
+  std::vector<double> row(static_cast<size_t>(n));
+  for (const LevelCentre& level : levels) {
+    const Eigen::Vector2d centre(anatomy.centre_at(level.z), level.z);
+    const double first = -(n / 2) * h;
+    for (int m = 0; m < n; ++m) {
+      const Eigen::Vector2d p = centre + (first + m * h) * across;
+      row[static_cast<size_t>(m)] = front_at(p.x(), p.y());
+    }
+    if (const auto t = mirror_centre(row, first, h, 0.0, kLeaningRowSearch, kSymmetryReach)) {
+      const Eigen::Vector2d p = centre + *t * across;
+      out.push_back(LevelCentre{p.y(), p.x()});
+    }
+  }
+  return out;
 }
 
 // Rule 2's trace through the levels' centres (symmetry_trace.h).
@@ -456,6 +500,22 @@ FaceAnatomy find_face_anatomy(const Mask& head, const Mask& without_ears, const 
     if (const auto s = slice_symmetry(sections, k, x0)) slices.push_back(*s);
   if (slices.size() < 3) not_found("the face's mirror symmetry", "--mid-plane");
   fit_plane(slices, anatomy);
+  if (std::abs(anatomy.roll_degrees) > kLeaningRowsMinRoll && std::abs(anatomy.roll_degrees) <= kMaxRoll) {
+    // Rows across a leaning plane are measured again across the trace they give, until its lean settles; the trace
+    // the most levels agree with is taken, when that is most of them (a lean few levels agree with is a misreading,
+    // as on a scan that holds only the front half of the head).
+    FaceAnatomy pass = anatomy, best = anatomy;
+    best.roll_support = 0;
+    for (int k = 0; k < kLeaningRowPasses; ++k) {
+      const double before = pass.roll_degrees;
+      const std::vector<LevelCentre> across = across_leaning_plane(sections, slices, pass);
+      if (across.size() < 3) break;
+      fit_plane(across, pass);
+      if (pass.roll_support > best.roll_support) best = pass;
+      if (std::abs(pass.roll_degrees - before) < kLeaningRowSettled) break;
+    }
+    if (best.roll_support >= kLeaningRowSupport) anatomy = best;
+  }
   if (std::abs(anatomy.roll_degrees) > kMaxRoll) {
     std::ostringstream why;
     why.precision(1);

@@ -14,8 +14,10 @@
 //     those near the line the most levels' c agree with (core/segment/symmetry_trace.h: a clipped nose, the neck or a
 //     one-sided bulge can put many levels' c far to one side); its slope is the head's roll (tilt towards a shoulder),
 //     refused beyond kMaxRoll (20 degrees: no head lies so in a scanner, and a fit that leans more has read the
-//     symmetry wrongly, as on a head turned far about the vertical axis). A turned head keeps its plane through the
-//     nose, at the depth of the face's features;
+//     symmetry wrongly, as on a head turned far about the vertical axis). A level of a tilted head cuts its two sides
+//     at different heights, so where the trace leans more than 5 degrees each level's c is measured again on the row
+//     across the leaning plane (perpendicular to the trace, within 10 mm of it) and the trace fitted again, until its
+//     lean settles. A turned head keeps its plane through the nose, at the depth of the face's features;
 //  3. the skin profile: per head level, the most anterior head voxel within kProfileBand of c(z);
 //     pronasale = the most anterior profile point at the levels of the nasal aperture (the highest run, at least
 //     kApertureHeight tall, of levels where the bone within the profile band lies more than kChinSoftTissue behind the

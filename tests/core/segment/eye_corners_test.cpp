@@ -72,6 +72,31 @@ TEST(EyeCorners, TheEndsOfTheClosedSlitOnAPhantomUprightAndTurned) {
   }
 }
 
+// A head tilted towards a shoulder: the phantom rolled about the front-to-back axis through the nasion, its plane
+// leaning with it. The slits then rise towards one side (by up to 15 mm at the outer corner), out of the levels an
+// upright slit is looked for at.
+TEST(EyeCorners, TheEndsOfTheClosedSlitOnAPhantomTiltedTowardsAShoulder) {
+  const EyePhantom face;
+  for (const double roll_degrees : {15.0, -20.0}) {
+    const double c = std::cos(roll_degrees * M_PI / 180), s = std::sin(roll_degrees * M_PI / 180);
+    MidSagittalPlane plane;
+    plane.slope = s / c;  // the plane's (0, z) lies at (z s, z c)
+    plane.y = 10;
+    const Field ct = testing::face_front_phantom(
+        [&](double x, double z) { return face.front(x * c - z * s, x * s + z * c); }, HeadTurn{});
+    const EyeCorners found = find_eye_corners(ct, 0, plane, kNasion, kPronasale);
+    for (int k = 0; k < 4; ++k) {
+      ASSERT_TRUE(found[k]) << kEyeCornerNames[k] << ", rolled " << roll_degrees;
+      EXPECT_FALSE(found[k]->estimated) << kEyeCornerNames[k] << ", rolled " << roll_degrees;
+      const Eigen::Vector3d upright = face.corner(k < 2 ? -1 : 1, k % 2 == 1);
+      const Eigen::Vector3d truth(upright.x() * c + upright.z() * s, upright.y(), -upright.x() * s + upright.z() * c);
+      EXPECT_LT((found[k]->point - truth).norm(), 1.25)
+          << kEyeCornerNames[k] << ", rolled " << roll_degrees << ": found at " << found[k]->point.transpose()
+          << ", the corner is at " << truth.transpose();
+    }
+  }
+}
+
 TEST(EyeCorners, NoSlitOrAShallowOneGivesCornersByAdultProportionsMarkedEstimated) {
   EyePhantom smooth;
   smooth.slit = false;
