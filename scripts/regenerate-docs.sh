@@ -124,6 +124,7 @@ EOF
   if want registered; then
     # The same benchmark with the registered skin, the relaxation sliding the skin (as by default) and holding it.
     cts=resources/ct/headsq/headsq.mhd
+    [ -f ../shared/data/ct/vhfemale-head.mha ] && cts="$cts,../shared/data/ct/vhfemale-head.mha"
     read -r -a extra <<<"${CORRESPONDENCE_ARGS:-}"
     step registered "$facehex" bench --correspondence --skin-correspondence registered --cts "$cts" \
       -o "$out/registered" "${extra[@]}"
