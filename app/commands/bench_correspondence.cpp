@@ -219,7 +219,7 @@ void add_correspondence_options(Args& args) {
       .option("ct-seeds", "with --correspondence: seeds of the CT warps", "1,2")
       .option("ct-ranges",
               "with --correspondence: the CT warps' largest scale change, shear, bump (mm), turn about the "
-              "vertical and, optionally, pitch about the lateral axis (degrees)",
+              "vertical and, optionally, pitch about the lateral axis and roll about the front-to-back axis (degrees)",
               "0.08,0.04,4,0")
       .flag("keep-warped-cts", "with --correspondence: keep each warped CT in the report's folder (STEM-warp-SEED.mha)")
       .flag("true-landmarks",
@@ -256,15 +256,16 @@ int correspondence_bench(const Args& args) {
     r.push_back(std::strtod(v.c_str(), &end));
     numbers = numbers && !v.empty() && *end == '\0' && std::isfinite(r.back()) && r.back() >= 0;
   }
-  if (!numbers || (r.size() != 4 && r.size() != 5) || r[0] >= 0.5 || r[1] >= 0.5 || r[2] > 20 || r[3] > 45 ||
-      (r.size() == 5 && r[4] > 30))
+  if (!numbers || r.size() < 4 || r.size() > 6 || r[0] >= 0.5 || r[1] >= 0.5 || r[2] > 20 || r[3] > 45 ||
+      (r.size() >= 5 && r[4] > 30) || (r.size() == 6 && r[5] > 30))
     throw UsageError("--ct-ranges",
-                     "expects SCALE,SHEAR,BUMP,TURN[,PITCH] with scale and shear below 0.5, a bump of at most "
-                     "20 mm, a turn of at most 45 degrees and a pitch of at most 30, got '" +
+                     "expects SCALE,SHEAR,BUMP,TURN[,PITCH[,ROLL]] with scale and shear below 0.5, a bump of at most "
+                     "20 mm, a turn of at most 45 degrees and a pitch and a roll of at most 30, got '" +
                          args.get("ct-ranges") + "'");
   options.ct_ranges.max_scale = r[0], options.ct_ranges.max_shear = r[1], options.ct_ranges.max_bump = r[2];
   options.ct_ranges.max_turn = r[3];
-  if (r.size() == 5) options.ct_ranges.max_pitch = r[4];
+  if (r.size() >= 5) options.ct_ranges.max_pitch = r[4];
+  if (r.size() == 6) options.ct_ranges.max_roll = r[5];
   for (const std::string& ct : options.cts)
     if (!std::filesystem::exists(ct)) throw Error(ct, "no such CT file (--cts)");
   OutputFolder folder(args.get("output"));

@@ -278,7 +278,7 @@ std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const Standar
         const CtWarpFrame frame = ct_warp_frame(ct.intensity);
         SmoothWarp warp =
             random_warp(static_cast<std::uint64_t>(p.ct_seed), frame.centre, frame.anchors, options.ct_ranges);
-        if (warp.pitch_degrees() == 0) warp = warp.with_flat_levels(grid.lower(2), grid.upper(2), kCtEndRamp);
+        if (!warp.tilts_slices()) warp = warp.with_flat_levels(grid.lower(2), grid.upper(2), kCtEndRamp);
         // Checked where the head is (the original's face region and the ramp's length around it, within the scan): a
         // wide scan's far corners, all air, may fold in the ramps, where the slices' tilt grows with the distance.
         const Eigen::Vector3d scan_lower(grid.lower(0), grid.lower(1), grid.lower(2)),

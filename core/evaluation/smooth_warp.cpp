@@ -27,12 +27,13 @@ double uniform(std::mt19937_64& rng, double lo, double hi) {
 }  // namespace
 
 SmoothWarp::SmoothWarp(const Eigen::Vector3d& centre, const Eigen::Matrix3d& linear, std::vector<GaussianBump> bumps,
-                       double turn_degrees, double pitch_degrees)
+                       double turn_degrees, double pitch_degrees, double roll_degrees)
     : centre_(centre),
       linear_(linear),
       bumps_(std::move(bumps)),
       turn_degrees_(turn_degrees),
-      pitch_degrees_(pitch_degrees) {}
+      pitch_degrees_(pitch_degrees),
+      roll_degrees_(roll_degrees) {}
 
 SmoothWarp SmoothWarp::with_flat_levels(double low, double high, double ramp) const {
   SmoothWarp w = *this;
@@ -144,16 +145,18 @@ SmoothWarp random_warp(std::uint64_t seed, const Eigen::Vector3d& centre, const 
     b.sigma = uniform(rng, ranges.min_sigma, ranges.max_sigma);
     bumps.push_back(b);
   }
-  // Drawn last, so that a seed's scale, shear and bumps do not depend on whether the warp turns or pitches.
+  // Drawn last, so that a seed's scale, shear and bumps do not depend on whether the warp turns, pitches or rolls.
   const double turn = ranges.max_turn > 0 ? uniform(rng, -ranges.max_turn, ranges.max_turn) : 0.0;
   const double pitch = ranges.max_pitch > 0 ? uniform(rng, -ranges.max_pitch, ranges.max_pitch) : 0.0;
-  A = Eigen::AngleAxisd(pitch * M_PI / 180, Eigen::Vector3d::UnitX()) *
+  const double roll = ranges.max_roll > 0 ? uniform(rng, -ranges.max_roll, ranges.max_roll) : 0.0;
+  A = Eigen::AngleAxisd(roll * M_PI / 180, Eigen::Vector3d::UnitY()) *
+      Eigen::AngleAxisd(pitch * M_PI / 180, Eigen::Vector3d::UnitX()) *
       Eigen::AngleAxisd(turn * M_PI / 180, Eigen::Vector3d::UnitZ()) * A;
-  SmoothWarp warp(centre, A, bumps, turn, pitch);
+  SmoothWarp warp(centre, A, bumps, turn, pitch, roll);
   const double limit = 0.5 * warp.linear_min_singular_value(), L = warp.bump_gradient_bound();
   if (L > limit) {
     for (GaussianBump& b : bumps) b.displacement *= limit / L;
-    warp = SmoothWarp(centre, A, bumps, turn, pitch);
+    warp = SmoothWarp(centre, A, bumps, turn, pitch, roll);
   }
   return warp;
 }
@@ -181,7 +184,7 @@ std::string warp_description(const SmoothWarp& warp) {
   const Eigen::Matrix3d A =
       Eigen::AngleAxisd(-warp.turn_degrees() * M_PI / 180, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
       Eigen::AngleAxisd(-warp.pitch_degrees() * M_PI / 180, Eigen::Vector3d::UnitX()).toRotationMatrix() *
-      warp.linear();
+      Eigen::AngleAxisd(-warp.roll_degrees() * M_PI / 180, Eigen::Vector3d::UnitY()).toRotationMatrix() * warp.linear();
   double shear = 0, bump = 0;
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c)
@@ -200,6 +203,11 @@ std::string warp_description(const SmoothWarp& warp) {
     char pitch[40];
     std::snprintf(pitch, sizeof pitch, ", pitched %.1f deg", warp.pitch_degrees());
     description += pitch;
+  }
+  if (warp.roll_degrees() != 0) {
+    char roll[40];
+    std::snprintf(roll, sizeof roll, ", rolled %.1f deg", warp.roll_degrees());
+    description += roll;
   }
   if (warp.has_flat_levels()) description += ", end slices flat";
   return description;

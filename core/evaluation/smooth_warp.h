@@ -35,10 +35,10 @@ struct GaussianBump {
 class SmoothWarp {
  public:
   SmoothWarp() = default;
-  // turn_degrees, pitch_degrees: how far `linear` turns about the z axis and then about the x axis (linear = R_x(pitch)
-  // R_z(turn) times scale and shear), for descriptions.
+  // turn_degrees, pitch_degrees, roll_degrees: how far `linear` turns about the z axis, then about the x axis and then
+  // about the y axis (linear = R_y(roll) R_x(pitch) R_z(turn) times scale and shear), for descriptions.
   SmoothWarp(const Eigen::Vector3d& centre, const Eigen::Matrix3d& linear, std::vector<GaussianBump> bumps,
-             double turn_degrees = 0, double pitch_degrees = 0);
+             double turn_degrees = 0, double pitch_degrees = 0, double roll_degrees = 0);
 
   // This warp with the slice planes z = low and z = high kept flat (the header), low < high, ramp > 0 (mm).
   SmoothWarp with_flat_levels(double low, double high, double ramp) const;
@@ -57,6 +57,9 @@ class SmoothWarp {
   const std::vector<GaussianBump>& bumps() const { return bumps_; }
   double turn_degrees() const { return turn_degrees_; }
   double pitch_degrees() const { return pitch_degrees_; }
+  double roll_degrees() const { return roll_degrees_; }
+  // A pitch or a roll tilts the slice planes across the whole scan.
+  bool tilts_slices() const { return pitch_degrees_ != 0 || roll_degrees_ != 0; }
   bool has_flat_levels() const { return flat_ramp_ > 0; }
 
  private:
@@ -68,7 +71,7 @@ class SmoothWarp {
   Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();
   Eigen::Matrix3d linear_ = Eigen::Matrix3d::Identity();
   std::vector<GaussianBump> bumps_;
-  double turn_degrees_ = 0, pitch_degrees_ = 0;
+  double turn_degrees_ = 0, pitch_degrees_ = 0, roll_degrees_ = 0;
   double flat_low_ = 0, flat_high_ = 0, flat_ramp_ = 0;  // ramp 0: no flat levels
 };
 
@@ -82,6 +85,7 @@ struct RandomWarpRanges {
   double max_sigma = 40.0;  // mm
   double max_turn = 0.0;    // degrees: A is turned about the vertical (z) axis by an angle in [-max_turn, max_turn]
   double max_pitch = 0.0;   // degrees: and then about the lateral (x) axis by one in [-max_pitch, max_pitch]
+  double max_roll = 0.0;    // degrees: and then about the front-to-back (y) axis by one in [-max_roll, max_roll]
 };
 
 // A warp drawn from the ranges with std::mt19937_64(seed) (whose sequence the C++ standard fixes, converted to
@@ -99,7 +103,7 @@ double min_jacobian_determinant(const SmoothWarp& warp, const Eigen::Vector3d& l
                                 int steps);
 
 // One line for reports: "scale (1.05, 0.93, 1.10), shear up to 0.04, 4 bumps up to 7.2 mm[, turned 6.2 deg][, pitched
-// -8.1 deg][, end slices flat]".
+// -8.1 deg][, rolled 9.0 deg][, end slices flat]".
 std::string warp_description(const SmoothWarp& warp);
 
 }  // namespace facehex

@@ -33,10 +33,10 @@ Field warp_volume(const Field& field, const SmoothWarp& warp) {
   hi += 2 * g.spacing;
   // A scanner's volume ends in slice planes; W may bend the original's: the slices are cropped to those the original
   // covers across their whole area, between the highest level of the bottom slice's image and the lowest of the top
-  // slice's (every voxel of both: a warp that keeps them flat keeps all of the original's levels). A pitched warp
-  // tilts them across the whole scan, and such a crop would cut the face; it keeps the whole image, as a head pitched
-  // within a scanner's taller field of view, with air beyond the original's tilted end slices.
-  if (warp.pitch_degrees() == 0) {
+  // slice's (every voxel of both: a warp that keeps them flat keeps all of the original's levels). A pitched or rolled
+  // warp tilts them across the whole scan, and such a crop would cut the face; it keeps the whole image, as a head
+  // pitched or tilted within a scanner's taller field of view, with air beyond the original's tilted end slices.
+  if (!warp.tilts_slices()) {
     double top_lowest = std::numeric_limits<double>::infinity(), bottom_highest = -top_lowest;
     for (int j = 0; j < g.dims[1]; ++j)
       for (int i = 0; i < g.dims[0]; ++i) {

@@ -285,7 +285,10 @@ TEST_F(Cli, UsageErrorsExitTwoAndWriteNothing) {
       {"bench --correspondence -o " + path("c") + " --ct-ranges 0.1,0.04,6",
        "--ct-ranges: expects SCALE,SHEAR,BUMP,TURN"},
       {"bench --correspondence -o " + path("c") + " --ct-ranges 0.1,0.04,6,90", "a turn of at most 45 degrees"},
-      {"bench --correspondence -o " + path("c") + " --ct-ranges 0.1,0.04,6,0,40", "a pitch of at most 30"},
+      {"bench --correspondence -o " + path("c") + " --ct-ranges 0.1,0.04,6,0,40", "a pitch and a roll of at most 30"},
+      {"bench --correspondence -o " + path("c") + " --ct-ranges 0.1,0.04,6,0,0,40", "a pitch and a roll of at most 30"},
+      {"bench --correspondence -o " + path("c") + " --ct-ranges 0.1,0.04,6,0,0,0,1",
+       "SCALE,SHEAR,BUMP,TURN[,PITCH[,ROLL]]"},
   };
   for (const auto& [args, needle] : cases) {
     const Result r = run(args);

@@ -123,6 +123,33 @@ TEST(SmoothWarp, APitchPitchesTheSameSeedsTurnedWarp) {
   }
 }
 
+// A rolled warp (a head tilted towards a shoulder) is the same seed's pitched warp with its linear part then turned
+// about y; a seed drawn without a roll is the warp it was before rolls were drawn.
+TEST(SmoothWarp, ARollRollsTheSameSeedsPitchedWarp) {
+  RandomWarpRanges pitched, rolled;
+  pitched.max_turn = rolled.max_turn = 10;
+  pitched.max_pitch = rolled.max_pitch = 15;
+  rolled.max_roll = 20;
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    const SmoothWarp p = random_warp(seed, Eigen::Vector3d(5, -3, 2), anchors(), pitched),
+                     w = random_warp(seed, Eigen::Vector3d(5, -3, 2), anchors(), rolled);
+    EXPECT_EQ(p.roll_degrees(), 0.0);
+    EXPECT_FALSE(random_warp(seed, Eigen::Vector3d(5, -3, 2), anchors(), RandomWarpRanges{}).tilts_slices());
+    EXPECT_TRUE(w.tilts_slices());
+    EXPECT_EQ(w.turn_degrees(), p.turn_degrees());
+    EXPECT_EQ(w.pitch_degrees(), p.pitch_degrees());
+    EXPECT_LE(std::abs(w.roll_degrees()), 20.0);
+    EXPECT_GT(std::abs(w.roll_degrees()), 0.0);
+    const Eigen::Matrix3d R =
+        Eigen::AngleAxisd(w.roll_degrees() * M_PI / 180, Eigen::Vector3d::UnitY()).toRotationMatrix();
+    EXPECT_TRUE(w.linear().isApprox(R * p.linear(), 1e-12)) << seed;
+    const std::string a = warp_description(p), b = warp_description(w);
+    EXPECT_EQ(b.substr(0, a.size()), a) << b;  // the same scale, shear, bumps, turn and pitch
+    EXPECT_NE(b.find(", rolled "), std::string::npos) << b;
+    EXPECT_GT(min_jacobian_determinant(w, Eigen::Vector3d::Constant(-100), Eigen::Vector3d::Constant(100), 9), 0);
+  }
+}
+
 TEST(SmoothWarp, InverseUndoesApplyAndTheJacobianIsItsDerivative) {
   const SmoothWarp w = random_warp(3, Eigen::Vector3d(1, 2, 3), anchors());
   const Eigen::MatrixXd V = anchors() * 0.9;
