@@ -441,6 +441,22 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   SurfaceMesh surface;
   Field inner_distance;
   int first_chi = 2;
+  // The skin vertices (head frame) of a surface with its sides found.
+  const auto skin_of = [&](const SurfaceMesh& s, const Eigen::VectorXi& sides) {
+    std::vector<Eigen::Vector3d> skin;
+    const Eigen::VectorXi mask = side_mask_from_faces(static_cast<int>(s.V.rows()), s.F, sides);
+    for (Eigen::Index v = 0; v < mask.size(); ++v)
+      if (mask(v) & side_bit(W1)) skin.push_back(s.V.row(v).transpose());
+    return skin;
+  };
+  const auto sides_of = [&](const SurfaceMesh& s) {
+    Eigen::VectorXi sides = classify_sides(s, model.cuts, air_distance, inner_distance, 0.3 * options.working_spacing);
+    merge_side_islands(s.F, sides);
+    return sides;
+  };
+  // A tunnel repair smooths the whole skin, which can flatten the lips' edges the landmarks are read on (the mouth
+  // corners): the landmarks read the first surface's skin, whose tunnels do not matter to them.
+  std::vector<Eigen::Vector3d> first_skin;
   for (int attempt = 0;; ++attempt) {
     model.options = tunnel_repair_options(options, attempt);
     const SegmentOptions& used = model.options;
@@ -457,6 +473,7 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
     surface = level_surface_with_cuts(tissue, model.cuts, used);
     const int chi = euler_characteristic(surface.F);
     if (attempt == 0) first_chi = chi;
+    if (attempt == 0 && chi != 2) first_skin = skin_of(surface, sides_of(surface));
     if (chi == 2 || attempt == kTunnelRepairAttempts) {
       if (attempt > 0)
         model.repair = "the first surface had tunnels (Euler characteristic " + std::to_string(first_chi) +
@@ -465,9 +482,7 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
       break;
     }
   }
-  Eigen::VectorXi sides =
-      classify_sides(surface, model.cuts, air_distance, inner_distance, 0.3 * options.working_spacing);
-  merge_side_islands(surface.F, sides);
+  const Eigen::VectorXi sides = sides_of(surface);
   surface.labels = sides;
   surface.labels.array() += 1;  // TetGen's marker 0 means "on no input facet"
 
@@ -515,14 +530,9 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   plane.y = turn.axis.y();
   set_mid_sagittal_plane(model.mesh, turn.to_model(plane));
   // The skin at the working spacing, for the landmarks (core/mesh/skin_points.h).
-  const Eigen::VectorXi surface_mask =
-      side_mask_from_faces(static_cast<int>(surface.V.rows()), surface.F, surface.labels.array() - 1);
-  std::vector<int> on_skin;
-  for (Eigen::Index v = 0; v < surface_mask.size(); ++v)
-    if (surface_mask(v) & side_bit(W1)) on_skin.push_back(static_cast<int>(v));
-  Eigen::MatrixXd skin(static_cast<Eigen::Index>(on_skin.size()), 3);
-  for (size_t i = 0; i < on_skin.size(); ++i)
-    skin.row(static_cast<Eigen::Index>(i)) = to_model(surface.V.row(on_skin[i]).transpose()).transpose();
+  const std::vector<Eigen::Vector3d> skin_points = first_skin.empty() ? skin_of(surface, sides) : first_skin;
+  Eigen::MatrixXd skin(static_cast<Eigen::Index>(skin_points.size()), 3);
+  for (size_t i = 0; i < skin_points.size(); ++i) skin.row(static_cast<Eigen::Index>(i)) = to_model(skin_points[i]);
   set_skin_points(model.mesh, skin);
   CtLandmarks found;
   if (model.cuts.anatomy) {
