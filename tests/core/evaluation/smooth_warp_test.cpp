@@ -101,6 +101,18 @@ TEST(SmoothWarp, ATurnTurnsTheSameSeedsWarp) {
   }
 }
 
+// `w` is `base` with its linear part then turned about `axis` by `degrees`: the same scale, shear, bumps and earlier
+// turns in its description, which says `word` too, and invertible about the anchors.
+void expect_turned_about(const SmoothWarp& base, const SmoothWarp& w, const Eigen::Vector3d& axis, double degrees,
+                         const std::string& word) {
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(degrees * M_PI / 180, axis).toRotationMatrix();
+  EXPECT_TRUE(w.linear().isApprox(R * base.linear(), 1e-12)) << word;
+  const std::string a = warp_description(base), b = warp_description(w);
+  EXPECT_EQ(b.substr(0, a.size()), a) << b;
+  EXPECT_NE(b.find(word), std::string::npos) << b;
+  EXPECT_GT(min_jacobian_determinant(w, Eigen::Vector3d::Constant(-100), Eigen::Vector3d::Constant(100), 9), 0);
+}
+
 // A pitched warp (a head nodding in the scanner) is the same seed's warp, turned as it would be, with its linear part
 // then turned about x.
 TEST(SmoothWarp, APitchPitchesTheSameSeedsTurnedWarp) {
@@ -113,13 +125,7 @@ TEST(SmoothWarp, APitchPitchesTheSameSeedsTurnedWarp) {
     EXPECT_EQ(w.turn_degrees(), t.turn_degrees());
     EXPECT_LE(std::abs(w.pitch_degrees()), 15.0);
     EXPECT_GT(std::abs(w.pitch_degrees()), 0.0);
-    const Eigen::Matrix3d R =
-        Eigen::AngleAxisd(w.pitch_degrees() * M_PI / 180, Eigen::Vector3d::UnitX()).toRotationMatrix();
-    EXPECT_TRUE(w.linear().isApprox(R * t.linear(), 1e-12)) << seed;
-    const std::string a = warp_description(t), b = warp_description(w);
-    EXPECT_EQ(b.substr(0, a.size()), a) << b;  // the same scale, shear, bumps and turn
-    EXPECT_NE(b.find(", pitched "), std::string::npos) << b;
-    EXPECT_GT(min_jacobian_determinant(w, Eigen::Vector3d::Constant(-100), Eigen::Vector3d::Constant(100), 9), 0);
+    expect_turned_about(t, w, Eigen::Vector3d::UnitX(), w.pitch_degrees(), ", pitched ");
   }
 }
 
@@ -140,13 +146,7 @@ TEST(SmoothWarp, ARollRollsTheSameSeedsPitchedWarp) {
     EXPECT_EQ(w.pitch_degrees(), p.pitch_degrees());
     EXPECT_LE(std::abs(w.roll_degrees()), 20.0);
     EXPECT_GT(std::abs(w.roll_degrees()), 0.0);
-    const Eigen::Matrix3d R =
-        Eigen::AngleAxisd(w.roll_degrees() * M_PI / 180, Eigen::Vector3d::UnitY()).toRotationMatrix();
-    EXPECT_TRUE(w.linear().isApprox(R * p.linear(), 1e-12)) << seed;
-    const std::string a = warp_description(p), b = warp_description(w);
-    EXPECT_EQ(b.substr(0, a.size()), a) << b;  // the same scale, shear, bumps, turn and pitch
-    EXPECT_NE(b.find(", rolled "), std::string::npos) << b;
-    EXPECT_GT(min_jacobian_determinant(w, Eigen::Vector3d::Constant(-100), Eigen::Vector3d::Constant(100), 9), 0);
+    expect_turned_about(p, w, Eigen::Vector3d::UnitY(), w.roll_degrees(), ", rolled ");
   }
 }
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -175,22 +176,17 @@ TEST(PatientInput, TheBundledCtPitchedAFewDegreesHasItsLipsFoundBelowItsLeaningC
 // A head tilted towards a shoulder: a CT rolled by `degrees` about its front-to-back axis through `centre`, on its own
 // grid (what turns out of the field of view is lost), and where a point of the upright CT lies in it.
 struct RolledCt {
-  double c, s;
+  Eigen::Matrix3d rotation;  // about +y: +x towards -z
   Eigen::Vector3d centre;
   RolledCt(double degrees, const Eigen::Vector3d& centre)
-      : c(std::cos(degrees * M_PI / 180)), s(std::sin(degrees * M_PI / 180)), centre(centre) {}
-  Eigen::Vector3d rolled(const Eigen::Vector3d& p) const {
-    const Eigen::Vector3d d = p - centre;
-    return Eigen::Vector3d(centre.x() + c * d.x() + s * d.z(), p.y(), centre.z() - s * d.x() + c * d.z());
-  }
+      : rotation(Eigen::AngleAxisd(degrees * M_PI / 180, Eigen::Vector3d::UnitY()).toRotationMatrix()),
+        centre(centre) {}
+  Eigen::Vector3d rolled(const Eigen::Vector3d& p) const { return centre + rotation * (p - centre); }
   CtVolume of(const CtVolume& upright) const {
     CtVolume ct = upright;
     ct.intensity = resample_mapped(
         upright.intensity, upright.intensity.geometry,
-        [&](const Eigen::Vector3d& p) {
-          const Eigen::Vector3d d = p - centre;
-          return Eigen::Vector3d(centre.x() + c * d.x() - s * d.z(), p.y(), centre.z() + s * d.x() + c * d.z());
-        },
+        [&](const Eigen::Vector3d& p) { return Eigen::Vector3d(centre + rotation.transpose() * (p - centre)); },
         *std::min_element(upright.intensity.data.begin(), upright.intensity.data.end()));
     return ct;
   }
