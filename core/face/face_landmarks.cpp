@@ -1,5 +1,6 @@
 #include "core/face/face_landmarks.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -392,6 +393,24 @@ void take_opening_corners(const std::vector<Eigen::MatrixXd>& rims, FaceLandmark
   corners("mouth", "cheilion right", "cheilion left");
 }
 
+// The mouth corners (mouth_corners.h, which follows the mouth line along x) of a face whose mid-sagittal plane leans
+// (a head tilted towards a shoulder tilts its mouth line with it): read on the skin turned about the front-to-back
+// axis through the stomion until the plane stands upright, and turned back.
+std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> mouth_corners_upright(
+    const Eigen::MatrixXd& V, const std::vector<int>& skin, const MidSagittalPlane& plane,
+    const Eigen::Vector3d& stomion, const Eigen::Vector3d& labrale_superius) {
+  if (plane.slope == 0) return mouth_corners(V, skin, stomion.x(), stomion, labrale_superius);
+  const Eigen::Matrix3d upright =
+      Eigen::AngleAxisd(-std::atan(plane.slope), Eigen::Vector3d::UnitY()).toRotationMatrix();
+  const auto turned = [&](const Eigen::Vector3d& p) -> Eigen::Vector3d { return stomion + upright * (p - stomion); };
+  Eigen::MatrixXd U = V;
+  for (const int v : skin) U.row(v) = turned(V.row(v).transpose()).transpose();
+  auto corners = mouth_corners(U, skin, stomion.x(), stomion, turned(labrale_superius));
+  if (corners)
+    for (Eigen::Vector3d* c : {&corners->first, &corners->second}) *c = stomion + upright.transpose() * (*c - stomion);
+  return corners;
+}
+
 // find_face_landmarks on a model whose given plane, if any, is not turned.
 FaceLandmarks find_in_head_frame(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
                                  const LandmarkOptions& options) {
@@ -521,7 +540,7 @@ FaceLandmarks find_in_head_frame(const Eigen::MatrixXd& V, const Eigen::VectorXi
   l.points = {{"pronasale", prn},       {"subnasale", sn},        {"nasion", n},  {"glabella", g},
               {"labrale superius", ls}, {"labrale inferius", li}, {"stomion", st}};
   add_chin(profile, skin, V, l);
-  if (const auto corners = mouth_corners(V, skin, st.x(), st, ls)) {
+  if (const auto corners = mouth_corners_upright(V, skin, l.plane, st, ls)) {
     l.points["cheilion right"] = corners->first;
     l.points["cheilion left"] = corners->second;
   }

@@ -25,7 +25,7 @@ constexpr double kApertureHeight = 6.0;   // mm: a run of levels this tall witho
 constexpr double kChinSoftTissue = 25.0;  // mm: bone this close behind the skin is near it (chin, not nose)
 constexpr double kChinGap = 8.0;          // mm of levels without such bone within the chin's run (lips apart)
 constexpr double kChinDepth = 30.0;       // mm the mandible's lower border reaches back from the chin's front
-constexpr double kMaxRoll = 20.0;         // degrees a head tilts towards a shoulder in a scanner, at most
+constexpr double kMaxRoll = 25.0;         // degrees a head tilts towards a shoulder in a scanner, at most
 constexpr double kLevelAgreement = 3.0;   // mm: a level whose mirror centre lies this close to the trace agrees
 // A trace leaning more than this is measured again across the leaning plane (across_leaning_plane), within
 // kLeaningRowSearch of it.
@@ -36,6 +36,8 @@ constexpr double kLeaningRowSettled = 0.1;      // degrees: a pass that turns th
 constexpr double kLeaningRowSupport = 2.0 / 3;  // of the levels agreeing with the trace across the rows
 constexpr double kMaxTurn = 40.0;               // degrees a head is looked for turned about the vertical axis
 constexpr double kTurnSampling = 2.0;           // mm between the head voxels compared for the turn
+constexpr double kMirrorSampling = 4.0;         // mm between the head voxels compared for the 3D mirror plane
+constexpr double kMirrorOffsetSearch = 6.0;     // mm either side of their centroid searched for the plane
 // The auricle is thin: the opening of the body removes it. Where the body stands out of its opening sideways by at
 // least kEarStandOut (more than the opening's rounding of the skin), over levels at least kEarMinHeight tall in one
 // coronal row (the auricle's front edge is taller; a skin fold or a strap's edge is not), the row holds the ear.
@@ -421,6 +423,75 @@ double forehead_end(const Sections& s, const FaceAnatomy& anatomy, double from, 
   return *quarter;
 }
 
+// The head's mirror plane in 3D (rules 0 and 2): the turn about the vertical axis and the roll towards a shoulder
+// (degrees, as FaceAnatomy::roll_degrees) at which the most head voxels of the levels [lowest, top], sampled every
+// kMirrorSampling mm, have their mirror image in the head too; the plane passes within kMirrorOffsetSearch of their
+// centroid. Searched every 2 degrees over the turn's and the roll's ranges, then every 0.5 and 0.1 degree around the
+// best.
+struct MirrorPlane {
+  double turn = 0, roll = 0;
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // mm, on the plane
+};
+
+MirrorPlane find_mirror_plane(const Mask& head, int lowest, int top) {
+  const GridGeometry& g = head.geometry;
+  const auto every = [&](int axis) {
+    return std::max(1, static_cast<int>(std::lround(kMirrorSampling / g.spacing(axis))));
+  };
+  std::vector<Eigen::Vector3d> points;
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (int k = lowest; k <= top; k += every(2))
+    for (int j = 0; j < g.dims[1]; j += every(1))
+      for (int i = 0; i < g.dims[0]; i += every(0))
+        if (head(i, j, k)) points.push_back(g.point(i, j, k)), centroid += points.back();
+  centroid /= static_cast<double>(points.size());
+  // The face looks to (sin t, cos t, 0); the plane's normal is (cos t, -sin t, 0) rolled about that direction, so
+  // that the plane's trace on a coronal plane leans towards +x going up for a positive roll.
+  const auto normal = [](const MirrorPlane& plane) {
+    const double t = plane.turn * M_PI / 180, r = plane.roll * M_PI / 180;
+    return Eigen::Vector3d(std::cos(r) * std::cos(t), -std::cos(r) * std::sin(t), -std::sin(r));
+  };
+  const auto symmetry = [&](const MirrorPlane& plane, double offset) {
+    const Eigen::Vector3d n = normal(plane);
+    const Eigen::Vector3d c = centroid + offset * n;
+    std::ptrdiff_t hits = 0;
+    for (const Eigen::Vector3d& p : points) {
+      const Eigen::Vector3d ijk = (p - 2 * (p - c).dot(n) * n - g.origin).cwiseQuotient(g.spacing);
+      const int i = static_cast<int>(std::lround(ijk.x())), j = static_cast<int>(std::lround(ijk.y())),
+                k = static_cast<int>(std::lround(ijk.z()));
+      hits += g.contains(i, j, k) && head(i, j, k);
+    }
+    return hits;
+  };
+  // The candidates of one search are scored in one parallel loop (a parallel region per candidate would cost more
+  // in waking threads than it saves); the first of the best, in the order listed, is taken.
+  const auto best_of = [&](const std::vector<MirrorPlane>& planes, const std::vector<double>& offsets) {
+    std::vector<std::ptrdiff_t> hits(planes.size());
+    const auto count = static_cast<std::ptrdiff_t>(planes.size());
+#pragma omp parallel for schedule(dynamic)
+    for (std::ptrdiff_t c = 0; c < count; ++c)
+      hits[static_cast<size_t>(c)] = symmetry(planes[static_cast<size_t>(c)], offsets[static_cast<size_t>(c)]);
+    return static_cast<size_t>(std::max_element(hits.begin(), hits.end()) - hits.begin());
+  };
+  double offset = 0;
+  const auto search = [&](double turn_from, double turn_to, double roll_from, double roll_to, double step) {
+    std::vector<MirrorPlane> planes;
+    for (double t = turn_from; t <= turn_to + 1e-9; t += step)
+      for (double r = roll_from; r <= roll_to + 1e-9; r += step) planes.push_back({t, r});
+    return planes[best_of(planes, std::vector<double>(planes.size(), offset))];
+  };
+  MirrorPlane best = search(-kMaxTurn, kMaxTurn, -kMaxRoll, kMaxRoll, 2.0);
+  std::vector<double> offsets;
+  for (double d = -kMirrorOffsetSearch; d <= kMirrorOffsetSearch + 1e-9; d += 1.0) offsets.push_back(d);
+  offset = offsets[best_of(std::vector<MirrorPlane>(offsets.size(), best), offsets)];
+  for (const double step : {0.5, 0.1}) {
+    const MirrorPlane around = best;
+    best = search(around.turn - 4 * step, around.turn + 4 * step, around.roll - 4 * step, around.roll + 4 * step, step);
+  }
+  best.point = centroid + offset * normal(best);
+  return best;
+}
+
 }  // namespace
 
 HeadTurn find_head_turn(const Mask& head) {
@@ -477,6 +548,10 @@ HeadTurn find_head_turn(const Mask& head) {
   };
   const double coarse = best_of(-kMaxTurn, kMaxTurn, 1.0);
   turn.degrees = best_of(coarse - 1.0, coarse + 1.0, 0.1);
+  // A head tilted towards a shoulder cuts each horizontal section's two sides at different heights, which turns its
+  // sections' mirror lines with the tilt: its turn is the 3D mirror plane's.
+  if (const MirrorPlane plane = find_mirror_plane(head, lowest, top); std::abs(plane.roll) > kLeaningRowsMinRoll)
+    turn.degrees = plane.turn;
   return turn;
 }
 
@@ -500,11 +575,15 @@ FaceAnatomy find_face_anatomy(const Mask& head, const Mask& without_ears, const 
     if (const auto s = slice_symmetry(sections, k, x0)) slices.push_back(*s);
   if (slices.size() < 3) not_found("the face's mirror symmetry", "--mid-plane");
   fit_plane(slices, anatomy);
-  if (std::abs(anatomy.roll_degrees) > kLeaningRowsMinRoll && std::abs(anatomy.roll_degrees) <= kMaxRoll) {
-    // Rows across a leaning plane are measured again across the trace they give, until its lean settles; the trace
-    // the most levels agree with is taken, when that is most of them (a lean few levels agree with is a misreading,
-    // as on a scan that holds only the front half of the head).
-    FaceAnatomy pass = anatomy, best = anatomy;
+  // Rows across a leaning plane are measured again across the trace they give, until its lean settles. The passes
+  // start from the level trace when it leans, and from the head's 3D mirror plane when that leans (the levels of a
+  // tilted head whose front the field of view cuts can agree on a wrong trace). The trace the most levels agree with
+  // is taken when that is most of them (a lean few levels agree with is a misreading, as on a scan that holds only the
+  // front half of the head); else the best of the passes from the 3D plane, the head's symmetry as a whole deciding
+  // its lean where its levels do not.
+  const auto leans = [](double roll) { return std::abs(roll) > kLeaningRowsMinRoll && std::abs(roll) <= kMaxRoll; };
+  const auto best_pass = [&](FaceAnatomy pass) {
+    FaceAnatomy best = pass;
     best.roll_support = 0;
     for (int k = 0; k < kLeaningRowPasses; ++k) {
       const double before = pass.roll_degrees;
@@ -514,8 +593,25 @@ FaceAnatomy find_face_anatomy(const Mask& head, const Mask& without_ears, const 
       if (pass.roll_support > best.roll_support) best = pass;
       if (std::abs(pass.roll_degrees - before) < kLeaningRowSettled) break;
     }
-    if (best.roll_support >= kLeaningRowSupport) anatomy = best;
+    return best;
+  };
+  std::optional<FaceAnatomy> from_levels, from_mirror;
+  if (leans(anatomy.roll_degrees)) from_levels = best_pass(anatomy);
+  const MirrorPlane mirror = find_mirror_plane(head, lowest, top);
+  if (leans(mirror.roll)) {
+    FaceAnatomy start = anatomy;
+    start.roll_degrees = mirror.roll;
+    start.roll_slope = std::tan(mirror.roll * M_PI / 180);
+    start.roll_z = mirror.point.z(), start.centre_x = mirror.point.x();
+    from_mirror = best_pass(start);
   }
+  const auto support = [](const std::optional<FaceAnatomy>& a) { return a ? a->roll_support : 0.0; };
+  const std::optional<FaceAnatomy>& best = support(from_mirror) > support(from_levels) ? from_mirror : from_levels;
+  if (support(best) >= kLeaningRowSupport)
+    anatomy = *best;
+  else if (support(from_mirror) > 0)
+    anatomy = *from_mirror;
+  if (leans(mirror.roll)) anatomy.mirror_roll_degrees = mirror.roll;
   if (std::abs(anatomy.roll_degrees) > kMaxRoll) {
     std::ostringstream why;
     why.precision(1);

@@ -13,11 +13,14 @@
 //     nearest to the head's mean x). The plane's trace is the straight line c(z) fitted through the face's levels,
 //     those near the line the most levels' c agree with (core/segment/symmetry_trace.h: a clipped nose, the neck or a
 //     one-sided bulge can put many levels' c far to one side); its slope is the head's roll (tilt towards a shoulder),
-//     refused beyond kMaxRoll (20 degrees: no head lies so in a scanner, and a fit that leans more has read the
+//     refused beyond kMaxRoll (25 degrees: no head lies so in a scanner, and a fit that leans more has read the
 //     symmetry wrongly, as on a head turned far about the vertical axis). A level of a tilted head cuts its two sides
 //     at different heights, so where the trace leans more than 5 degrees each level's c is measured again on the row
 //     across the leaning plane (perpendicular to the trace, within 10 mm of it) and the trace fitted again, until its
-//     lean settles. A turned head keeps its plane through the nose, at the depth of the face's features;
+//     lean settles; the passes start from the level trace and from the head's 3D mirror plane (rule 0), when each
+//     leans so. The pass most levels agree with is taken when two thirds of them do, else the best pass from the 3D
+//     plane (the head's symmetry as a whole decides where its levels, cut by the field of view, do not), else the
+//     level trace. A turned head keeps its plane through the nose, at the depth of the face's features;
 //  3. the skin profile: per head level, the most anterior head voxel within kProfileBand of c(z);
 //     pronasale = the most anterior profile point at the levels of the nasal aperture (the highest run, at least
 //     kApertureHeight tall, of levels where the bone within the profile band lies more than kChinSoftTissue behind the
@@ -78,6 +81,8 @@ struct FaceAnatomy {
   double centre_x = 0;      // mid-sagittal plane at the pronasale's level
   double roll_degrees = 0;  // the plane's trace leans by this angle from vertical (positive: +x upwards)
   double roll_support = 1;  // the fraction of the head levels the trace was fitted through (rule 2)
+  // The head's 3D mirror plane's roll (rule 2), NaN where it leans 5 degrees or less.
+  double mirror_roll_degrees = std::numeric_limits<double>::quiet_NaN();
   Eigen::Vector3d pronasale, nasion, glabella;  // skin points of the mid-sagittal profile
   bool nose_clipped = false;                    // the front of the nose is a plateau (field-of-view cut)
   bool brow_unseen = false;                     // no nasion below a brow in the profile (rule 3); nasion = pronasale
@@ -102,7 +107,11 @@ struct FaceAnatomy {
 // vertical axis is the angle t within +-kMaxTurn (40 degrees) at which the head's horizontal sections above the
 // shoulders (rule 1) are the most mirror-symmetric about the line through each one's centroid along (sin t, cos t):
 // the largest fraction of head voxels (sampled every 2 mm) whose mirror image is a head voxel too; searched every
-// degree, then every 0.1 degree around the best. The axis is the vertical line through the sections' centroid.
+// degree, then every 0.1 degree around the best. The axis is the vertical line through the sections' centroid. A head
+// tilted towards a shoulder cuts each section's two sides at different heights, which turns the sections' mirror
+// lines: where the head's mirror plane in 3D (the turn and the roll at which the most head voxels of those levels,
+// sampled every 4 mm, mirror into the head, the plane within 6 mm of their centroid) leans more than 5 degrees, its
+// turn is taken.
 HeadTurn find_head_turn(const Mask& head);
 
 // `head` is the body with its ears, `without_ears` the same opened (the ears removed), `bone` the bone voxels, on one

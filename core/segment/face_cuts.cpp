@@ -61,15 +61,17 @@ double section_end(const Mask& head, const FaceCuts& cuts, double from) {
 }  // namespace
 
 std::vector<CutPlane> FaceCuts::planes() const {
-  // The posterior cut y = posterior_y + s (x - centre_x): points with s x - y > s centre_x - posterior_y are cut.
-  const double s = posterior_slope, along = s * centre_x - posterior_y;
-  const Eigen::Vector3d posterior(s, -1, 0);
+  // The posterior cut y = posterior_y + s (x - centre_x): points with s x - y > s centre_x - posterior_y are cut; the
+  // bottom cut z = bottom_z + b (x - centre_x): points with b x - z > b centre_x - bottom_z; the jaw cut z = jaw_z +
+  // (posterior_y_at(x) - y) + b (x - centre_x), rising at 45 degrees from the posterior cut.
+  const double s = posterior_slope, b = bottom_slope, along = s * centre_x - posterior_y;
+  const Eigen::Vector3d posterior(s, -1, 0), bottom(b, 0, -1);
   std::vector<CutPlane> p = {{Eigen::Vector3d(0, 0, 1), top_z, V1},
-                             {Eigen::Vector3d(0, 0, -1), -bottom_z, V0},
+                             {bottom.normalized(), (b * centre_x - bottom_z) / bottom.norm(), V0},
                              {posterior.normalized(), along / posterior.norm(), U0}};
   if (jaw_z > -std::numeric_limits<double>::infinity()) {
-    const Eigen::Vector3d jaw(s, -1, -1);
-    p.push_back({jaw.normalized(), (along - jaw_z) / jaw.norm(), V0});
+    const Eigen::Vector3d jaw(s + b, -1, -1);
+    p.push_back({jaw.normalized(), (along + b * centre_x - jaw_z) / jaw.norm(), V0});
   }
   return p;
 }
@@ -143,6 +145,28 @@ void place_posterior_cut(const FaceAnatomy& a, const FaceCutOptions& options,
 
 }  // namespace
 
+// A head tilted towards a shoulder has its bottom cut perpendicular to the mid-sagittal plane its landmarks are read
+// on (landmark_plane), chin_clearance under the menton: a level cut would leave in the model the shoulder the tilt
+// raises on one side. It stays level where it would leave the scan (below z_min) under the head's section in front of
+// the posterior cut at the menton's level.
+void tilt_bottom_cut(const Mask& head, const FaceCutOptions& options, double z_min, FaceCuts& cuts) {
+  const MidSagittalPlane lean = landmark_plane(cuts, options);
+  if (lean.slope == 0) return;
+  const GridGeometry& g = head.geometry;
+  const Eigen::Vector3d& menton = cuts.anatomy->menton;
+  const int k =
+      std::clamp(static_cast<int>(std::lround((menton.z() - g.origin.z()) / g.spacing.z())), 0, g.dims[2] - 1);
+  double x_lo = menton.x(), x_hi = menton.x();
+  for (int j = 0; j < g.dims[1]; ++j)
+    for (int i = 0; i < g.dims[0]; ++i)
+      if (head(i, j, k) && g.point(i, j, k).y() >= cuts.posterior_y_at(g.point(i, j, k).x()))
+        x_lo = std::min(x_lo, g.point(i, j, k).x()), x_hi = std::max(x_hi, g.point(i, j, k).x());
+  FaceCuts tilted = cuts;
+  tilted.bottom_slope = -lean.slope;
+  tilted.bottom_z = menton.z() - options.chin_clearance - tilted.bottom_slope * (menton.x() - cuts.centre_x);
+  if (std::min(tilted.bottom_z_at(x_lo), tilted.bottom_z_at(x_hi)) >= z_min) cuts = tilted;
+}
+
 FaceCuts find_face_cuts(const Mask& head, const Mask& without_ears, const Mask& bone, const FaceCutOptions& options,
                         const std::optional<ScanSlab>& slab, const std::vector<FieldOfViewContact>& scan_edge) {
   const GridGeometry& g = head.geometry;
@@ -175,6 +199,7 @@ FaceCuts find_face_cuts(const Mask& head, const Mask& without_ears, const Mask& 
   const double z_max = scan_hi - options.border_margin;
   cuts.bottom_z =
       options.bottom_z ? *options.bottom_z : std::max(z_min, cuts.anatomy->menton.z() - options.chin_clearance);
+  if (!options.bottom_z) tilt_bottom_cut(head, options, z_min, cuts);
   if (options.top_z) {
     cuts.top_z = *options.top_z;
   } else {
@@ -209,10 +234,12 @@ void find_jaw_cut(const Mask& model, double clearance, FaceCuts& cuts) {
 
 MidSagittalPlane landmark_plane(const FaceCuts& cuts, const FaceCutOptions& given) {
   if (cuts.anatomy && !given.centre_x && std::abs(cuts.anatomy->roll_degrees) > kLandmarkPlaneMinLean) {
-    const std::optional<double> tragi = tragi_roll_degrees(cuts.anatomy->tragi);
-    if (tragi ? std::abs(*tragi - cuts.anatomy->roll_degrees) <= kLandmarkPlaneLeanAgreement
-              : cuts.anatomy->roll_support >= kLandmarkPlaneLeanSupport)
-      return {cuts.anatomy->centre_x, cuts.anatomy->roll_slope, cuts.anatomy->roll_z};
+    const FaceAnatomy& a = *cuts.anatomy;
+    const std::optional<double> tragi = tragi_roll_degrees(a.tragi);
+    const bool mirror_agrees = std::abs(a.mirror_roll_degrees - a.roll_degrees) <= kLandmarkPlaneLeanAgreement;
+    if (tragi ? std::abs(*tragi - a.roll_degrees) <= kLandmarkPlaneLeanAgreement
+              : a.roll_support >= kLandmarkPlaneLeanSupport || mirror_agrees)
+      return {a.centre_x, a.roll_slope, a.roll_z};
   }
   return {cuts.centre_x, 0, 0};
 }

@@ -5,11 +5,12 @@
 // vertical axis and pitched about the lateral one so that a turned or pitched head's face looks to +y, upright; the
 // segmentation frame itself when the head is neither):
 //   top cut      z = top_z        (side v1): just above the eyebrows, or the top of the CT when that is lower;
-//   bottom cut   z = bottom_z     (side v0): below the chin;
+//   bottom cut   z = bottom_z + bottom_slope (x - centre_x)  (side v0): below the chin; level but on a head tilted
+//                towards a shoulder;
 //   posterior    y = posterior_y + posterior_slope (x - centre_x)  (sides u0 at x < centre_x, u1 at x > centre_x): in
 //                front of the ears, vertical; posterior_y is where it crosses the mid-sagittal plane;
-//   jaw cut      y - posterior_slope (x - centre_x) + z = posterior_y + jaw_z (side v0 too), rising backwards at
-//                45 degrees from the bottom cut to z = jaw_z on the posterior cut. Under the jaw the soft tissue runs
+//   jaw cut      y - (posterior_slope + bottom_slope) (x - centre_x) + z = posterior_y + jaw_z (side v0 too), rising
+//                backwards at 45 degrees from the bottom cut to z = jaw_z on the posterior cut. Under the jaw the soft tissue runs
 //                back to the neck, so the posterior cut alone would cut it right across, joining u0 and u1 under the
 //                chin; the jaw cut takes away the back of the submental region so that the posterior cut meets two
 //                separate lateral pieces, as in the standard mesh (whose lower boundary also rises from the chin back
@@ -19,7 +20,11 @@
 //   centre_x    = the mid-sagittal plane at the pronasale's level, from the face's mirror symmetry;
 //   bottom_z    = the menton (lowest point of the bony chin) minus chin_clearance, but at least border_margin above
 //                 the CT's bottom and above its lowest slice with any body in it (a scan that starts within the
-//                 chin: a cut below the body would leave the model no bottom side);
+//                 chin: a cut below the body would leave the model no bottom side); where the mid-sagittal plane the
+//                 landmarks are read on leans (landmark_plane: a head tilted towards a shoulder), the cut is
+//                 perpendicular to it, chin_clearance under the menton (bottom_slope = -dx/dz of the plane), so that
+//                 the shoulder the tilt raises on one side stays out of the model, unless that cut would leave the
+//                 scan under the head's section at the menton's level (it stays level then);
 //   top_z       = the glabella plus brow_clearance (above the eyebrows), but at least border_margin below the CT's top,
 //                 below the head's highest level (a scan that ends within the forehead) and below the highest level at
 //                 which the forehead's front is whole (face_anatomy.h rule 3b: a scan whose last slice leans across
@@ -88,7 +93,10 @@ struct FaceCuts {
   // how far the head is pitched; none where no palate was found.
   std::optional<double> palate_pitch;
   double top_z = 0, bottom_z = 0, posterior_y = 0, centre_x = 0;
-  double posterior_slope = 0;                               // dy/dx of the posterior cut: 0 for a coronal one
+  double posterior_slope = 0;  // dy/dx of the posterior cut: 0 for a coronal one
+  // dz/dx of the bottom cut, and of the jaw cut's rise: 0 for a level one (find_face_cuts: a head tilted towards a
+  // shoulder has them perpendicular to its leaning mid-sagittal plane).
+  double bottom_slope = 0;
   double jaw_z = -std::numeric_limits<double>::infinity();  // -infinity: no jaw cut
   // y of the most anterior place the scan ends across the side or the back of the head at the face's levels
   // (posterior_y above; field_of_view.h), where it does; whether the automatic posterior cut was placed by it.
@@ -102,6 +110,8 @@ struct FaceCuts {
   std::vector<CutPlane> planes() const;
   // y of the posterior cut at x.
   double posterior_y_at(double x) const { return posterior_y + posterior_slope * (x - centre_x); }
+  // z of the bottom cut at x (bottom_z at the mid-plane).
+  double bottom_z_at(double x) const { return bottom_z + bottom_slope * (x - centre_x); }
   // Degrees the posterior cut turns from the head frame's x axis, towards +y at +x.
   double posterior_turn_degrees() const;
 };
@@ -152,7 +162,8 @@ FaceCuts find_face_cuts(const Mask& head, const Mask& without_ears, const Mask& 
 // The mid-sagittal plane the landmarks are read on (core/mesh/mid_sagittal_plane.h), stored with the model: the cuts'
 // plane, leaning as the head does when the symmetry's fit leans more than kLandmarkPlaneMinLean and the line between
 // the two tragi, where both were found, leans within kLandmarkPlaneLeanAgreement of it, or, without the two tragi,
-// when at least kLandmarkPlaneLeanSupport of the head levels agree with the fit (FaceAnatomy::roll_support); else
+// when at least kLandmarkPlaneLeanSupport of the head levels agree with the fit (FaceAnatomy::roll_support) or the
+// head's 3D mirror plane leans within kLandmarkPlaneLeanAgreement of it (FaceAnatomy::mirror_roll_degrees); else
 // vertical through centre_x (as a plane given with --mid-plane is). On upright heads the fit leans by a few degrees
 // through the neck and skull, and the face's profile is read better on the vertical (docs/benchmarks.md); an uneven
 // shape (a warp's bumps, a clipped face) can lean the fit further on a head the level tragi show upright, and where

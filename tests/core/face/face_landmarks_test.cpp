@@ -159,12 +159,10 @@ TEST(FaceLandmarks, AKnownMidSagittalPlaneIsUsed) {
     EXPECT_EQ(l.points.at(name).x(), PhantomFace::x0 + 1.2) << name;
 }
 
-TEST(FaceLandmarks, AHeadTiltedTowardsAShoulderIsReadOnItsLeaningPlane) {
-  // The phantom tilted by 12 degrees about the y axis through (x0, 0): its midline runs along x = x0 - tan(12) z, the
-  // lips 6-8 mm beside the nose's vertical. With the plane the segmentation found (leaning so), every profile landmark
-  // lies where the tilt moved it, on that plane.
-  const double tilt = 12 * M_PI / 180, c = std::cos(tilt), s = std::sin(tilt);
-  PhantomFace face;
+// The landmarks of `face` tilted by `degrees` about the y axis through (x0, 0) (x towards -z), read on the plane the
+// segmentation would give it: leaning so.
+FaceLandmarks tilted_phantom_landmarks(PhantomFace face, double degrees) {
+  const double tilt = degrees * M_PI / 180, c = std::cos(tilt), s = std::sin(tilt);
   for (Eigen::Index v = 0; v < face.V.rows(); ++v) {
     const double dx = face.V(v, 0) - PhantomFace::x0, z = face.V(v, 2);
     face.V(v, 0) = PhantomFace::x0 + c * dx - s * z;
@@ -172,7 +170,15 @@ TEST(FaceLandmarks, AHeadTiltedTowardsAShoulderIsReadOnItsLeaningPlane) {
   }
   LandmarkOptions options;
   options.mid_sagittal_plane = MidSagittalPlane{PhantomFace::x0, -std::tan(tilt), 0};
-  const FaceLandmarks l = find_face_landmarks(face.V, face.side_mask, options);
+  return find_face_landmarks(face.V, face.side_mask, options);
+}
+
+TEST(FaceLandmarks, AHeadTiltedTowardsAShoulderIsReadOnItsLeaningPlane) {
+  // The phantom tilted by 12 degrees about the y axis through (x0, 0): its midline runs along x = x0 - tan(12) z, the
+  // lips 6-8 mm beside the nose's vertical. With the plane the segmentation found (leaning so), every profile landmark
+  // lies where the tilt moved it, on that plane.
+  const double tilt = 12 * M_PI / 180, c = std::cos(tilt), s = std::sin(tilt);
+  const FaceLandmarks l = tilted_phantom_landmarks(PhantomFace(), 12);
   for (const auto& [name, z] : kPhantomProfileZ) {
     ASSERT_TRUE(l.points.count(name)) << name;
     const Eigen::Vector3d p = l.points.at(name);
@@ -184,6 +190,29 @@ TEST(FaceLandmarks, AHeadTiltedTowardsAShoulderIsReadOnItsLeaningPlane) {
       feature_constraints(l, {{"eyebrow line", 0.9}, {"below-nose line", 0.6}, {"middle lip line", 0.5}}, 2.0);
   const PlaneSelection& mid = *set.constraints.front().select.plane;
   EXPECT_NEAR(mid.normal.dot(Eigen::Vector3d(-std::tan(tilt), 0, 1).normalized()), 0, 1e-12);
+}
+
+TEST(FaceLandmarks, ATiltedHeadsMouthCornersAreWhereItsLipsEnd) {
+  // The phantom with lips of 0.6 the relief (a closed mouth's line is faint), upright and tilted towards either
+  // shoulder about the y axis through (x0, 0), its mouth line with it: turned back, the corners lie inside the lips'
+  // taper (20-26 mm from the midline), mirror images of each other, on the mouth line, as on the upright face (read
+  // down the model's columns instead, which cross a tilted mouth line obliquely, one corner falls short of the taper).
+  for (const double degrees : {0.0, 12.0, -20.0, 20.0}) {
+    const double tilt = degrees * M_PI / 180, c = std::cos(tilt), s = std::sin(tilt);
+    const FaceLandmarks l = tilted_phantom_landmarks(PhantomFace(0.6), degrees);
+    ASSERT_TRUE(l.points.count("cheilion right") && l.points.count("cheilion left")) << degrees;
+    std::vector<double> half_widths;
+    for (const char* name : {"cheilion right", "cheilion left"}) {
+      const Eigen::Vector3d p = l.points.at(name);
+      const double dx = p.x() - PhantomFace::x0, upright_x = c * dx + s * p.z(), upright_z = -s * dx + c * p.z();
+      half_widths.push_back(std::abs(upright_x));
+      EXPECT_GE(half_widths.back(), 20.0) << degrees << " " << name;
+      EXPECT_LE(half_widths.back(), 26.0) << degrees << " " << name;
+      EXPECT_GT(upright_z, -31.0) << degrees << " " << name;
+      EXPECT_LT(upright_z, -24.0) << degrees << " " << name;
+    }
+    EXPECT_NEAR(half_widths[0], half_widths[1], 1.0) << degrees;
+  }
 }
 
 TEST(FaceLandmarks, AHeadTurnedAboutTheVerticalIsReadInItsHeadFrame) {
