@@ -62,11 +62,12 @@ double section_end(const Mask& head, const FaceCuts& cuts, double from) {
 
 std::vector<CutPlane> FaceCuts::planes() const {
   // The posterior cut y = posterior_y + s (x - centre_x): points with s x - y > s centre_x - posterior_y are cut; the
-  // bottom cut z = bottom_z + b (x - centre_x): points with b x - z > b centre_x - bottom_z; the jaw cut z = jaw_z +
-  // (posterior_y_at(x) - y) + b (x - centre_x), rising at 45 degrees from the posterior cut.
-  const double s = posterior_slope, b = bottom_slope, along = s * centre_x - posterior_y;
-  const Eigen::Vector3d posterior(s, -1, 0), bottom(b, 0, -1);
-  std::vector<CutPlane> p = {{Eigen::Vector3d(0, 0, 1), top_z, V1},
+  // top cut z = top_z + t (x - centre_x): points with z - t x > top_z - t centre_x; the bottom cut z = bottom_z + b (x
+  // - centre_x): points with b x - z > b centre_x - bottom_z; the jaw cut z = jaw_z + (posterior_y_at(x) - y) + b (x -
+  // centre_x), rising at 45 degrees from the posterior cut.
+  const double s = posterior_slope, t = top_slope, b = bottom_slope, along = s * centre_x - posterior_y;
+  const Eigen::Vector3d posterior(s, -1, 0), top(-t, 0, 1), bottom(b, 0, -1);
+  std::vector<CutPlane> p = {{top.normalized(), (top_z - t * centre_x) / top.norm(), V1},
                              {bottom.normalized(), (b * centre_x - bottom_z) / bottom.norm(), V0},
                              {posterior.normalized(), along / posterior.norm(), U0}};
   if (jaw_z > -std::numeric_limits<double>::infinity()) {
@@ -143,7 +144,17 @@ void place_posterior_cut(const FaceAnatomy& a, const FaceCutOptions& options,
                                "with --posterior-cut to mesh what lies in front of it");
 }
 
-}  // namespace
+// The lowest and highest x of the head's section at the level of `at` in front of the posterior cut.
+std::pair<double, double> section_extent(const Mask& head, const FaceCuts& cuts, const Eigen::Vector3d& at) {
+  const GridGeometry& g = head.geometry;
+  const int k = std::clamp(static_cast<int>(std::lround((at.z() - g.origin.z()) / g.spacing.z())), 0, g.dims[2] - 1);
+  double x_lo = at.x(), x_hi = at.x();
+  for (int j = 0; j < g.dims[1]; ++j)
+    for (int i = 0; i < g.dims[0]; ++i)
+      if (head(i, j, k) && g.point(i, j, k).y() >= cuts.posterior_y_at(g.point(i, j, k).x()))
+        x_lo = std::min(x_lo, g.point(i, j, k).x()), x_hi = std::max(x_hi, g.point(i, j, k).x());
+  return {x_lo, x_hi};
+}
 
 // A head tilted towards a shoulder has its bottom cut perpendicular to the mid-sagittal plane its landmarks are read
 // on (landmark_plane), chin_clearance under the menton: a level cut would leave in the model the shoulder the tilt
@@ -152,20 +163,29 @@ void place_posterior_cut(const FaceAnatomy& a, const FaceCutOptions& options,
 void tilt_bottom_cut(const Mask& head, const FaceCutOptions& options, double z_min, FaceCuts& cuts) {
   const MidSagittalPlane lean = landmark_plane(cuts, options);
   if (lean.slope == 0) return;
-  const GridGeometry& g = head.geometry;
   const Eigen::Vector3d& menton = cuts.anatomy->menton;
-  const int k =
-      std::clamp(static_cast<int>(std::lround((menton.z() - g.origin.z()) / g.spacing.z())), 0, g.dims[2] - 1);
-  double x_lo = menton.x(), x_hi = menton.x();
-  for (int j = 0; j < g.dims[1]; ++j)
-    for (int i = 0; i < g.dims[0]; ++i)
-      if (head(i, j, k) && g.point(i, j, k).y() >= cuts.posterior_y_at(g.point(i, j, k).x()))
-        x_lo = std::min(x_lo, g.point(i, j, k).x()), x_hi = std::max(x_hi, g.point(i, j, k).x());
+  const auto [x_lo, x_hi] = section_extent(head, cuts, menton);
   FaceCuts tilted = cuts;
   tilted.bottom_slope = -lean.slope;
   tilted.bottom_z = menton.z() - options.chin_clearance - tilted.bottom_slope * (menton.x() - cuts.centre_x);
   if (std::min(tilted.bottom_z_at(x_lo), tilted.bottom_z_at(x_hi)) >= z_min) cuts = tilted;
 }
+
+// The same for the top cut, brow_clearance above the glabella, where the glabella placed it: the brows of a tilted
+// head lie the same distance under it on both sides. It stays level where so tilted it would rise above `limit`
+// (where the scan, the head or the forehead's whole front ends) over the head's section at the glabella's level.
+void tilt_top_cut(const Mask& head, const FaceCutOptions& options, double limit, FaceCuts& cuts) {
+  const FaceAnatomy& a = *cuts.anatomy;
+  const MidSagittalPlane lean = landmark_plane(cuts, options);
+  if (lean.slope == 0 || a.brow_unseen) return;
+  const auto [x_lo, x_hi] = section_extent(head, cuts, a.glabella);
+  FaceCuts tilted = cuts;
+  tilted.top_slope = -lean.slope;
+  tilted.top_z = a.glabella.z() + options.brow_clearance - tilted.top_slope * (a.glabella.x() - cuts.centre_x);
+  if (std::max(tilted.top_z_at(x_lo), tilted.top_z_at(x_hi)) <= limit) cuts = tilted;
+}
+
+}  // namespace
 
 FaceCuts find_face_cuts(const Mask& head, const Mask& without_ears, const Mask& bone, const FaceCutOptions& options,
                         const std::optional<ScanSlab>& slab, const std::vector<FieldOfViewContact>& scan_edge) {
@@ -205,9 +225,11 @@ FaceCuts find_face_cuts(const Mask& head, const Mask& without_ears, const Mask& 
   } else {
     const FaceAnatomy& a = *cuts.anatomy;
     cuts.section_end_z = section_end(head, cuts, a.brow_unseen ? a.pronasale.z() + 15 : a.nasion.z());
-    cuts.top_z = std::min({z_max, a.highest_head_z - options.border_margin, a.forehead_end_z - options.border_margin,
-                           cuts.section_end_z - options.border_margin});
-    if (!a.brow_unseen) cuts.top_z = std::min(cuts.top_z, a.glabella.z() + options.brow_clearance);
+    const double limit =
+        std::min({z_max, a.highest_head_z - options.border_margin, a.forehead_end_z - options.border_margin,
+                  cuts.section_end_z - options.border_margin});
+    cuts.top_z = a.brow_unseen ? limit : std::min(limit, a.glabella.z() + options.brow_clearance);
+    tilt_top_cut(head, options, limit, cuts);
   }
   if (!(cuts.top_z > cuts.bottom_z + 10.0))
     throw Error("segment", "the top cut (z = " + mm(cuts.top_z) + ") must be well above the bottom cut (z = " +

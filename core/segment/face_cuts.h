@@ -4,17 +4,18 @@
 // In the head frame (core/mesh/head_turn.h: the segmentation frame, +y anterior and +z superior, turned about the
 // vertical axis and pitched about the lateral one so that a turned or pitched head's face looks to +y, upright; the
 // segmentation frame itself when the head is neither):
-//   top cut      z = top_z        (side v1): just above the eyebrows, or the top of the CT when that is lower;
+//   top cut      z = top_z + top_slope (x - centre_x)  (side v1): just above the eyebrows, or the top of the CT when
+//                that is lower; level but on a head tilted towards a shoulder;
 //   bottom cut   z = bottom_z + bottom_slope (x - centre_x)  (side v0): below the chin; level but on a head tilted
 //                towards a shoulder;
 //   posterior    y = posterior_y + posterior_slope (x - centre_x)  (sides u0 at x < centre_x, u1 at x > centre_x): in
 //                front of the ears, vertical; posterior_y is where it crosses the mid-sagittal plane;
 //   jaw cut      y - (posterior_slope + bottom_slope) (x - centre_x) + z = posterior_y + jaw_z (side v0 too), rising
-//                backwards at 45 degrees from the bottom cut to z = jaw_z on the posterior cut. Under the jaw the soft tissue runs
-//                back to the neck, so the posterior cut alone would cut it right across, joining u0 and u1 under the
-//                chin; the jaw cut takes away the back of the submental region so that the posterior cut meets two
-//                separate lateral pieces, as in the standard mesh (whose lower boundary also rises from the chin back
-//                towards the ears).
+//                backwards at 45 degrees from the bottom cut to z = jaw_z on the posterior cut. Under the jaw the soft
+//                tissue runs back to the neck, so the posterior cut alone would cut it right across, joining u0 and u1
+//                under the chin; the jaw cut takes away the back of the submental region so that the posterior cut
+//                meets two separate lateral pieces, as in the standard mesh (whose lower boundary also rises from the
+//                chin back towards the ears).
 // Automatic placement from the anatomy (face_anatomy.h, which states how each landmark is found); each value can be
 // given instead:
 //   centre_x    = the mid-sagittal plane at the pronasale's level, from the face's mirror symmetry;
@@ -32,7 +33,9 @@
 //                 voxels in front of the posterior cut lose less than kScanEndSlope mm of mean depth per mm of height;
 //                 a last slice leaning across the region, down to the back or to the front, takes a wedge from it
 //                 level by level); the lowest of those less border_margin when the profile shows no brow
-//                 (FaceAnatomy::brow_unseen);
+//                 (FaceAnatomy::brow_unseen); where the landmarks' plane leans, the cut through glabella +
+//                 brow_clearance is perpendicular to it (top_slope = bottom's) unless so tilted it would rise above the
+//                 lowest of those bounds over the head's section at the glabella's level (it stays level then);
 //   posterior_y = the line in front of the ears (ears_line: through the tragi, core/segment/tragus.h) moved
 //                 ear_clearance forward, each side the same distance in front of its own ear (a face's asymmetry, or
 //                 what is left of a turn of the head, moves them apart);
@@ -94,9 +97,9 @@ struct FaceCuts {
   std::optional<double> palate_pitch;
   double top_z = 0, bottom_z = 0, posterior_y = 0, centre_x = 0;
   double posterior_slope = 0;  // dy/dx of the posterior cut: 0 for a coronal one
-  // dz/dx of the bottom cut, and of the jaw cut's rise: 0 for a level one (find_face_cuts: a head tilted towards a
-  // shoulder has them perpendicular to its leaning mid-sagittal plane).
-  double bottom_slope = 0;
+  // dz/dx of the top cut, and of the bottom cut and the jaw cut's rise: 0 for level ones (find_face_cuts: a head
+  // tilted towards a shoulder has them perpendicular to its leaning mid-sagittal plane).
+  double top_slope = 0, bottom_slope = 0;
   double jaw_z = -std::numeric_limits<double>::infinity();  // -infinity: no jaw cut
   // y of the most anterior place the scan ends across the side or the back of the head at the face's levels
   // (posterior_y above; field_of_view.h), where it does; whether the automatic posterior cut was placed by it.
@@ -110,7 +113,8 @@ struct FaceCuts {
   std::vector<CutPlane> planes() const;
   // y of the posterior cut at x.
   double posterior_y_at(double x) const { return posterior_y + posterior_slope * (x - centre_x); }
-  // z of the bottom cut at x (bottom_z at the mid-plane).
+  // z of the top and the bottom cut at x (top_z and bottom_z at the mid-plane).
+  double top_z_at(double x) const { return top_z + top_slope * (x - centre_x); }
   double bottom_z_at(double x) const { return bottom_z + bottom_slope * (x - centre_x); }
   // Degrees the posterior cut turns from the head frame's x axis, towards +y at +x.
   double posterior_turn_degrees() const;

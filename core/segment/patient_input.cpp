@@ -118,9 +118,13 @@ std::string segmentation_summary(const CtSegmentation& segmentation) {
     text << "cuts (mm, head frame, --head-turn 0 --head-pitch 0 for the CT's): ";
   else
     text << "cuts (mm, segmentation frame): ";
-  text << "top z " << cuts.top_z << ", bottom z " << cuts.bottom_z;
-  if (cuts.bottom_slope != 0)
-    text << " at the mid-plane, tilted " << std::atan(cuts.bottom_slope) * 180 / M_PI << " deg with the head";
+  const auto tilted = [&](double slope) {
+    if (slope != 0) text << " at the mid-plane, tilted " << std::atan(slope) * 180 / M_PI << " deg with the head";
+  };
+  text << "top z " << cuts.top_z;
+  tilted(cuts.top_slope);
+  text << ", bottom z " << cuts.bottom_z;
+  tilted(cuts.bottom_slope);
   text << ", posterior y " << cuts.posterior_y;
   if (cuts.posterior_at_scan_edge)
     text << " (in front of where the scan ends across the head, y " << *cuts.scan_edge_y

@@ -132,7 +132,7 @@ Mask model_mask(const Mask& head, const Mask& bone, const Field& air_distance, c
         const size_t v = g.index(i, j, k);
         const Eigen::Vector3d p = g.point(i, j, k);
         if (!head.data[v] || air_distance.data[v] > options.max_depth) continue;
-        if (p.z() < cuts.bottom_z_at(p.x()) - margin || p.z() > cuts.top_z + margin ||
+        if (p.z() < cuts.bottom_z_at(p.x()) - margin || p.z() > cuts.top_z_at(p.x()) + margin ||
             p.y() < cuts.posterior_y_at(p.x()) - margin)
           continue;
         if (air_distance.data[v] <= options.min_thickness) {
@@ -423,8 +423,9 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
     std::array<int, 3> lo = {0, 0, 0}, hi = g.dims;
     const double bottom = std::min(model.cuts.bottom_z_at(g.lower(0)), model.cuts.bottom_z_at(g.upper(0)));
     lo[2] = std::clamp(static_cast<int>(std::floor((bottom - reach - g.origin.z()) / g.spacing.z())), 0, g.dims[2] - 1);
-    hi[2] = std::clamp(static_cast<int>(std::ceil((model.cuts.top_z + reach - g.origin.z()) / g.spacing.z())) + 1,
-                       lo[2] + 1, g.dims[2]);
+    const double top = std::max(model.cuts.top_z_at(g.lower(0)), model.cuts.top_z_at(g.upper(0)));
+    hi[2] =
+        std::clamp(static_cast<int>(std::ceil((top + reach - g.origin.z()) / g.spacing.z())) + 1, lo[2] + 1, g.dims[2]);
     return std::pair{crop(head, lo, hi), crop(bone, lo, hi)};
   }();
   Mask air = head_slices;

@@ -273,7 +273,9 @@ TEST(FaceCuts, ATiltedHeadKeepsItsMidPlaneAndLandmarks) {
 TEST(FaceCuts, ATiltedHeadsBottomCutIsPerpendicularToItsPlaneAndLeavesItsShouldersOut) {
   // Tilted 20 degrees with its shoulders (z below 8 in its own frame, 32 mm under the menton), the chin's clearance
   // 25 mm: the bottom cut tilts with the head, 25 mm under the menton, and cuts away every shoulder voxel; a level cut
-  // through the same point leaves the raised shoulder in the region. Upright, the cut stays level.
+  // through the same point leaves the raised shoulder in the region. The top cut would tilt too, 15 mm above the
+  // glabella, but the phantom's forehead ends 15 mm above it on the side the tilt lowers, under where the tilted cut
+  // would run on the other: it stays level there. Upright, both stay level; given, they are level.
   const Eigen::Matrix3d pose = rotation(20, Eigen::Vector3d::UnitY());
   const Head h(pose, true);
   FaceCutOptions options;
@@ -283,6 +285,8 @@ TEST(FaceCuts, ATiltedHeadsBottomCutIsPerpendicularToItsPlaneAndLeavesItsShoulde
   EXPECT_NEAR(std::abs(std::atan(cuts.bottom_slope) * 180 / M_PI), 20, 2.0);
   const Eigen::Vector3d& menton = cuts.anatomy->menton;
   EXPECT_NEAR(menton.z() - cuts.bottom_z_at(menton.x()), 25, 1e-9);
+  EXPECT_EQ(cuts.top_slope, 0.0);
+  EXPECT_LE(cuts.top_z, cuts.anatomy->glabella.z() + 15);
   const CutPlane bottom = cuts.planes()[1];
   ASSERT_EQ(bottom.side, V0);
   FaceCuts level = cuts;
@@ -303,11 +307,15 @@ TEST(FaceCuts, ATiltedHeadsBottomCutIsPerpendicularToItsPlaneAndLeavesItsShoulde
   EXPECT_GT(shoulder_voxels, 100);
   EXPECT_GT(left_by_level, 0);
   const Head upright(Eigen::Matrix3d::Identity(), true);
-  EXPECT_EQ(cuts_of(upright.head, upright.bone, options).bottom_slope, 0.0);
-  // A bottom cut given is level.
+  const FaceCuts straight = cuts_of(upright.head, upright.bone, options);
+  EXPECT_EQ(straight.bottom_slope, 0.0);
+  EXPECT_EQ(straight.top_slope, 0.0);
   FaceCutOptions given = options;
   given.bottom_z = 20;
-  EXPECT_EQ(cuts_of(h.head, h.bone, given).bottom_slope, 0.0);
+  given.top_z = 150;
+  const FaceCuts as_given = cuts_of(h.head, h.bone, given);
+  EXPECT_EQ(as_given.bottom_slope, 0.0);
+  EXPECT_EQ(as_given.top_slope, 0.0);
 }
 
 // Tilted 30 degrees, beyond any head in a scanner (a symmetry fit that leans so far has read the face wrongly): an

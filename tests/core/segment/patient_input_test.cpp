@@ -231,6 +231,13 @@ TEST(PatientInput, TheVisibleHumanTiltedTowardsAShoulderHasItsMidSagittalPlaneTh
   const PatientModel m = build_patient_model(roll.of(read_ct_volume(source)), SegmentOptions{});
   expect_plane_through_rolled_profile(m, roll, 20, "vhfemale-head.json", 1.0, 3.5);
   EXPECT_NEAR(m.cuts.turn.degrees, -3.1, 1.0);
+  // Its top cut tilts with it, 15 mm above the glabella (the scan holds the whole head); the bottom cut stays level,
+  // since so tilted it would leave the scan, which starts 25 mm under the chin.
+  const std::optional<MidSagittalPlane> plane = mid_sagittal_plane(m.mesh, "model");
+  ASSERT_TRUE(plane && m.cuts.anatomy);
+  EXPECT_NEAR(m.cuts.top_slope, -plane->slope, 0.01);  // the stored plane is in the CT's frame, turned
+  EXPECT_NEAR(m.cuts.top_z_at(m.cuts.anatomy->glabella.x()) - m.cuts.anatomy->glabella.z(), 15, 1e-9);
+  EXPECT_EQ(m.cuts.bottom_slope, 0.0);
 }
 
 TEST(PatientInput, AMeshFileHasNoSegmentation) {
