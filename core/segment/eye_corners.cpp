@@ -262,7 +262,8 @@ class Slit {
   // Rule 5.
   std::optional<CtLandmark> nose_side(const std::vector<LinePoint>& inner) const {
     for (size_t i = 1; i < inner.size(); ++i)
-      if (inner[i].y - inner[i - 1].y > kWallSlope * std::abs(inner[i].offset - inner[i - 1].offset))
+      if (inner[i].y - inner[i - 1].y > kWallSlope * std::abs(inner[i].offset - inner[i - 1].offset) ||
+          std::abs(inner[i].z - inner[i - 1].z) >= kReach - 1e-6)
         return on_front(inner[i - 1].offset, floor_height(inner[i - 1].offset, inner[i - 1].z), false);
     return std::nullopt;
   }

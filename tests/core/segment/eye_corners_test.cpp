@@ -17,10 +17,13 @@ namespace facehex {
 namespace {
 
 // A face phantom in its head frame (plane x = 0, +y anterior): a front that curves back sideways, a nose's wedge
-// within kNoseSide of the plane, and each eye's closed slit: a groove kSlitHeight tall from kEndo to kExo mm out,
+// within nose_side of the plane, and each eye's closed slit: a groove kSlitHeight tall from kEndo to kExo mm out,
 // deepening outwards and sloping down by the canthal tilt. Tissue (1000) behind the front, air (-1000) in front.
 struct EyePhantom {
-  static constexpr double kNoseSide = 14, kEndo = 14, kExo = 44, kSlitHeight = 1.5, kSlitZ = -8, kTilt = 0.05;
+  static constexpr double kEndo = 14, kExo = 44, kSlitHeight = 1.5, kSlitZ = -8, kTilt = 0.05;
+  double nose_side = kEndo;  // mm out: where the nose's side begins (inside it, lid skin up to the slit)
+  bool fold = false;         // a lid fold from the nose's side to the slit's inner end, kFoldRise above it
+  static constexpr double kFoldRise = 1.5;
   double slit_depth = 1.5;  // mm at the inner corner
   double deepening = 2.5;   // mm more at the outer one
   bool slit = true;
@@ -31,9 +34,10 @@ struct EyePhantom {
   double depth(double offset) const { return slit_depth + deepening * (offset - kEndo) / (kExo - kEndo); }
   double front(double x, double z) const {
     const double offset = std::abs(x);
-    if (offset < kNoseSide) return base(kNoseSide) + 1.5 * (kNoseSide - offset);
+    if (offset < nose_side) return base(nose_side) + 1.5 * (nose_side - offset);
     double y = base(offset);
-    if (slit && offset <= kExo && std::abs(z - slit_z(offset)) < kSlitHeight / 2) y -= depth(offset);
+    if (slit && offset >= kEndo && offset <= kExo && std::abs(z - slit_z(offset)) < kSlitHeight / 2) y -= depth(offset);
+    if (fold && offset < kEndo && std::abs(z - slit_z(kEndo) - kFoldRise) < kSlitHeight / 2) y -= slit_depth;
     return y;
   }
   // The corner in the head frame: side -1 right, +1 left.
@@ -92,6 +96,31 @@ TEST(EyeCorners, TheEndsOfTheClosedSlitOnAPhantomTiltedTowardsAShoulder) {
       const Eigen::Vector3d truth(upright.x() * c + upright.z() * s, upright.y(), -upright.x() * s + upright.z() * c);
       EXPECT_LT((found[k]->point - truth).norm(), 1.25)
           << kEyeCornerNames[k] << ", rolled " << roll_degrees << ": found at " << found[k]->point.transpose()
+          << ", the corner is at " << truth.transpose();
+    }
+  }
+}
+
+// A lid fold as deep as the slit runs on from its inner end to the nose's side 8 mm further in, 1.5 mm higher: the
+// slit's line, followed inwards, moves onto the fold (as far as it may move between two columns) and would follow it to
+// the nose; the corner is where the line left the slit.
+TEST(EyeCorners, TheInnerCornerIsWhereTheLineLeavesTheSlitForALidFold) {
+  EyePhantom face;
+  face.nose_side = 6;
+  face.fold = true;
+  for (const double turn_degrees : {0.0, 10.0}) {
+    MidSagittalPlane plane;
+    plane.turn = std::tan(turn_degrees * M_PI / 180);
+    plane.y = 10;
+    const HeadTurn frame = head_turn_of(plane);
+    const EyeCorners found = corners_of(face, plane);
+    for (const int side : {-1, 1}) {
+      const int endo = side < 0 ? 0 : 2;
+      ASSERT_TRUE(found[endo]) << kEyeCornerNames[endo] << ", turned " << turn_degrees;
+      EXPECT_FALSE(found[endo]->estimated) << kEyeCornerNames[endo];
+      const Eigen::Vector3d truth = frame.to_model(face.corner(side, false));
+      EXPECT_LT((found[endo]->point - truth).norm(), 1.25)
+          << kEyeCornerNames[endo] << ", turned " << turn_degrees << ": found at " << found[endo]->point.transpose()
           << ", the corner is at " << truth.transpose();
     }
   }
