@@ -40,6 +40,10 @@ constexpr double kExoOuter = 52;
 constexpr double kFloorBand = 2;  // mm either side of the line's height where the floor is looked for
 constexpr double kPitRise = 0.3;  // mm the floor rises beyond the slit's end (above a CT's noise on the front)
 constexpr double kPitReach = 3;   // mm outwards within which it does
+// mm: depths this close to the pit's bottom are its bottom (the front's grid)
+constexpr double kBottomTolerance = 0.25;
+constexpr double kLidsNear = 3;  // mm above and below the line from which the lids' skin is read (past the slit)
+constexpr double kLidsFar = 6;   // mm above and below the line up to which it is (short of the brow and the cheek)
 // Rule 5: the nose's side.
 constexpr double kWallSlope = 1;  // mm of y per mm inwards: steeper than 45 degrees
 // Rule 6: the floor's height.
@@ -234,8 +238,13 @@ class Slit {
           rear_z = z + dz;
         }
       }
+      double lids = 0;
+      int count = 0;
+      for (double d = kLidsNear; d <= kLidsFar + 1e-9; d += 0.5)
+        for (const double y : {front(offset, z + d), front(offset, z - d)})
+          if (!std::isnan(y)) lids += y, ++count;
       offsets.push_back(offset);
-      floor.push_back(rear);
+      floor.push_back(count > 0 ? rear - lids / count : kNaN);
       floor_z.push_back(rear_z);
     }
     const int n = static_cast<int>(offsets.size());
@@ -253,8 +262,17 @@ class Slit {
         defined &= !std::isnan(smooth[r]);
         highest = std::max(highest, smooth[r]);
       }
-      if (defined && highest - smooth[i] >= kPitRise)
-        return on_front(offsets[i], floor_height(offsets[i], floor_z[i]), false);
+      if (!defined || highest - smooth[i] < kPitRise) continue;
+      // The pit's bottom: the deepest point within kPitReach (a slit deepening outwards by less than the front's grid
+      // shows the first of its steps as a minimum of its own), moved out while the next point is as deep within the
+      // front's grid.
+      int bottom = i;
+      for (int r = i + 1; r <= std::min(i + reach, n - 1) && offsets[r] <= kExoOuter; ++r)
+        if (smooth[r] <= smooth[bottom]) bottom = r;
+      while (bottom + 1 < n && offsets[bottom + 1] <= kExoOuter &&
+             smooth[bottom + 1] <= smooth[bottom] + kBottomTolerance)
+        ++bottom;
+      return on_front(offsets[bottom], floor_height(offsets[bottom], floor_z[bottom]), false);
     }
     return std::nullopt;
   }

@@ -24,18 +24,21 @@ struct EyePhantom {
   double nose_side = kEndo;  // mm out: where the nose's side begins (inside it, lid skin up to the slit)
   bool fold = false;         // a lid fold from the nose's side to the slit's inner end, kFoldRise above it
   static constexpr double kFoldRise = 1.5;
-  double slit_depth = 1.5;  // mm at the inner corner
-  double deepening = 2.5;   // mm more at the outer one
+  double slit_depth = 1.5;      // mm at the inner corner
+  double deepening = 2.5;       // mm more at the outer one
+  double temple_recession = 0;  // mm per mm the front recedes from kTempleStart out (a temple turned away)
+  static constexpr double kTempleStart = kExo - 4;
   bool slit = true;
   double scan_half_width = 70;  // mm either side of the plane the scan holds
 
   static double base(double offset) { return -0.003 * offset * offset; }
+  double recession(double offset) const { return temple_recession * std::max(0.0, offset - kTempleStart); }
   static double slit_z(double offset) { return kSlitZ - kTilt * (offset - kEndo); }
   double depth(double offset) const { return slit_depth + deepening * (offset - kEndo) / (kExo - kEndo); }
   double front(double x, double z) const {
     const double offset = std::abs(x);
     if (offset < nose_side) return base(nose_side) + 1.5 * (nose_side - offset);
-    double y = base(offset);
+    double y = base(offset) - recession(offset);
     if (slit && offset >= kEndo && offset <= kExo && std::abs(z - slit_z(offset)) < kSlitHeight / 2) y -= depth(offset);
     if (fold && offset < kEndo && std::abs(z - slit_z(kEndo) - kFoldRise) < kSlitHeight / 2) y -= slit_depth;
     return y;
@@ -43,7 +46,7 @@ struct EyePhantom {
   // The corner in the head frame: side -1 right, +1 left.
   Eigen::Vector3d corner(int side, bool outer) const {
     const double offset = outer ? kExo : kEndo;
-    return Eigen::Vector3d(side * offset, base(offset) - depth(offset), slit_z(offset));
+    return Eigen::Vector3d(side * offset, base(offset) - recession(offset) - depth(offset), slit_z(offset));
   }
 };
 
@@ -123,6 +126,26 @@ TEST(EyeCorners, TheInnerCornerIsWhereTheLineLeavesTheSlitForALidFold) {
           << kEyeCornerNames[endo] << ", turned " << turn_degrees << ": found at " << found[endo]->point.transpose()
           << ", the corner is at " << truth.transpose();
     }
+  }
+}
+
+// The face receding steeply beside the eyes (a temple turned away from the front) and a slit that grows shallower
+// outwards: the slit's floor keeps falling past its end, and only measured from the lids around it does it rise there.
+// Upright only: turned, this binary phantom's front is too coarse along so steep a slope for the lids' mean.
+TEST(EyeCorners, TheOuterCornerWhereTheFaceRecedesSteeplyBesideIt) {
+  EyePhantom face;
+  face.slit_depth = 2.5;
+  face.deepening = -1;
+  face.temple_recession = 2;
+  const EyeCorners found = corners_of(face, MidSagittalPlane{});
+  for (const int side : {-1, 1}) {
+    const int exo = side < 0 ? 1 : 3;
+    ASSERT_TRUE(found[exo]) << kEyeCornerNames[exo];
+    EXPECT_FALSE(found[exo]->estimated) << kEyeCornerNames[exo];
+    const Eigen::Vector3d truth = face.corner(side, true);
+    EXPECT_LT((found[exo]->point - truth).norm(), 1.25)
+        << kEyeCornerNames[exo] << ": found at " << found[exo]->point.transpose() << ", the corner is at "
+        << truth.transpose();
   }
 }
 
