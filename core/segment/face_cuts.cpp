@@ -156,33 +156,24 @@ std::pair<double, double> section_extent(const Mask& head, const FaceCuts& cuts,
   return {x_lo, x_hi};
 }
 
-// A head tilted towards a shoulder has its bottom cut perpendicular to the mid-sagittal plane its landmarks are read
-// on (landmark_plane), chin_clearance under the menton: a level cut would leave in the model the shoulder the tilt
-// raises on one side. It stays level where it would leave the scan (below z_min) under the head's section in front of
-// the posterior cut at the menton's level.
-void tilt_bottom_cut(const Mask& head, const FaceCutOptions& options, double z_min, FaceCuts& cuts) {
+// A cut perpendicular to the mid-sagittal plane the landmarks are read on (landmark_plane), `offset` mm above the
+// landmark `at` (below it where negative): its dz/dx, its z at the mid-plane, and its lowest and highest z over the
+// head's section at the landmark's level in front of the posterior cut; none where that plane is vertical. A head
+// tilted towards a shoulder has its top and bottom cuts so, where the scan holds them.
+struct TiltedCut {
+  double slope = 0, z = 0, lowest = 0, highest = 0;
+};
+std::optional<TiltedCut> tilted_cut(const Mask& head, const FaceCutOptions& options, const FaceCuts& cuts,
+                                    const Eigen::Vector3d& at, double offset) {
   const MidSagittalPlane lean = landmark_plane(cuts, options);
-  if (lean.slope == 0) return;
-  const Eigen::Vector3d& menton = cuts.anatomy->menton;
-  const auto [x_lo, x_hi] = section_extent(head, cuts, menton);
-  FaceCuts tilted = cuts;
-  tilted.bottom_slope = -lean.slope;
-  tilted.bottom_z = menton.z() - options.chin_clearance - tilted.bottom_slope * (menton.x() - cuts.centre_x);
-  if (std::min(tilted.bottom_z_at(x_lo), tilted.bottom_z_at(x_hi)) >= z_min) cuts = tilted;
-}
-
-// The same for the top cut, brow_clearance above the glabella, where the glabella placed it: the brows of a tilted
-// head lie the same distance under it on both sides. It stays level where so tilted it would rise above `limit`
-// (where the scan, the head or the forehead's whole front ends) over the head's section at the glabella's level.
-void tilt_top_cut(const Mask& head, const FaceCutOptions& options, double limit, FaceCuts& cuts) {
-  const FaceAnatomy& a = *cuts.anatomy;
-  const MidSagittalPlane lean = landmark_plane(cuts, options);
-  if (lean.slope == 0 || a.brow_unseen) return;
-  const auto [x_lo, x_hi] = section_extent(head, cuts, a.glabella);
-  FaceCuts tilted = cuts;
-  tilted.top_slope = -lean.slope;
-  tilted.top_z = a.glabella.z() + options.brow_clearance - tilted.top_slope * (a.glabella.x() - cuts.centre_x);
-  if (std::max(tilted.top_z_at(x_lo), tilted.top_z_at(x_hi)) <= limit) cuts = tilted;
+  if (lean.slope == 0) return std::nullopt;
+  const auto [x_lo, x_hi] = section_extent(head, cuts, at);
+  TiltedCut t;
+  t.slope = -lean.slope;
+  t.z = at.z() + offset - t.slope * (at.x() - cuts.centre_x);
+  const double z_lo = t.z + t.slope * (x_lo - cuts.centre_x), z_hi = t.z + t.slope * (x_hi - cuts.centre_x);
+  t.lowest = std::min(z_lo, z_hi), t.highest = std::max(z_lo, z_hi);
+  return t;
 }
 
 }  // namespace
@@ -219,7 +210,12 @@ FaceCuts find_face_cuts(const Mask& head, const Mask& without_ears, const Mask& 
   const double z_max = scan_hi - options.border_margin;
   cuts.bottom_z =
       options.bottom_z ? *options.bottom_z : std::max(z_min, cuts.anatomy->menton.z() - options.chin_clearance);
-  if (!options.bottom_z) tilt_bottom_cut(head, options, z_min, cuts);
+  // A tilted head's bottom cut chin_clearance under the menton: a level cut would leave in the model the shoulder the
+  // tilt raises on one side. It stays level where it would leave the scan (below z_min).
+  if (!options.bottom_z)
+    if (const auto t = tilted_cut(head, options, cuts, cuts.anatomy->menton, -options.chin_clearance);
+        t && t->lowest >= z_min)
+      cuts.bottom_slope = t->slope, cuts.bottom_z = t->z;
   if (options.top_z) {
     cuts.top_z = *options.top_z;
   } else {
@@ -229,7 +225,12 @@ FaceCuts find_face_cuts(const Mask& head, const Mask& without_ears, const Mask& 
         std::min({z_max, a.highest_head_z - options.border_margin, a.forehead_end_z - options.border_margin,
                   cuts.section_end_z - options.border_margin});
     cuts.top_z = a.brow_unseen ? limit : std::min(limit, a.glabella.z() + options.brow_clearance);
-    tilt_top_cut(head, options, limit, cuts);
+    // A tilted head's top cut brow_clearance above the glabella, where the glabella placed it: its brows lie the same
+    // distance under it on both sides. It stays level where so tilted it would rise above `limit` (where the scan, the
+    // head or the forehead's whole front ends).
+    if (!a.brow_unseen)
+      if (const auto t = tilted_cut(head, options, cuts, a.glabella, options.brow_clearance); t && t->highest <= limit)
+        cuts.top_slope = t->slope, cuts.top_z = t->z;
   }
   if (!(cuts.top_z > cuts.bottom_z + 10.0))
     throw Error("segment", "the top cut (z = " + mm(cuts.top_z) + ") must be well above the bottom cut (z = " +
