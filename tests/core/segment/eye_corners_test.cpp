@@ -59,23 +59,32 @@ EyeCorners corners_of(const EyePhantom& face, const MidSagittalPlane& plane) {
                           head_turn_of(plane).to_model(kPronasale));
 }
 
+// The phantom's plane turned by `degrees` about the vertical axis through the nasion.
+MidSagittalPlane turned_plane(double degrees) {
+  MidSagittalPlane plane;
+  plane.turn = std::tan(degrees * M_PI / 180);
+  plane.y = 10;
+  return plane;
+}
+
+// Corner `c` (kEyeCornerNames) found, not estimated, within 1.25 mm of `truth`: the line's columns 1 mm apart (a sharp
+// end falls between two), and the grid's half voxel. `context` names the case in the messages.
+void expect_corner_at(const EyeCorners& found, int c, const Eigen::Vector3d& truth, const std::string& context) {
+  ASSERT_TRUE(found[c]) << kEyeCornerNames[c] << context;
+  EXPECT_FALSE(found[c]->estimated) << kEyeCornerNames[c] << context;
+  EXPECT_LT((found[c]->point - truth).norm(), 1.25)
+      << kEyeCornerNames[c] << context << ": found at " << found[c]->point.transpose() << ", the corner is at "
+      << truth.transpose();
+}
+
 TEST(EyeCorners, TheEndsOfTheClosedSlitOnAPhantomUprightAndTurned) {
   const EyePhantom face;
   for (const double turn_degrees : {0.0, 10.0, -15.0}) {
-    MidSagittalPlane plane;
-    plane.turn = std::tan(turn_degrees * M_PI / 180);
-    plane.y = 10;
-    const HeadTurn frame = head_turn_of(plane);
+    const MidSagittalPlane plane = turned_plane(turn_degrees);
     const EyeCorners found = corners_of(face, plane);
-    for (int c = 0; c < 4; ++c) {
-      ASSERT_TRUE(found[c]) << kEyeCornerNames[c] << ", turned " << turn_degrees;
-      EXPECT_FALSE(found[c]->estimated) << kEyeCornerNames[c] << ", turned " << turn_degrees;
-      const Eigen::Vector3d truth = frame.to_model(face.corner(c < 2 ? -1 : 1, c % 2 == 1));
-      // The line's columns 1 mm apart (a sharp end falls between two), and the grid's half voxel.
-      EXPECT_LT((found[c]->point - truth).norm(), 1.25)
-          << kEyeCornerNames[c] << ", turned " << turn_degrees << ": found at " << found[c]->point.transpose()
-          << ", the corner is at " << truth.transpose();
-    }
+    for (int c = 0; c < 4; ++c)
+      expect_corner_at(found, c, head_turn_of(plane).to_model(face.corner(c < 2 ? -1 : 1, c % 2 == 1)),
+                       ", turned " + std::to_string(turn_degrees));
   }
 }
 
@@ -93,13 +102,9 @@ TEST(EyeCorners, TheEndsOfTheClosedSlitOnAPhantomTiltedTowardsAShoulder) {
         [&](double x, double z) { return face.front(x * c - z * s, x * s + z * c); }, HeadTurn{});
     const EyeCorners found = find_eye_corners(ct, 0, plane, kNasion, kPronasale);
     for (int k = 0; k < 4; ++k) {
-      ASSERT_TRUE(found[k]) << kEyeCornerNames[k] << ", rolled " << roll_degrees;
-      EXPECT_FALSE(found[k]->estimated) << kEyeCornerNames[k] << ", rolled " << roll_degrees;
       const Eigen::Vector3d upright = face.corner(k < 2 ? -1 : 1, k % 2 == 1);
       const Eigen::Vector3d truth(upright.x() * c + upright.z() * s, upright.y(), -upright.x() * s + upright.z() * c);
-      EXPECT_LT((found[k]->point - truth).norm(), 1.25)
-          << kEyeCornerNames[k] << ", rolled " << roll_degrees << ": found at " << found[k]->point.transpose()
-          << ", the corner is at " << truth.transpose();
+      expect_corner_at(found, k, truth, ", rolled " + std::to_string(roll_degrees));
     }
   }
 }
@@ -112,20 +117,11 @@ TEST(EyeCorners, TheInnerCornerIsWhereTheLineLeavesTheSlitForALidFold) {
   face.nose_side = 6;
   face.fold = true;
   for (const double turn_degrees : {0.0, 10.0}) {
-    MidSagittalPlane plane;
-    plane.turn = std::tan(turn_degrees * M_PI / 180);
-    plane.y = 10;
-    const HeadTurn frame = head_turn_of(plane);
+    const MidSagittalPlane plane = turned_plane(turn_degrees);
     const EyeCorners found = corners_of(face, plane);
-    for (const int side : {-1, 1}) {
-      const int endo = side < 0 ? 0 : 2;
-      ASSERT_TRUE(found[endo]) << kEyeCornerNames[endo] << ", turned " << turn_degrees;
-      EXPECT_FALSE(found[endo]->estimated) << kEyeCornerNames[endo];
-      const Eigen::Vector3d truth = frame.to_model(face.corner(side, false));
-      EXPECT_LT((found[endo]->point - truth).norm(), 1.25)
-          << kEyeCornerNames[endo] << ", turned " << turn_degrees << ": found at " << found[endo]->point.transpose()
-          << ", the corner is at " << truth.transpose();
-    }
+    for (const int side : {-1, 1})
+      expect_corner_at(found, side < 0 ? 0 : 2, head_turn_of(plane).to_model(face.corner(side, false)),
+                       ", turned " + std::to_string(turn_degrees));
   }
 }
 
@@ -138,15 +134,7 @@ TEST(EyeCorners, TheOuterCornerWhereTheFaceRecedesSteeplyBesideIt) {
   face.deepening = -1;
   face.temple_recession = 2;
   const EyeCorners found = corners_of(face, MidSagittalPlane{});
-  for (const int side : {-1, 1}) {
-    const int exo = side < 0 ? 1 : 3;
-    ASSERT_TRUE(found[exo]) << kEyeCornerNames[exo];
-    EXPECT_FALSE(found[exo]->estimated) << kEyeCornerNames[exo];
-    const Eigen::Vector3d truth = face.corner(side, true);
-    EXPECT_LT((found[exo]->point - truth).norm(), 1.25)
-        << kEyeCornerNames[exo] << ": found at " << found[exo]->point.transpose() << ", the corner is at "
-        << truth.transpose();
-  }
+  for (const int side : {-1, 1}) expect_corner_at(found, side < 0 ? 1 : 3, face.corner(side, true), ", upright");
 }
 
 TEST(EyeCorners, NoSlitOrAShallowOneGivesCornersByAdultProportionsMarkedEstimated) {
