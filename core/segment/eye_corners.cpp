@@ -253,16 +253,18 @@ class Slit {
     smooth.front() = floor.front();
     smooth.back() = floor.back();
     const int reach = static_cast<int>(std::lround(kPitReach / 0.5));
+    // Whether the floor rises by kPitRise within kPitReach beyond `from`, where it is defined throughout.
+    const auto rises_beyond = [&](int from) {
+      double highest = -std::numeric_limits<double>::infinity();
+      for (int r = from; r <= std::min(from + reach, n - 1); ++r) {
+        if (std::isnan(smooth[r])) return false;
+        highest = std::max(highest, smooth[r]);
+      }
+      return highest - smooth[from] >= kPitRise;
+    };
     for (int i = 1; i < n - 1; ++i) {
       if (offsets[i] > kExoOuter) break;
       if (!(smooth[i] <= smooth[i - 1] && smooth[i] <= smooth[i + 1])) continue;
-      double highest = -std::numeric_limits<double>::infinity();
-      bool defined = true;
-      for (int r = i; r <= std::min(i + reach, n - 1); ++r) {
-        defined &= !std::isnan(smooth[r]);
-        highest = std::max(highest, smooth[r]);
-      }
-      if (!defined || highest - smooth[i] < kPitRise) continue;
       // The pit's bottom: the deepest point within kPitReach (a slit deepening outwards by less than the front's grid
       // shows the first of its steps as a minimum of its own), moved out while the next point is as deep within the
       // front's grid.
@@ -272,6 +274,9 @@ class Slit {
       while (bottom + 1 < n && offsets[bottom + 1] <= kExoOuter &&
              smooth[bottom + 1] <= smooth[bottom] + kBottomTolerance)
         ++bottom;
+      // The rise is looked for beyond the bottom as well: a slit growing shallower outwards has its last minimum
+      // further in than kPitReach from the step where it ends.
+      if (!rises_beyond(i) && !rises_beyond(bottom)) continue;
       return on_front(offsets[bottom], floor_height(offsets[bottom], floor_z[bottom]), false);
     }
     return std::nullopt;

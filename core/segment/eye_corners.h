@@ -18,10 +18,12 @@
 //     running mean of 3 columns, is at least kMinSlitDepth deep somewhere kExoInner-kExoOuter out;
 //  4. exocanthion: the first point, outwards from kExoInner (up to kExoOuter), where the slit's floor (the rearmost y
 //     within kFloorBand of the line's height), measured from the lids' skin around it (the front's mean kLidsNear to
-//     kLidsFar above and below the line), has a local minimum that rises by kPitRise within kPitReach further out: the
-//     slit ends at that pit's bottom (the deepest point within kPitReach, moved out while the next point lies within
-//     kBottomTolerance of it) and the lids' outer fold begins. Measured from the lids, the floor's rise is not hidden
-//     where the face itself recedes steeply (a temple turned away from the front);
+//     kLidsFar above and below the line), has a local minimum whose pit ends in a rise: the pit's bottom is the deepest
+//     point within kPitReach, moved out while the next point lies within kBottomTolerance of it, and the floor rises by
+//     kPitRise within kPitReach beyond the minimum or beyond that bottom (a slit growing shallower outwards has its
+//     last minimum further in than kPitReach from the step where it ends). The slit ends at the pit's bottom and the
+//     lids' outer fold begins. Measured from the lids, the floor's rise is not hidden where the face itself recedes
+//     steeply (a temple turned away from the front);
 //  5. endocanthion: going inwards along the line, the last column before the line climbs the nose's side (its y rising
 //     more than 1 mm per mm) or leaves the slit: its height moves by kReach or more between neighbouring columns, the
 //     most the line may move, so that it follows no notch of its own (smooth skin) or has taken another one (the lid's

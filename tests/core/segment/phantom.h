@@ -2,6 +2,7 @@
 // A synthetic "head" CT for the segmentation tests: an ellipsoid of soft tissue (1000) around a 6 mm bone shell (2000)
 // around more soft tissue (the "brain"), in air (0), with a deterministic pseudo-random noise of +-noise. The
 // soft-tissue layer over the bone is `thickness` mm thick.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -61,7 +62,9 @@ inline SegmentOptions phantom_options(const CtVolume& ct) {
 
 // A face's front for the landmarks read in the CT (core/segment/face_front.h): tissue (1000) behind y = front(x, z)
 // of the head frame `frame` and in front of y = -50, air (-1000) elsewhere, on 0.5 mm voxels over x within
-// half_width of 0, y from -60 to 60 and z from -50 to 30 (the model's frame).
+// half_width of 0, y from -60 to 60 and z from -50 to 30 (the model's frame). Across the front the value ramps from
+// air half a voxel in front of it to tissue half a voxel behind it, as a CT's partial volume does, so that the front
+// read at 0 lies where front(x, z) puts it rather than on the voxels' grid.
 inline Field face_front_phantom(const std::function<double(double, double)>& front, const HeadTurn& frame,
                                 double half_width = 70) {
   GridGeometry g;
@@ -73,7 +76,7 @@ inline Field face_front_phantom(const std::function<double(double, double)>& fro
     for (int j = 0; j < g.dims[1]; ++j)
       for (int i = 0; i < g.dims[0]; ++i) {
         const Eigen::Vector3d q = frame.to_head(g.point(i, j, k));
-        if (q.y() < front(q.x(), q.z()) && q.y() > -50) f(i, j, k) = 1000;
+        if (q.y() > -50) f(i, j, k) = std::clamp(1000 * (front(q.x(), q.z()) - q.y()) / 0.25, -1000.0, 1000.0);
       }
   return f;
 }
