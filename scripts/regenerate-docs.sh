@@ -11,7 +11,8 @@
 #                                the correspondence section of docs/results.md, the paper's feature lines: `facehex
 #                                bench --correspondence --skin-correspondence features`; registered: its tables of the
 #                                registered skin, --skin-correspondence registered; landmarks: the automatic landmarks against
-#                                the hand-placed ones in docs/benchmarks.md, from `facehex segment` and `constraints`; landing:
+#                                the hand-placed ones (and the corners' two
+#                                hand readings) in docs/benchmarks.md, from `facehex segment` and `constraints`; landing:
 #                                where the standard's landmarks land on the real CTs' runs, by default and with
 #                                --pull-found-landmarks off, in docs/results.md)
 #     --keep DIR                 keep the raw JSON, logs and plots in DIR (default: a temporary folder, removed)
@@ -194,6 +195,21 @@ EOF
             "$picture, facehex segment: sides, landmarks found (blue), estimated (orange), placed by hand (black)" \
             "$reference_file"
         done
+      done
+    fi
+    # The eye and mouth corners close up, with both hand readings and the landmarks found.
+    if command -v xvfb-run >/dev/null && /usr/bin/python3 -c 'import vtk' 2>/dev/null; then
+      readings=(bundled-ct:resources/ct/headsq/headsq.mhd:564:headsq:headsq_eyes:40,158,94,122:"bundled CT (3.2 mm), eyes")
+      [ -f ../shared/data/ct/vhfemale-head.mha ] &&
+        readings+=(vhf:../shared/data/ct/vhfemale-head.mha:-300:vhfemale-head:vhf_right_eye:200,252,110,132:"Visible Human, right eye"
+          vhf:../shared/data/ct/vhfemale-head.mha:-300:vhfemale-head:vhf_left_eye:265,318,110,132:"Visible Human, left eye"
+          vhf:../shared/data/ct/vhfemale-head.mha:-300:vhfemale-head:vhf_mouth:212,306,44,70:"Visible Human, mouth")
+      for reading in "${readings[@]}"; do
+        IFS=: read -r key ct threshold reference picture window title <<<"$reading"
+        [ -f "$out/landmarks-$key.json" ] || continue
+        xvfb-run -a /usr/bin/python3 scripts/render_landmark_readings.py "$ct" "$threshold" ${window//,/ } \
+          "docs/img/readings_$picture.png" "$title" "first reading=tests/data/landmarks/$reference.json" \
+          "second reading=tests/data/landmarks/$reference-second-reading.json" "found=$out/landmarks-$key.json"
       done
     fi
     rm -f "$out"/*.vtu
@@ -478,8 +494,22 @@ if only in ("", "landmarks"):
             d = math.dist(found[name]["position"], ref[name]["position"])
             cells.append(f"{d:.1f}" + (" (estimated)" if found[name]["status"] == "estimated" else ""))
         rows.append([name] + cells)
+    # Two hand readings of the same corners, and the landmarks found, apart.
+    reading_rows = []
+    for label, key, first in (("Visible Human", "vhf", "vhfemale-head"), ("bundled CT", "bundled-ct", "headsq")):
+        found = landmarks(key)
+        if found is None:
+            continue
+        one, two = reference(f"{first}.json"), reference(f"{first}-second-reading.json")
+        for name in two:
+            apart = lambda a, b: f"{math.dist(a['position'], b['position']):.1f}"
+            reading_rows.append([name, label, apart(one[name], two[name]),
+                                 apart(found[name], one[name]) if name in found else "not found",
+                                 apart(found[name], two[name]) if name in found else "not found"])
     write_blocks("docs/benchmarks.md", {
-        "bench-landmarks": machine_line().split(" Wall-clock")[0] + "\n\n" + table(["landmark"] + [c[0] for c in columns], rows)})
+        "bench-landmarks": machine_line().split(" Wall-clock")[0] + "\n\n" + table(["landmark"] + [c[0] for c in columns], rows),
+        "bench-landmark-readings": table(["landmark", "CT", "first reading to second", "found to first", "found to second"],
+                                         reading_rows)})
 
 # ---- docs/results.md: where the standard's landmarks land ----
 if only in ("", "landing"):
