@@ -129,4 +129,12 @@ int Args::integer(const std::string& name, int least, int most) const {
   return integer(name);
 }
 
+std::vector<std::string> split_commas(const std::string& text) {
+  std::vector<std::string> items;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');)
+    if (!item.empty()) items.push_back(item);
+  return items;
+}
+
 }  // namespace facehex::cli

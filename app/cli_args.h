@@ -58,4 +58,7 @@ class Args {
   bool last_repeats_ = false;
 };
 
+// The items of a comma-separated list ("a,b c,d" -> {"a", "b c", "d"}), empty ones dropped.
+std::vector<std::string> split_commas(const std::string& text);
+
 }  // namespace facehex::cli

@@ -1,5 +1,6 @@
 #include "app/transfer_options.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -8,6 +9,7 @@
 
 #include "app/terminal_progress.h"
 #include "core/face/automatic_constraints.h"
+#include "core/face/landmark_file.h"
 #include "core/util/error.h"
 #include "core/util/resources.h"
 
@@ -93,6 +95,10 @@ void add_transfer_options(Args& args) {
               "patient's (report.json feature_landing); off: the registration follows the skin's shape alone (cells "
               "closer to the standard's shape where the patient's proportions differ from it)",
               "on")
+      .option("landmarks-not-pulled",
+              "with --skin-correspondence registered: landmarks that pull the registration in no case, found, "
+              "estimated or given, by name, comma-separated (e.g. \"glabella,nasion\"; the names of `facehex segment "
+              "--write-landmarks`)")
       .option("shape-relaxation",
               "after the mapping, move vertices along the patient towards the standard's cell shapes; where the "
               "mapping distorted a cell, its target moves this fraction of that distortion towards an ideal cell (0: "
@@ -184,6 +190,14 @@ TransferOptions transfer_options(const Args& args) {
   if (pull != "on" && pull != "off")
     throw UsageError("--pull-found-landmarks", "expects on or off, got '" + pull + "'");
   o.pull_found_landmarks = pull == "on";
+  o.landmarks_not_pulled = split_commas(args.get("landmarks-not-pulled"));
+  const std::vector<std::string>& known = landmark_names();
+  for (const std::string& name : o.landmarks_not_pulled)
+    if (std::find(known.begin(), known.end(), name) == known.end()) {
+      std::string names;
+      for (const std::string& k : known) names += (names.empty() ? "" : ", ") + k;
+      throw UsageError("--landmarks-not-pulled", "'" + name + "' is no landmark FaceHex knows (" + names + ")");
+    }
   const std::string relaxation = args.get("shape-relaxation");
   o.shape_relaxation = relaxation != "off";
   if (o.shape_relaxation) {

@@ -5,16 +5,18 @@
 # with the date, the commit, the core count and the CPU model. Everything outside the markers is left as it is.
 #
 # Usage, from anywhere in the repository, after a Release build of facehex:
-#   scripts/regenerate-docs.sh [--only benchmarks|results|correspondence|registered|landmarks|landing] [--keep DIR]
+#   scripts/regenerate-docs.sh [--only benchmarks|results|correspondence|registered|landmarks|landing|pull]
+#                              [--keep DIR]
 #                              [--from DIR]
-#     --only benchmarks|results|correspondence|registered|landmarks|landing  run and write one part only (correspondence:
+#     --only benchmarks|results|correspondence|registered|landmarks|landing|pull  run and write one part only (correspondence:
 #                                the correspondence section of docs/results.md, the paper's feature lines: `facehex
 #                                bench --correspondence --skin-correspondence features`; registered: its tables of the
 #                                registered skin, --skin-correspondence registered; landmarks: the automatic landmarks against
 #                                the hand-placed ones (and the corners' two
 #                                hand readings) in docs/benchmarks.md, from `facehex segment` and `constraints`; landing:
 #                                where the standard's landmarks land on the real CTs' runs, by default and with
-#                                --pull-found-landmarks off, in docs/results.md)
+#                                --pull-found-landmarks off, in docs/results.md; pull: the known-answer cases and the real
+#                                CTs' landing with the landmarks' pull in part or off, in docs/results.md)
 #     --keep DIR                 keep the raw JSON, logs and plots in DIR (default: a temporary folder, removed)
 #     --from DIR                 run nothing: write the pages from the JSON a previous --keep DIR left
 #   FACEHEX=path/to/facehex overrides build/bin/facehex.
@@ -37,12 +39,12 @@ while [ $# -gt 0 ]; do
     --only) only=${2:?--only needs benchmarks or results}; shift 2 ;;
     --keep) keep=${2:?--keep needs a folder}; shift 2 ;;
     --from) from=${2:?--from needs a folder}; shift 2 ;;
-    -h|--help) sed -n '2,26p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,29p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "regenerate-docs.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
-case "$only" in ""|benchmarks|results|correspondence|registered|landmarks|landing) ;;
-  *) echo "regenerate-docs.sh: --only benchmarks|results|correspondence|registered|landmarks|landing" >&2; exit 2 ;;
+case "$only" in ""|benchmarks|results|correspondence|registered|landmarks|landing|pull) ;;
+  *) echo "regenerate-docs.sh: --only benchmarks|results|correspondence|registered|landmarks|landing|pull" >&2; exit 2 ;;
 esac
 want() { [ -z "$only" ] || [ "$only" = "$1" ]; }
 
@@ -224,6 +226,25 @@ EOF
       step "landing-$key" "$facehex" run "$ct" -o "$out/landing-$key"
       step "landing-$key-free" "$facehex" run "$ct" --pull-found-landmarks off -o "$out/landing-$key-free"
       rm -f "$out"/landing-"$key"*/*.vtu
+    done
+  fi
+  if want pull; then
+    # What each landmark's pull costs on the known-answer cases and buys on the real CTs: the pull whole (the
+    # default), without the glabella and nasion, without the mouth corners, and off.
+    cts=(bundled-ct:resources/ct/headsq/headsq.mhd)
+    [ -f ../shared/data/ct/vhfemale-head.mha ] && cts+=(vhf:../shared/data/ct/vhfemale-head.mha)
+    for variant in "all:" "no-profile:--landmarks-not-pulled glabella,nasion" \
+      "no-mouth:--landmarks-not-pulled cheilion left,cheilion right" "off:--pull-found-landmarks off"; do
+      IFS=: read -r key how <<<"$variant"
+      args=()
+      [ -n "$how" ] && args=("${how%% *}" "${how#* }")
+      step "pull-$key" "$facehex" bench --correspondence -o "$out/pull-$key" --models split,open-3,closed-3 \
+        --deformation-models split,closed-3 --warps random-2,nose --cts none "${args[@]}"
+      for entry in "${cts[@]}"; do
+        IFS=: read -r ct_key ct <<<"$entry"
+        step "pull-$key-$ct_key" "$facehex" run "$ct" -o "$out/pull-$key-$ct_key" "${args[@]}"
+        rm -f "$out/pull-$key-$ct_key"/*.vtu
+      done
     done
   fi
   if want benchmarks; then
@@ -569,6 +590,48 @@ if only in ("", "landing"):
         "results-landing": machine_line() + "\n\n" + table(["mm across the face"] + [c[0] for c in runs], rows),
         "results-landing-hand-placed": table(["mm from the hand-placed landmark"] + [c[0] for c in runs],
                                              hand_rows)})
+
+# ---- docs/results.md: what each landmark's pull costs and buys ----
+if only in ("", "pull"):
+    variants = [("all", "all (the default)"), ("no-profile", "all but the glabella and nasion"),
+                ("no-mouth", "all but the mouth corners"), ("off", "none (`--pull-found-landmarks off`)")]
+    benches = {key: json.load(open(os.path.join(out, f"pull-{key}", "correspondence.json")))
+               for key, _ in variants if os.path.exists(os.path.join(out, f"pull-{key}", "correspondence.json"))}
+    cases = [c["name"] for c in next(iter(benches.values()))["cases"]] if benches else []
+
+    def case_cell(bench, name):
+        hit = [c for c in bench["cases"] if c["name"] == name]
+        if not hit or "error_mm" not in hit[0]:
+            return "failed"
+        e = hit[0]["error_mm"]
+        return f"{e['all']['mean']:.2f} ({e['regions']['landmarks']['mean']:.2f})"
+
+    known_rows = [[label] + [case_cell(benches[key], name) for name in cases] for key, label in variants if key in benches]
+    references = {"bundled-ct": "tests/data/landmarks/headsq.json", "vhf": "tests/data/landmarks/vhfemale-head.json"}
+    groups = [("all", None), ("glabella, nasion", ("glabella", "nasion")),
+              ("mouth corners", ("cheilion left", "cheilion right"))]
+    real_columns, real_rows = [], []
+    for ct_key, ct_label in (("bundled-ct", "bundled CT"), ("vhf", "Visible Human")):
+        if not all(os.path.exists(os.path.join(out, f"pull-{key}-{ct_key}", "report.json")) for key, _ in variants):
+            continue
+        real_columns += [f"{ct_label}: {g}" for g, _ in groups]
+    for key, label in variants:
+        row = [label]
+        for ct_key in ("bundled-ct", "vhf"):
+            path = os.path.join(out, f"pull-{key}-{ct_key}", "report.json")
+            if not all(os.path.exists(os.path.join(out, f"pull-{k}-{ct_key}", "report.json")) for k, _ in variants):
+                continue
+            ref = {l["name"]: l["position"] for l in json.load(open(references[ct_key]))["landmarks"]}
+            landed = {l["name"]: l["landed"] for l in json.load(open(path))["feature_landing"]["landmarks"]}
+            for _, names in groups:
+                mm = [math.hypot(landed[n][0] - ref[n][0], landed[n][2] - ref[n][2])
+                      for n in landed if n in ref and (names is None or n in names)]
+                row.append(f"{sum(mm) / len(mm):.1f}" if mm else "")
+        real_rows.append(row)
+    write_blocks("docs/results.md", {
+        "results-pull-machine": machine_line(),
+        "results-pull-known": table(["landmarks pulling"] + cases, known_rows),
+        "results-pull-real": table(["landmarks pulling"] + real_columns, real_rows)})
 
 # ---- docs/benchmarks.md ----
 if only in ("", "benchmarks"):

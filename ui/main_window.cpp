@@ -24,8 +24,10 @@
 #include <QToolBar>
 #include <QUndoGroup>
 #include <QUndoStack>
+#include <algorithm>
 #include <utility>
 
+#include "core/face/landmark_file.h"
 #include "core/io/mesh_io.h"
 #include "core/segment/ct_volume.h"
 #include "core/util/resources.h"
@@ -313,6 +315,25 @@ void MainWindow::createMenusAndToolbar() {
   run->addAction(shapeRelaxation_);
   run->addAction(registeredSkin_);
   run->addAction(pullLandmarks_);
+  // One checkable entry per landmark, checked while it may pull (the CLI's --landmarks-not-pulled lists the others).
+  QMenu* pulling = run->addMenu(tr("&Landmarks that pull"));
+  pulling->setObjectName("Landmarks_that_pull");
+  for (const std::string& name : landmark_names()) {
+    QAction* a = pulling->addAction(QString::fromStdString(name));
+    a->setCheckable(true);
+    const std::vector<std::string>& out = controller_->options().landmarks_not_pulled;
+    a->setChecked(std::find(out.begin(), out.end(), name) == out.end());
+    a->setToolTip(
+        tr("Unchecked: this landmark, found or given, does not pull the registration and lands where the "
+           "skins' shapes put it (the CLI's --landmarks-not-pulled)"));
+    connect(a, &QAction::toggled, this, [this, name](bool on) {
+      TransferOptions o = controller_->options();
+      std::vector<std::string>& left_out = o.landmarks_not_pulled;
+      left_out.erase(std::remove(left_out.begin(), left_out.end(), name), left_out.end());
+      if (!on) left_out.push_back(name);
+      controller_->setOptions(o);
+    });
+  }
   menuBar()->addMenu(tr("&Help"))->addAction(about_);
   rebuildRecentMenu();
 

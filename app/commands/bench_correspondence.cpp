@@ -26,10 +26,8 @@ namespace {
 using nlohmann::json;
 
 std::vector<std::string> list(const std::string& text) {
-  std::vector<std::string> items;
-  std::stringstream ss(text);
-  for (std::string item; std::getline(ss, item, ',');)
-    if (!item.empty() && item != "none") items.push_back(item);
+  std::vector<std::string> items = split_commas(text);
+  items.erase(std::remove(items.begin(), items.end(), "none"), items.end());
   return items;
 }
 

@@ -54,7 +54,8 @@ struct LandmarkPull {
 };
 
 // The patient's landmarks (found, estimated or given) paired with the standard's of the same names
-// (standard_features.h) when the user gave them or with pull_found; none otherwise. The standard's side is its landmark
+// (standard_features.h) when the user gave them or with options.pull_found_landmarks, but for
+// options.landmarks_not_pulled; none otherwise. The standard's side is its landmark
 // vertex, the point feature_landing measures (its open eyes' and mouth's corners are its rims' ends), else where its
 // finder placed the landmark. The patient's side is the landmark's point on the model's skin: a corner of a closed eye
 // or mouth read in the CT lies in a slit the model's skin bridges, and the registration snaps the standard onto these
@@ -62,11 +63,13 @@ struct LandmarkPull {
 // landmark or behind it (along the face's anterior axis, +y: where the landmark is seen from the front, as the
 // landing is measured), else its closest point.
 LandmarkPull landmark_pull(const StandardSetup& standard, const PatientSetup& patient, const StandardFeatures& features,
-                           bool pull_found) {
+                           const TransferOptions& options) {
   LandmarkPull pull;
-  if (!patient.landmarks || (!patient.landmarks->given && !pull_found)) return pull;
+  if (!patient.landmarks || (!patient.landmarks->given && !options.pull_found_landmarks)) return pull;
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> matched;
   for (const NamedLandmark& l : named_landmarks(*patient.landmarks)) {
+    const std::vector<std::string>& left_out = options.landmarks_not_pulled;
+    if (std::find(left_out.begin(), left_out.end(), l.name) != left_out.end()) continue;
     const auto vertex = features.landmark_vertices.find(l.name);
     const auto point = features.landmarks.points.find(l.name);
     if (vertex != features.landmark_vertices.end()) {
@@ -148,8 +151,7 @@ TransferResult transfer(const StandardSetup& standard, const PatientSetup& patie
       standard_seconds = clock.lap();
     }
     try {
-      const LandmarkPull pull =
-          features ? landmark_pull(standard, patient, *features, options.pull_found_landmarks) : LandmarkPull{};
+      const LandmarkPull pull = features ? landmark_pull(standard, patient, *features, options) : LandmarkPull{};
       const RegisteredSidesOptions registration_options;
       r.registration = register_sides(standard.domain, standard_p->fields.uvw, patient.mesh, patient.source(),
                                       registration_options, &pull.pairs, sub_progress(progress, 0.1, 0.2));

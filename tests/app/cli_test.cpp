@@ -557,6 +557,26 @@ TEST_F(Cli, TheBundledCtMeshedAt3mmEndsWithNoInvertedCell) {
   const Result bad = run("run " + facehex::default_ct() + " --pull-found-landmarks maybe -o " + path("bad"));
   EXPECT_EQ(bad.status, 2) << bad.output;
   EXPECT_NE(bad.output.find("--pull-found-landmarks: expects on or off, got 'maybe'"), std::string::npos) << bad.output;
+  // A landmark left out of the pull by name: that one lands where the skin's registration puts it (the right mouth
+  // corner millimetres off), the others as pulled.
+  const Result some = run("run " + facehex::default_ct() +
+                          " --edge-length 3 --landmarks-not-pulled 'cheilion right' -o " + path("some"));
+  ASSERT_EQ(some.status, 0) << some.output;
+  nlohmann::json some_report;
+  std::ifstream(path("some/report.json")) >> some_report;
+  const std::map<std::string, double> some_pulled = found_landing(some_report["feature_landing"]);
+  ASSERT_EQ(some_pulled.size(), pulled.size());
+  EXPECT_GT(some_pulled.at("cheilion right"), 1.0);
+  for (const auto& [name, mm] : pulled) {
+    if (name == "cheilion right") continue;
+    EXPECT_LT(some_pulled.at(name), mm + 0.5) << name;
+  }
+  const Result unknown =
+      run("run " + facehex::default_ct() + " --landmarks-not-pulled 'glabella,chelion left' -o " + path("unknown"));
+  EXPECT_EQ(unknown.status, 2) << unknown.output;
+  EXPECT_NE(unknown.output.find("--landmarks-not-pulled: 'chelion left' is no landmark FaceHex knows (glabella, "),
+            std::string::npos)
+      << unknown.output;
 }
 
 // The bundled CT with its chin lowered 8 degrees on its own grid (tests/core/segment/pitched_ct.h): its last slice

@@ -21,6 +21,7 @@
 #include <QFile>
 #include <QLabel>
 #include <QLineEdit>
+#include <QMenu>
 #include <QMessageBox>
 #include <QProgressBar>
 #include <QPushButton>
@@ -40,6 +41,7 @@
 #include <QUndoStack>
 
 #include "core/face/automatic_constraints.h"
+#include "core/face/landmark_file.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh/hex_to_tets.h"
 #include "core/mesh/tet_topology.h"
@@ -573,6 +575,27 @@ void GuiTest::foundLandmarksCanPullTheRegistration() {
   QVERIFY2(pulled_mean < 0.5 * free_mean, qPrintable(QString("%1 against %2 mm").arg(pulled_mean).arg(free_mean)));
   pull->trigger();
   QVERIFY(window_->controller()->options().pull_found_landmarks);
+  // Run > Landmarks that pull: one entry per landmark; unchecking the right mouth corner leaves it out of the pull,
+  // and the standard's lands where the skins' shapes put it, the others still on the patient's.
+  auto* pulling = window_->findChild<QMenu*>("Landmarks_that_pull");
+  QVERIFY(pulling);
+  QAction* corner = nullptr;
+  for (QAction* a : pulling->actions())
+    if (a->text() == "cheilion right") corner = a;
+  QVERIFY(corner && corner->isCheckable() && corner->isChecked());
+  QCOMPARE(pulling->actions().size(), static_cast<int>(landmark_names().size()));
+  corner->trigger();
+  QCOMPARE(window_->controller()->options().landmarks_not_pulled, std::vector<std::string>{"cheilion right"});
+  QVERIFY2(runTransferAndWait(), qPrintable(error_));
+  for (const FeatureLanding& l : session()->transfer()->landing) {
+    if (l.name == "cheilion right")
+      QVERIFY2(l.distance > 1.0, qPrintable(QString("the unpulled corner lands %1 mm away").arg(l.distance)));
+    else
+      QVERIFY2(l.distance < 0.5,
+               qPrintable(QString("%1 lands %2 mm away").arg(QString::fromStdString(l.name)).arg(l.distance)));
+  }
+  corner->trigger();
+  QVERIFY(window_->controller()->options().landmarks_not_pulled.empty());
 }
 
 void GuiTest::cancelStopsTheSegmentation() {
