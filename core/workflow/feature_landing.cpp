@@ -1,5 +1,6 @@
 #include "core/workflow/feature_landing.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -8,7 +9,7 @@
 namespace facehex {
 
 std::vector<FeatureLanding> feature_landing(const StandardFeatures& standard, const Eigen::MatrixXd& transferred,
-                                            const FaceLandmarks& patient) {
+                                            const FaceLandmarks& patient, const std::vector<std::string>& pulled) {
   std::vector<FeatureLanding> out;
   const HeadTurn frame = head_turn_of(patient.plane);
   for (const NamedLandmark& l : named_landmarks(patient)) {
@@ -16,7 +17,8 @@ std::vector<FeatureLanding> feature_landing(const StandardFeatures& standard, co
     if (vertex == standard.landmark_vertices.end() || vertex->second >= transferred.rows()) continue;
     const Eigen::Vector3d landed = transferred.row(vertex->second).transpose();
     const Eigen::Vector3d apart = frame.to_head(landed) - frame.to_head(l.position);
-    out.push_back({l.name, std::hypot(apart.x(), apart.z()), l.status, landed, l.position});
+    const bool pulled_it = std::find(pulled.begin(), pulled.end(), l.name) != pulled.end();
+    out.push_back({l.name, std::hypot(apart.x(), apart.z()), l.status, landed, l.position, pulled_it});
   }
   return out;
 }
@@ -51,6 +53,7 @@ nlohmann::json feature_landing_json(const std::vector<FeatureLanding>& landing) 
     list.push_back({{"name", l.name},
                     {"mm", l.distance},
                     {"patient", status_name(l.patient_status)},
+                    {"pulled", l.pulled},
                     {"landed", {l.landed.x(), l.landed.y(), l.landed.z()}},
                     {"patient_at", {l.patient.x(), l.patient.y(), l.patient.z()}}});
   return {{"mean_mm", t.mean}, {"max_mm", t.max}, {"landmarks", list}};
@@ -66,7 +69,15 @@ std::string feature_landing_text(const std::vector<FeatureLanding>& landing) {
     << " mm across the face from the patient's on average";
   if (t.found > 0 && t.found < static_cast<int>(landing.size()))
     s << " (" << t.found_mean << " mm at the " << t.found << " not estimated)";
-  s << ", farthest " << t.farthest->name << " " << t.max << " mm\n";
+  s << ", farthest " << t.farthest->name << " " << t.max << " mm";
+  std::string not_pulled;
+  bool any_pulled = false;
+  for (const FeatureLanding& l : landing) {
+    any_pulled = any_pulled || l.pulled;
+    if (!l.pulled) not_pulled += (not_pulled.empty() ? "" : ", ") + l.name;
+  }
+  if (any_pulled && !not_pulled.empty()) s << "; not pulled: " << not_pulled;
+  s << "\n";
   return s.str();
 }
 

@@ -23,17 +23,20 @@ struct FeatureLanding {
   LandmarkStatus patient_status = LandmarkStatus::found;
   Eigen::Vector3d landed = Eigen::Vector3d::Zero();   // the standard's landmark where the transfer put it (mm)
   Eigen::Vector3d patient = Eigen::Vector3d::Zero();  // the patient's landmark (mm)
+  bool pulled = false;  // the landmark pulled the skin's registration (core/workflow/transfer.h)
 };
 
-// transferred: the transferred standard's vertices (#V x 3, the standard's vertex order). In landmark_names() order.
+// transferred: the transferred standard's vertices (#V x 3, the standard's vertex order); pulled: the names of the
+// landmarks that pulled the registration. In landmark_names() order.
 std::vector<FeatureLanding> feature_landing(const StandardFeatures& standard, const Eigen::MatrixXd& transferred,
-                                            const FaceLandmarks& patient);
+                                            const FaceLandmarks& patient, const std::vector<std::string>& pulled = {});
 
-// {"mean_mm", "max_mm", "landmarks": [{"name", "mm", "patient": "found" | "estimated" | "given", "landed": [x, y, z],
-// "patient_at": [x, y, z]}, ...]}; null when there is none.
+// {"mean_mm", "max_mm", "landmarks": [{"name", "mm", "patient": "found" | "estimated" | "given", "pulled": bool,
+// "landed": [x, y, z], "patient_at": [x, y, z]}, ...]}; null when there is none.
 nlohmann::json feature_landing_json(const std::vector<FeatureLanding>& landing);
 // "anatomy: the standard's 13 landmarks land 1.4 mm across the face from the patient's on average (1.2 mm at the 9
-// not estimated), farthest exocanthion left 3.1 mm\n", or empty.
+// not estimated), farthest exocanthion left 3.1 mm\n", with "; not pulled: cheilion right" before the newline when some
+// landmarks pulled and others did not; or empty.
 std::string feature_landing_text(const std::vector<FeatureLanding>& landing);
 
 }  // namespace facehex

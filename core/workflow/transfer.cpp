@@ -51,6 +51,7 @@ constexpr double kSlitDepth = 10;  // mm: how far in front of or behind a landma
 struct LandmarkPull {
   PointPairs pairs;
   std::vector<int> standard_vertices;  // the paired landmark vertices
+  std::vector<std::string> names;      // the landmarks paired
 };
 
 // The patient's landmarks (found, estimated or given) paired with the standard's of the same names
@@ -75,8 +76,10 @@ LandmarkPull landmark_pull(const StandardSetup& standard, const PatientSetup& pa
     if (vertex != features.landmark_vertices.end()) {
       matched.emplace_back(standard.mesh.V.row(vertex->second).transpose(), l.position);
       pull.standard_vertices.push_back(vertex->second);
+      pull.names.push_back(l.name);
     } else if (point != features.landmarks.points.end()) {
       matched.emplace_back(point->second, l.position);
+      pull.names.push_back(l.name);
     }
   }
   if (matched.empty()) return pull;
@@ -142,6 +145,7 @@ TransferResult transfer(const StandardSetup& standard, const PatientSetup& patie
   const bool cached = standard_p.has_value();
   double standard_seconds = 0;
   bool done = false;
+  std::vector<std::string> pulled;  // the landmarks that pulled the registration the transfer used
   if (options.skin_correspondence == SkinCorrespondence::registered) {
     if (!standard_p) {
       Stopwatch clock;
@@ -164,6 +168,7 @@ TransferResult transfer(const StandardSetup& standard, const PatientSetup& patie
                            without_automatic_features(patient, r.left_out_constraints), patient.source(), healthy,
                            sub_progress(progress, 0.2, 0.97), &*standard_p, &sides);
       done = true;
+      pulled = pull.names;
     } catch (const Error& e) {
       // Where the registered skin cannot give a usable map (the registration left the skins apart and the fields
       // fold), the feature lines still may: the run goes on with them and says why.
@@ -202,7 +207,7 @@ TransferResult transfer(const StandardSetup& standard, const PatientSetup& patie
   r.patient_quality = quality_report(r.run.patient_hex, &standard.mesh);
   r.distance = side_vertex_distances(r.run, standard.mesh);
   if (patient_as_given.landmarks && features)
-    r.landing = feature_landing(*features, r.patient_hex.V, *patient_as_given.landmarks);
+    r.landing = feature_landing(*features, r.patient_hex.V, *patient_as_given.landmarks, pulled);
   report_progress(progress, "quality", 1.0);
   return r;
 }

@@ -571,6 +571,9 @@ TEST_F(Cli, TheBundledCtMeshedAt3mmEndsWithNoInvertedCell) {
     if (name == "cheilion right") continue;
     EXPECT_LT(some_pulled.at(name), mm + 0.5) << name;
   }
+  for (const auto& l : some_report["feature_landing"]["landmarks"])
+    EXPECT_EQ(l["pulled"].get<bool>(), l["name"] != "cheilion right") << l["name"];
+  EXPECT_NE(some.output.find("; not pulled: cheilion right\n"), std::string::npos) << some.output;
   const Result unknown =
       run("run " + facehex::default_ct() + " --landmarks-not-pulled 'glabella,chelion left' -o " + path("unknown"));
   EXPECT_EQ(unknown.status, 2) << unknown.output;

@@ -588,6 +588,7 @@ void GuiTest::foundLandmarksCanPullTheRegistration() {
   QCOMPARE(window_->controller()->options().landmarks_not_pulled, std::vector<std::string>{"cheilion right"});
   QVERIFY2(runTransferAndWait(), qPrintable(error_));
   for (const FeatureLanding& l : session()->transfer()->landing) {
+    QCOMPARE(l.pulled, l.name != "cheilion right");
     if (l.name == "cheilion right")
       QVERIFY2(l.distance > 1.0, qPrintable(QString("the unpulled corner lands %1 mm away").arg(l.distance)));
     else

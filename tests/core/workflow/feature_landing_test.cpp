@@ -28,7 +28,7 @@ TEST(FeatureLanding, TheDistanceAcrossTheFaceOfEachTransferredLandmarkFromThePat
   transferred << 0, 75, 13,  // 3 mm above the stomion and 5 mm further back (in its slit): 3 mm across the face
       -21, 70, 9,            // 4 mm in x and 3 in z: 5 mm
       5, 5, 5;
-  const std::vector<FeatureLanding> landing = feature_landing(standard, transferred, patient);
+  const std::vector<FeatureLanding> landing = feature_landing(standard, transferred, patient, {"stomion"});
   ASSERT_EQ(landing.size(), 2u);
   EXPECT_EQ(landing[0].name, "stomion");  // landmark_names() order: the profile first
   EXPECT_NEAR(landing[0].distance, 3.0, 1e-12);
@@ -40,9 +40,15 @@ TEST(FeatureLanding, TheDistanceAcrossTheFaceOfEachTransferredLandmarkFromThePat
   EXPECT_NEAR(j["mean_mm"].get<double>(), 4.0, 1e-12);
   EXPECT_NEAR(j["max_mm"].get<double>(), 5.0, 1e-12);
   EXPECT_EQ(j["landmarks"][1]["patient"], "estimated");
+  EXPECT_EQ(j["landmarks"][0]["pulled"], true);
+  EXPECT_EQ(j["landmarks"][1]["pulled"], false);
   EXPECT_EQ(j["landmarks"][1]["landed"], nlohmann::json({-21.0, 70.0, 9.0}));
   EXPECT_EQ(j["landmarks"][1]["patient_at"], nlohmann::json({-25.0, 70.0, 12.0}));
   EXPECT_EQ(feature_landing_text(landing),
+            "anatomy: the standard's 2 landmarks land 4.0 mm across the face from the patient's on average (3.0 mm "
+            "at the 1 not estimated), farthest cheilion right 5.0 mm; not pulled: cheilion right\n");
+  // None pulled (the pull off, or the feature lines): nothing to single out.
+  EXPECT_EQ(feature_landing_text(feature_landing(standard, transferred, patient)),
             "anatomy: the standard's 2 landmarks land 4.0 mm across the face from the patient's on average (3.0 mm "
             "at the 1 not estimated), farthest cheilion right 5.0 mm\n");
 }
