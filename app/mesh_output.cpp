@@ -1,7 +1,6 @@
 #include "app/mesh_output.h"
 
 #include <algorithm>
-#include <sstream>
 
 #include "core/util/error.h"
 #include "core/util/text_file.h"
@@ -16,10 +15,8 @@ MeshWriteOptions write_options(const Args& args) {
 
 std::vector<std::string> export_formats(const std::string& list) {
   std::vector<std::string> formats;
-  std::stringstream in(list);
   const std::vector<std::string> writable = writable_volume_extensions();
-  for (std::string f; std::getline(in, f, ',');) {
-    if (f.empty()) continue;
+  for (const std::string& f : split_commas(list)) {
     if (std::find(writable.begin(), writable.end(), "." + f) == writable.end())
       throw UsageError("--export", "cannot write '" + f + "' (use feb, inp, msh, vtk or vtu)");
     formats.push_back(f);

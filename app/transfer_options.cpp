@@ -1,6 +1,5 @@
 #include "app/transfer_options.h"
 
-#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -191,13 +190,10 @@ TransferOptions transfer_options(const Args& args) {
     throw UsageError("--pull-found-landmarks", "expects on or off, got '" + pull + "'");
   o.pull_found_landmarks = pull == "on";
   o.landmarks_not_pulled = split_commas(args.get("landmarks-not-pulled"));
-  const std::vector<std::string>& known = landmark_names();
   for (const std::string& name : o.landmarks_not_pulled)
-    if (std::find(known.begin(), known.end(), name) == known.end()) {
-      std::string names;
-      for (const std::string& k : known) names += (names.empty() ? "" : ", ") + k;
-      throw UsageError("--landmarks-not-pulled", "'" + name + "' is no landmark FaceHex knows (" + names + ")");
-    }
+    if (!is_landmark_name(name))
+      throw UsageError("--landmarks-not-pulled",
+                       "'" + name + "' is no landmark FaceHex knows (" + landmark_names_text() + ")");
   const std::string relaxation = args.get("shape-relaxation");
   o.shape_relaxation = relaxation != "off";
   if (o.shape_relaxation) {

@@ -36,12 +36,8 @@ LandmarkStatus status_of(const std::string& path, const std::string& text, const
 }
 
 void check_name(const std::string& path, const std::string& name, std::set<std::string>& seen) {
-  const auto& names = landmark_names();
-  if (std::find(names.begin(), names.end(), name) == names.end()) {
-    std::string known;
-    for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
-    throw Error(path, "unknown landmark '" + name + "' (known: " + known + ")");
-  }
+  if (!is_landmark_name(name))
+    throw Error(path, "unknown landmark '" + name + "' (known: " + landmark_names_text() + ")");
   if (!seen.insert(name).second) throw Error(path, "landmark '" + name + "' is given twice");
 }
 
@@ -113,6 +109,17 @@ const std::vector<std::string>& landmark_names() {
                                                  "exocanthion right", "cheilion left",    "cheilion right",
                                                  "tragus left",       "tragus right"};
   return names;
+}
+
+bool is_landmark_name(const std::string& name) {
+  const std::vector<std::string>& names = landmark_names();
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+std::string landmark_names_text() {
+  std::string text;
+  for (const std::string& name : landmark_names()) text += (text.empty() ? "" : ", ") + name;
+  return text;
 }
 
 bool lies_on_model_skin(const std::string& name) { return name != kTragusNames[0] && name != kTragusNames[1]; }

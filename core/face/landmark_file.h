@@ -32,6 +32,9 @@ struct NamedLandmark {
 // The standard facial landmarks FaceHex knows, in anatomical order: the mid-sagittal profile from the top, then the
 // paired ones (patient's left, then right).
 const std::vector<std::string>& landmark_names();
+// Whether `name` is one of landmark_names(); and those names joined by ", ", for messages.
+bool is_landmark_name(const std::string& name);
+std::string landmark_names_text();
 // Whether the landmark lies on a face model's skin: all but the tragi, which lie behind its posterior cut (the
 // segmentation finds them in the CT, core/mesh/ct_landmarks.h).
 bool lies_on_model_skin(const std::string& name);

@@ -76,11 +76,12 @@ LandmarkPull landmark_pull(const StandardSetup& standard, const PatientSetup& pa
     if (vertex != features.landmark_vertices.end()) {
       matched.emplace_back(standard.mesh.V.row(vertex->second).transpose(), l.position);
       pull.standard_vertices.push_back(vertex->second);
-      pull.names.push_back(l.name);
     } else if (point != features.landmarks.points.end()) {
       matched.emplace_back(point->second, l.position);
-      pull.names.push_back(l.name);
+    } else {
+      continue;
     }
+    pull.names.push_back(l.name);
   }
   if (matched.empty()) return pull;
   pull.pairs.standard.resize(static_cast<Eigen::Index>(matched.size()), 3);
