@@ -5,10 +5,10 @@
 # with the date, the commit, the core count and the CPU model. Everything outside the markers is left as it is.
 #
 # Usage, from anywhere in the repository, after a Release build of facehex:
-#   scripts/regenerate-docs.sh [--only benchmarks|results|correspondence|registered|landmarks|landing|pull]
+#   scripts/regenerate-docs.sh [--only benchmarks|results|correspondence|registered|landmarks|landing|pull|objects]
 #                              [--keep DIR]
 #                              [--from DIR]
-#     --only benchmarks|results|correspondence|registered|landmarks|landing|pull  run and write one part only (correspondence:
+#     --only benchmarks|results|correspondence|registered|landmarks|landing|pull|objects  run and write one part only (correspondence:
 #                                the correspondence section of docs/results.md, the paper's feature lines: `facehex
 #                                bench --correspondence --skin-correspondence features`; registered: its tables of the
 #                                registered skin, --skin-correspondence registered; landmarks: the automatic landmarks against
@@ -16,7 +16,9 @@
 #                                hand readings) in docs/benchmarks.md, from `facehex segment` and `constraints`; landing:
 #                                where the standard's landmarks land on the real CTs' runs, by default and with
 #                                --pull-found-landmarks off, in docs/results.md; pull: the known-answer cases and the real
-#                                CTs' landing with the landmarks' pull in part or off, in docs/results.md)
+#                                CTs' landing with the landmarks' pull in part or off, in docs/results.md; objects:
+#                                the Visible Human with straps and tape on its face (scripts/strap_ct.py), its landmarks
+#                                against the bare CT's and the hand-placed ones, in docs/benchmarks.md)
 #     --keep DIR                 keep the raw JSON, logs and plots in DIR (default: a temporary folder, removed)
 #     --from DIR                 run nothing: write the pages from the JSON a previous --keep DIR left
 #   FACEHEX=path/to/facehex overrides build/bin/facehex.
@@ -43,8 +45,8 @@ while [ $# -gt 0 ]; do
     *) echo "regenerate-docs.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
-case "$only" in ""|benchmarks|results|correspondence|registered|landmarks|landing|pull) ;;
-  *) echo "regenerate-docs.sh: --only benchmarks|results|correspondence|registered|landmarks|landing|pull" >&2; exit 2 ;;
+case "$only" in ""|benchmarks|results|correspondence|registered|landmarks|landing|pull|objects) ;;
+  *) echo "regenerate-docs.sh: --only benchmarks|results|correspondence|registered|landmarks|landing|pull|objects" >&2; exit 2 ;;
 esac
 want() { [ -z "$only" ] || [ "$only" = "$1" ]; }
 
@@ -246,6 +248,24 @@ EOF
         rm -f "$out/pull-$key-$ct_key"/*.vtu
       done
     done
+  fi
+  if want objects && [ -f ../shared/data/ct/vhfemale-head.mha ] && /usr/bin/python3 -c 'import vtk' 2>/dev/null; then
+    # Objects on the skin: a layer of a soft tissue's density (0 HU) in front of the skin over a band of slices.
+    ct=../shared/data/ct/vhfemale-head.mha
+    step objects-bare "$facehex" segment "$ct" -o "$out/objects-bare.vtu" --write-landmarks "$out/objects-bare.json"
+    for spec in 150,170,4 135,155,4 125,145,4 140,175,3 155,190,6 140,160,2.5 118,128,1 20,35,3 15,40,6; do
+      /usr/bin/python3 scripts/strap_ct.py "$ct" "$spec,0" -452 "$out/strapped.mha" >/dev/null
+      # the step's standard output, $out/objects-segment-$spec.json, is the command's text: the objects it found
+      step "objects-segment-$spec" "$facehex" segment "$out/strapped.mha" -o "$out/objects-$spec.vtu" \
+        --write-landmarks "$out/objects-$spec.json"
+    done
+    if command -v xvfb-run >/dev/null; then
+      xvfb-run -a /usr/bin/python3 scripts/render_model_landmarks.py "$out/objects-150,170,4.vtu" \
+        "$out/objects-150,170,4.json" side docs/img/vhfemale_strap_side.png \
+        "Visible Human, 4 mm strap at z 150-170: found (blue), estimated (orange), by hand (black)" \
+        tests/data/landmarks/vhfemale-head.json
+    fi
+    rm -f "$out/strapped.mha" "$out"/objects-*.vtu
   fi
   if want benchmarks; then
     step bench-sizes "$facehex" bench --sizes 10000,50000,200000 --json
@@ -531,6 +551,36 @@ if only in ("", "landmarks"):
         "bench-landmarks": machine_line().split(" Wall-clock")[0] + "\n\n" + table(["landmark"] + [c[0] for c in columns], rows),
         "bench-landmark-readings": table(["landmark", "CT", "first reading to second", "found to first", "found to second"],
                                          reading_rows)})
+
+# ---- docs/benchmarks.md: objects on the skin ----
+if only in ("", "objects") and os.path.exists(os.path.join(out, "objects-bare.json")):
+    def marks(name):
+        return {l["name"]: l for l in json.load(open(os.path.join(out, name)))["landmarks"]}
+
+    bare = marks("objects-bare.json")
+    placed = {l["name"]: l for l in json.load(open(os.path.join(root, "tests/data/landmarks/vhfemale-head.json")))["landmarks"]}
+    rows = []
+    for spec in ("150,170,4", "135,155,4", "125,145,4", "140,175,3", "155,190,6", "140,160,2.5", "118,128,1",
+                 "20,35,3", "15,40,6"):
+        z0, z1, thick = spec.split(",")
+        where = "the forehead" if float(z0) >= 130 else "the nose's root" if float(z0) >= 100 else "the chin"
+        found = marks(f"objects-{spec}.json")
+        log = open(os.path.join(out, f"objects-segment-{spec}.json")).read()
+        seen = re.findall(r"an object lies on the skin's front from z = ([\d.]+) to ([\d.]+) mm, ([\d.]+) mm thick", log)
+        moved = [(n, math.dist(found[n]["position"], bare[n]["position"])) for n in bare if n in found]
+        moved = ", ".join(f"{n} {d:.1f}" for n, d in sorted(moved, key=lambda m: -m[1]) if d > 1.5) or "none"
+        hand = []
+        for n in ("glabella", "nasion", "pogonion", "menton"):
+            before, now = math.dist(bare[n]["position"], placed[n]["position"]), math.dist(found[n]["position"], placed[n]["position"])
+            if abs(now - before) > 0.5 or n in ("glabella", "nasion") and float(z0) >= 100:
+                hand.append(f"{n} {before:.1f} -> {now:.1f}" + (" (estimated)" if found[n]["status"] == "estimated" else ""))
+        rows.append([f"{thick} mm, z {z0}-{z1} ({where})",
+                     "; ".join(f"z {a}-{b}, {t} mm" for a, b, t in seen) or "none",
+                     moved, "; ".join(hand) or "as on the bare CT"])
+    write_blocks("docs/benchmarks.md", {
+        "bench-objects": machine_line().split(" Wall-clock")[0] + "\n\n" +
+        table(["layer of 0 HU on the skin", "object found", "landmarks moved over 1.5 mm from the bare CT's",
+               "from the hand-placed (bare CT -> with the layer)"], rows, ["---"] * 4)})
 
 # ---- docs/results.md: where the standard's landmarks land ----
 if only in ("", "landing"):

@@ -3,6 +3,7 @@
 
 #include "app/cli_args.h"
 #include "app/commands/commands.h"
+#include "core/face/face_landmarks.h"
 #include "core/fields/constraint_set.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh/corner_jacobian.h"
@@ -63,6 +64,7 @@ int cmd_info(const Argv& argv) {
     std::cout << "  landmarks found in the CT by the segmentation:\n";
     for (size_t side = 0; side < kTragusNames.size(); ++side) print(kTragusNames[side], found->tragi[side]);
     for (size_t c = 0; c < kEyeCornerNames.size(); ++c) print(kEyeCornerNames[c], found->eye_corners[c]);
+    for (const SkinObject& object : found->skin_objects) std::cout << "    " << skin_object_text(object) << "\n";
   }
   return 0;
 }

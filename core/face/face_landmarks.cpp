@@ -194,6 +194,36 @@ Profile skin_profile(const Eigen::MatrixXd& V, const std::vector<int>& skin, con
   return p;
 }
 
+// The profile under objects lying on the skin (core/mesh/ct_landmarks.h, SkinObject): over the z range of the skin
+// the CT shows under each, that skin, moved by the offset between it and the skin read at the range's ends (linear
+// between them; the skin read is the segmentation's smoothed surface, a little off the CT's own). The ranges.
+std::vector<std::pair<double, double>> read_under(const std::vector<SkinObject>& objects, Profile& p) {
+  std::vector<std::pair<double, double>> covered;
+  for (const SkinObject& o : objects) {
+    const double lo = o.skin.front().x(), hi = o.skin.back().x();
+    const auto under = [&](double z) {  // the CT's skin at z, linear between its points
+      const auto after = std::lower_bound(o.skin.begin(), o.skin.end(), z,
+                                          [](const Eigen::Vector2d& s, double at) { return s.x() < at; });
+      if (after == o.skin.begin()) return after->y();
+      if (after == o.skin.end()) return o.skin.back().y();
+      const Eigen::Vector2d& before = *(after - 1);
+      return before.y() + (after->y() - before.y()) * (z - before.x()) / (after->x() - before.x());
+    };
+    std::optional<Eigen::Vector3d> below, above;
+    for (const auto& bin : p.bins) {
+      if (bin && bin->z() < lo) below = bin;
+      if (bin && bin->z() > hi && !above) above = bin;
+    }
+    const double offset_lo = below ? below->y() - under(lo) : 0;
+    const double offset_hi = above ? above->y() - under(hi) : offset_lo;
+    for (auto& bin : p.bins)
+      if (bin && bin->z() >= lo && bin->z() <= hi)
+        bin->y() = under(bin->z()) + offset_lo + (offset_hi - offset_lo) * (bin->z() - lo) / (hi - lo);
+    covered.emplace_back(lo, hi);
+  }
+  return covered;
+}
+
 // The skin's mirror plane: per 2 mm row of z in [zlo, zhi], the plane x = c that best mirrors the front (the most
 // anterior skin point of each 1 mm column; core/util/mirror_symmetry.h) within `reach` of it; the median of the rows'
 // c. Searched within `search` of x_start, which it is when no row is wide enough.
@@ -439,7 +469,10 @@ FaceLandmarks find_in_head_frame(const Eigen::MatrixXd& V, const Eigen::VectorXi
                              kFaceMirrorReach, kFaceMirrorSearch);
     l.plane_source = "skin";
   }
-  const Profile profile = skin_profile(V, skin, l.plane, options.profile_band);
+  Profile profile = skin_profile(V, skin, l.plane, options.profile_band);
+  const std::vector<std::pair<double, double>> under_objects =
+      options.ct_landmarks ? read_under(options.ct_landmarks->skin_objects, profile)
+                           : std::vector<std::pair<double, double>>{};
   const Eigen::Vector3d front = require(profile.extreme(zmin + 0.1 * height, zmax - 0.1 * height, true), "nose tip");
   Profile::FrontLine cut_front{front.z(), front.y(), 0.0};
   std::optional<std::pair<double, double>> cut =
@@ -540,6 +573,12 @@ FaceLandmarks find_in_head_frame(const Eigen::MatrixXd& V, const Eigen::VectorXi
   l.points = {{"pronasale", prn},       {"subnasale", sn},        {"nasion", n},  {"glabella", g},
               {"labrale superius", ls}, {"labrale inferius", li}, {"stomion", st}};
   add_chin(profile, skin, V, l);
+  // The skin is not seen under an object: what the profile shows there is the object's front less its thickness.
+  for (const auto& [name, p] : l.points)
+    for (const auto& [lo, hi] : under_objects)
+      if (p.z() >= lo && p.z() <= hi && std::find(l.estimated.begin(), l.estimated.end(), name) == l.estimated.end())
+        l.estimated.push_back(name);
+  if (options.ct_landmarks) l.skin_objects = options.ct_landmarks->skin_objects;
   if (const auto corners = mouth_corners_upright(V, skin, l.plane, st, ls)) {
     l.points["cheilion right"] = corners->first;
     l.points["cheilion left"] = corners->second;
@@ -692,8 +731,18 @@ FaceLandmarks landmarks_from(const std::vector<NamedLandmark>& given, const std:
   return l;
 }
 
+std::string skin_object_text(const SkinObject& o) {
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(1) << "an object lies on the skin's front from z = " << o.z_low << " to "
+     << o.z_high << " mm, " << 0.5 * (o.thickness_low + o.thickness_high)
+     << " mm thick (a strap or tape): the landmarks there are read on the skin under it (estimated); the model keeps "
+        "it as soft tissue";
+  return os.str();
+}
+
 std::string landmarks_text(const FaceLandmarks& l, const std::string& indent) {
   std::ostringstream os;
+  for (const SkinObject& o : l.skin_objects) os << indent << skin_object_text(o) << "\n";
   if (!std::isnan(l.clipped_from))
     os << indent << "the scan's field of view cuts the face flat from z = " << l.clipped_from << " to " << l.clipped_to
        << " mm: landmarks inside the cut are estimated from typical proportions\n";

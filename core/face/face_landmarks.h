@@ -40,6 +40,9 @@
 // the nasion and glabella are found above the cut, unless the nasion found there lies further from the subnasale than
 // an adult's (70 mm: the cut reached past it); otherwise the pronasale, nasion and glabella are placed by typical
 // adult proportions above the subnasale (15, 55 and 67 mm) on the cut. Placed landmarks are listed in `estimated`.
+// Objects on the skin (a strap, thick tape: core/segment/skin_objects.h, carried with the CT's landmarks): the profile
+// is read under each, on the skin the CT shows there (moved onto the skin read at the ends of its range); the
+// landmarks found there are estimated.
 // The mouth corners (cheilion right, left): the ends of the mouth line traced out from the plane under the upper lip
 // (core/face/mouth_corners.h); absent where the lips show no such line. The tragi and eye corners: the ones the
 // segmentation found in the CT, when the model carries them (LandmarkOptions::ct_landmarks), and its stomion, read in
@@ -73,6 +76,9 @@ struct FaceLandmarks {
   // that lie inside the cut and were placed by typical proportions instead of found.
   double clipped_from = std::numeric_limits<double>::quiet_NaN(), clipped_to = clipped_from;
   std::vector<std::string> estimated;
+  // Objects lying on the skin's front that the segmentation found in the CT (LandmarkOptions::ct_landmarks): the
+  // profile is read under them, and the landmarks there are estimated.
+  std::vector<SkinObject> skin_objects;
   bool given = false;  // read from the user's file (landmarks_from), not found
 };
 
@@ -131,9 +137,13 @@ std::vector<NamedLandmark> named_landmarks(const FaceLandmarks& landmarks);
 // when a landmark the feature constraints need is missing.
 FaceLandmarks landmarks_from(const std::vector<NamedLandmark>& given, const std::string& source);
 
-// One line per landmark, "name at (x, y, z) mm", marked "(estimated)" where placed by proportions, and a first line
-// naming the field-of-view cut if there is one; each line starts with `indent`.
+// One line per landmark, "name at (x, y, z) mm", marked "(estimated)" where placed by proportions or read under an
+// object on the skin, after a line per such object (skin_object_text) and one naming the field-of-view cut if there is
+// one; each line starts with `indent`.
 std::string landmarks_text(const FaceLandmarks& landmarks, const std::string& indent);
+
+// "an object lies on the skin's front from z = 150.0 to 170.0 mm, 4.0 mm thick (a strap or tape): ...".
+std::string skin_object_text(const SkinObject& object);
 
 // The names, fields and selection radii of the feature constraints.
 struct FeatureSpec {

@@ -41,6 +41,38 @@ std::optional<CtLandmarks> ct_landmarks(const VolumeMesh& mesh, const std::strin
     if (t(r, 3) != 0 && t(r, 3) != 1) malformed("has a status that is neither 0 nor 1");
     *rows[r] = CtLandmark{t.row(r).head<3>().transpose(), t(r, 3) == 1};
   }
+  const auto objects = mesh.field_data.find(kSkinObjectsField);
+  if (objects == mesh.field_data.end()) return out;
+  const Eigen::MatrixXd& o = objects->second;
+  const auto under = mesh.field_data.find(kSkinUnderObjectsField);
+  const Eigen::MatrixXd skin = under == mesh.field_data.end() ? Eigen::MatrixXd(0, 3) : under->second;
+  const auto refuse = [&](const char* name, const Eigen::MatrixXd& given, const std::string& shape) {
+    std::ostringstream text;
+    text << given.format(Eigen::IOFormat(Eigen::StreamPrecision, Eigen::DontAlignCols, " ", "; "));
+    throw Error(source, std::string("the field data '") + name + "' (objects on the skin, " + shape +
+                            ") is not so: " + text.str() + "; remove '" + kSkinObjectsField + "' and '" +
+                            kSkinUnderObjectsField + "' to have them left out");
+  };
+  const std::string objects_shape = "#O x 4: z_low < z_high, the thicknesses there > 0, mm";
+  const std::string skin_shape = "#S x 3: an object's row, z increasing, y; two rows at least per object";
+  if (o.cols() != 4) refuse(kSkinObjectsField, o, objects_shape);
+  if (skin.cols() != 3) refuse(kSkinUnderObjectsField, skin, skin_shape);
+  for (Eigen::Index r = 0; r < o.rows(); ++r) {
+    if (!o.row(r).allFinite() || !(o(r, 0) < o(r, 1)) || !(o(r, 2) > 0) || !(o(r, 3) > 0))
+      refuse(kSkinObjectsField, o, objects_shape);
+    out.skin_objects.push_back({o(r, 0), o(r, 1), o(r, 2), o(r, 3), {}});
+  }
+  for (Eigen::Index r = 0; r < skin.rows(); ++r) {
+    const double object = skin(r, 0);
+    if (!skin.row(r).allFinite() || object < 0 || object >= static_cast<double>(o.rows()) ||
+        object != std::floor(object))
+      refuse(kSkinUnderObjectsField, skin, skin_shape);
+    auto& points = out.skin_objects[static_cast<size_t>(object)].skin;
+    if (!points.empty() && !(skin(r, 1) > points.back().x())) refuse(kSkinUnderObjectsField, skin, skin_shape);
+    points.emplace_back(skin(r, 1), skin(r, 2));
+  }
+  for (const SkinObject& object : out.skin_objects)
+    if (object.skin.size() < 2) refuse(kSkinUnderObjectsField, skin, skin_shape);
   return out;
 }
 
@@ -50,6 +82,20 @@ void set_ct_landmarks(VolumeMesh& mesh, const CtLandmarks& landmarks) {
   for (int r = 0; r < kRows; ++r)
     if (*rows[r]) t.row(r) << (*rows[r])->point.transpose(), (*rows[r])->estimated ? 1.0 : 0.0;
   mesh.field_data[kCtLandmarksField] = t;
+  mesh.field_data.erase(kSkinObjectsField);
+  mesh.field_data.erase(kSkinUnderObjectsField);
+  if (landmarks.skin_objects.empty()) return;
+  Eigen::MatrixXd o(static_cast<Eigen::Index>(landmarks.skin_objects.size()), 4);
+  std::vector<Eigen::RowVector3d> skin;
+  for (size_t i = 0; i < landmarks.skin_objects.size(); ++i) {
+    const SkinObject& s = landmarks.skin_objects[i];
+    o.row(static_cast<Eigen::Index>(i)) << s.z_low, s.z_high, s.thickness_low, s.thickness_high;
+    for (const Eigen::Vector2d& p : s.skin) skin.emplace_back(static_cast<double>(i), p.x(), p.y());
+  }
+  Eigen::MatrixXd under(static_cast<Eigen::Index>(skin.size()), 3);
+  for (size_t r = 0; r < skin.size(); ++r) under.row(static_cast<Eigen::Index>(r)) = skin[r];
+  mesh.field_data[kSkinObjectsField] = o;
+  mesh.field_data[kSkinUnderObjectsField] = under;
 }
 
 }  // namespace facehex

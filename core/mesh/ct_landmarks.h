@@ -5,16 +5,22 @@
 // (core/segment/tragus.h) behind the model's posterior cut, the eye corners (core/segment/eye_corners.h) and the
 // stomion (core/segment/stomion.h) in the closed eyes' and lips' slits, which the model's smoothed skin bridges. The
 // landmark finder takes them from the model (core/face/face_landmarks.h), the stomion in place of its own.
+// With them, as field data "skin_objects" (#O x 4: z_low, z_high, the two thicknesses) and "skin_under_objects" (#S x
+// 3: the object's row, z, y), the objects the segmentation found lying on the face's front (a strap, thick tape:
+// core/segment/skin_objects.h), which the model's skin includes and the landmark finder reads the profile under.
 #include <Eigen/Core>
 #include <array>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/mesh/mesh.h"
 
 namespace facehex {
 
 inline constexpr char kCtLandmarksField[] = "ct_landmarks";
+inline constexpr char kSkinObjectsField[] = "skin_objects";
+inline constexpr char kSkinUnderObjectsField[] = "skin_under_objects";
 
 struct CtLandmark {
   Eigen::Vector3d point;
@@ -31,10 +37,21 @@ inline constexpr std::array<const char*, 4> kEyeCornerNames = {"endocanthion rig
 
 inline constexpr char kStomionName[] = "stomion";
 
+// An object lying on the face's front over the heights z_low to z_high (mm, the head frame of the model's mid-sagittal
+// plane, core/mesh/head_turn.h, in which the landmark finder reads the profile), as thick as its edges' steps, and the
+// skin's profile under it as the CT shows it: (z, y) on the plane, bottom up, from below its lower edge to above its
+// upper one.
+struct SkinObject {
+  double z_low = 0, z_high = 0;
+  double thickness_low = 0, thickness_high = 0;  // mm
+  std::vector<Eigen::Vector2d> skin;
+};
+
 struct CtLandmarks {
   Tragi tragi;
   EyeCorners eye_corners;
   std::optional<CtLandmark> stomion;
+  std::vector<SkinObject> skin_objects;  // bottom up
 };
 
 // The field data's rows: the tragi, the eye corners, the stomion.
@@ -43,7 +60,9 @@ inline constexpr std::array<const char*, 7> kCtLandmarkNames = {
     kEyeCornerNames[2], kEyeCornerNames[3], kStomionName};
 
 // The landmarks, or none when the model does not carry them. Throws facehex::Error(source, ...) when the field data is
-// not 7 x 4 with rows of finite numbers (or all NaN) and a status of 0 or 1.
+// not 7 x 4 with rows of finite numbers (or all NaN) and a status of 0 or 1, or the skin objects' are not #O x 4 rows
+// of finite numbers with z_low < z_high and positive thicknesses and, for each, at least two rows of the skin under it
+// with z increasing.
 std::optional<CtLandmarks> ct_landmarks(const VolumeMesh& mesh, const std::string& source);
 
 void set_ct_landmarks(VolumeMesh& mesh, const CtLandmarks& landmarks);

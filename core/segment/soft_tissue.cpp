@@ -23,6 +23,7 @@
 #include "core/segment/palate_pitch.h"
 #include "core/segment/remesh.h"
 #include "core/segment/side_labels.h"
+#include "core/segment/skin_objects.h"
 #include "core/segment/stomion.h"
 #include "core/util/error.h"
 
@@ -282,8 +283,8 @@ SurfaceMesh level_surface_with_cuts(const Mask& tissue, FaceCuts& cuts, const Se
 }
 
 // The landmarks read in the CT by the ones found on the model's skin (its mid-sagittal plane, nasion, pronasale and
-// labralia) into `found`: the eye corners (eye_corners.h) and the stomion (stomion.h). False, and none read, when
-// those are not found: the transfer says why.
+// labralia) into `found`: the eye corners (eye_corners.h), the stomion (stomion.h) and the objects on the skin above
+// the nose tip (skin_objects.h). False, and none read, when those are not found: the transfer says why.
 bool read_slit_landmarks(const CtVolume& ct, const PatientModel& model, CtLandmarks& found) {
   FaceLandmarks landmarks;
   try {
@@ -296,6 +297,8 @@ bool read_slit_landmarks(const CtVolume& ct, const PatientModel& model, CtLandma
   if (has("nasion") && has("pronasale"))
     found.eye_corners = find_eye_corners(ct.intensity, skin, landmarks.plane, landmarks.points.at("nasion"),
                                          landmarks.points.at("pronasale"));
+  if (has("pronasale"))
+    found.skin_objects = find_skin_objects(ct.intensity, skin, landmarks.plane, landmarks.points.at("pronasale"));
   if (has("labrale superius") && has("labrale inferius"))
     found.stomion = find_stomion(ct.intensity, skin, landmarks.plane, landmarks.points.at("labrale superius"),
                                  landmarks.points.at("labrale inferius"));

@@ -24,7 +24,7 @@
 //     with min_thickness and smoothing_sigma raised, up to twice (PatientModel::repair says what was done);
 //  8. the landmarks the model's skin does not show, read in the CT and kept as field data (core/mesh/ct_landmarks.h):
 //     the tragi (tragus.h, with the cuts), the eye corners and the stomion (eye_corners.h, stomion.h, by the
-//     landmarks found on the model);
+//     landmarks found on the model), and the objects lying on the skin's front above the nose tip (skin_objects.h);
 //  9. checks: one solid, boundary of Euler characteristic 2 (a ball), each of the six sides one connected patch.
 #include <optional>
 #include <string>

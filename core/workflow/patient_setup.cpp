@@ -58,6 +58,7 @@ void choose_constraints(PatientSetup& patient, const std::string& constraints_fi
     patient.landmarks = landmarks;
     patient.constraints_note = "automatic constraints: six sides and " + std::to_string(feature_specs().size()) +
                                " features at the landmarks" + (landmarks_file.empty() ? "" : " of " + landmarks_file);
+    for (const SkinObject& object : landmarks.skin_objects) patient.constraints_note += "; " + skin_object_text(object);
   } catch (const Error& e) {
     patient.features_problem = e.what();
     patient.constraints_note += " only: no facial features (" + patient.features_problem + ")";

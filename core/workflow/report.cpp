@@ -177,10 +177,17 @@ json read_run_report(const std::string& path) {
 json landmarks_json(const std::optional<FaceLandmarks>& landmarks) {
   if (!landmarks) return nullptr;
   const size_t estimated = landmarks->estimated.size();
+  json objects = json::array();
+  for (const SkinObject& o : landmarks->skin_objects)
+    objects.push_back({{"z_low", o.z_low},
+                       {"z_high", o.z_high},
+                       {"thickness_low", o.thickness_low},
+                       {"thickness_high", o.thickness_high}});
   return {{"source", landmarks->given ? "given" : "found"},
           {"found", landmarks->points.size() - estimated},
           {"estimated", estimated},
           {"estimated_names", landmarks->estimated},
+          {"skin_objects", objects},
           {"mid_sagittal_plane",
            {{"x", landmarks->plane.x},
             {"slope", landmarks->plane.slope},

@@ -184,6 +184,8 @@ TEST_F(Cli, DemoRunsTheWholeChainFromTheBundledCt) {
   EXPECT_EQ(report["landmarks"]["source"], "found");
   EXPECT_GT(report["landmarks"]["found"].get<int>(), 0);
   EXPECT_EQ(report["landmarks"]["estimated"].get<int>(), report["landmarks"]["estimated_names"].size());
+  // Nothing lies on its skin (core/segment/skin_objects.h): no edge of its forehead or nose read as an object's.
+  EXPECT_EQ(report["landmarks"]["skin_objects"], nlohmann::json::array());
   // Found on the plane the segmentation stored with the model, near the hand-placed reference's x = 99 (upright:
   // vertical).
   EXPECT_EQ(report["landmarks"]["mid_sagittal_plane"]["source"], "model");

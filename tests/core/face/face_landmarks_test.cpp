@@ -345,6 +345,42 @@ TEST(FaceLandmarks, AScanEndingJustAboveTheNasionHasItsGlabellaEstimated) {
   EXPECT_NO_THROW(check_plausible(l, "test"));
 }
 
+TEST(FaceLandmarks, TheProfileIsReadUnderAnObjectOnTheSkin) {
+  // A strap 4 mm thick over the phantom's brow (z 32 to 46), its edges spread over 3 mm either side as the
+  // segmentation's blurred skin spreads them; the segmentation's reading of it (core/segment/skin_objects.h) gives the
+  // skin under it, the bare phantom's profile. Without it the glabella is read on the strap's front.
+  PhantomFace face;
+  const auto on = [](double z) { return 1 / (1 + std::exp(-z * 1.5)); };  // 0 to 1 over about 3 mm either side
+  const auto profile_at = [](const PhantomFace& f, double z) {
+    double y = -std::numeric_limits<double>::infinity();
+    for (int v = 0; v < f.V.rows(); ++v)
+      if (std::abs(f.V(v, 0) - PhantomFace::x0) < 0.25 && std::abs(f.V(v, 2) - z) < 0.25) y = std::max(y, f.V(v, 1));
+    return y;
+  };
+  SkinObject strap{32, 46, 4, 4, {}};
+  for (double z = 27; z <= 51; z += 0.5) strap.skin.emplace_back(z, profile_at(face, z));
+  for (int v = 0; v < face.V.rows(); ++v) {
+    const double z = face.V(v, 2);
+    face.V(v, 1) += 4 * on(z - 32) * on(46 - z);
+  }
+  LandmarkOptions options;
+  options.mid_sagittal_plane = MidSagittalPlane{PhantomFace::x0, 0, 0};
+  const FaceLandmarks on_strap = find_face_landmarks(face.V, face.side_mask, options);
+  EXPECT_GT(on_strap.points.at("glabella").y(), strap.skin[26].y() + 3);  // z = 40: on the strap's front
+  options.ct_landmarks = CtLandmarks{};
+  options.ct_landmarks->skin_objects = {strap};
+  const FaceLandmarks l = find_face_landmarks(face.V, face.side_mask, options);
+  const Eigen::Vector3d g = l.points.at("glabella");
+  EXPECT_NEAR(g.z(), 40, 1.5);
+  EXPECT_NEAR(g.y(), profile_at(face, 40) - 4, 0.3);  // the bare phantom's front there
+  EXPECT_NE(std::find(l.estimated.begin(), l.estimated.end(), "glabella"), l.estimated.end());
+  EXPECT_EQ(std::find(l.estimated.begin(), l.estimated.end(), "nasion"), l.estimated.end());  // below the strap's reach
+  EXPECT_NEAR(l.points.at("nasion").z(), kPhantomProfileZ.at("nasion"), 1.5);
+  EXPECT_NE(landmarks_text(l, "").find("an object lies on the skin's front from z = 32.0 to 46.0 mm, 4.0 mm thick"),
+            std::string::npos)
+      << landmarks_text(l, "");
+}
+
 TEST(FaceLandmarks, ACutPastTheNasionHasTheNasionPlacedByProportions) {
   // The field of view cuts the face flat from the nose tip (z 0) to z 76, and the forehead above recedes behind the
   // cut with a hollow at z 80: the cut ends well below the top (z 100), but the hollow lies 90 mm above the

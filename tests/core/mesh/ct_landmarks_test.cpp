@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <string>
+#include <tuple>
+#include <vector>
 
 #include "tests/core/io/io_test_util.h"
 
@@ -46,6 +49,61 @@ TEST(CtLandmarks, MalformedFieldDataIsAnErrorNamingTheFileAndTheArray) {
     mesh.field_data[kCtLandmarksField] = bad;
     test::expect_error([&] { ct_landmarks(mesh, "model.vtu"); }, "model.vtu: the field data 'ct_landmarks'");
     test::expect_error([&] { ct_landmarks(mesh, "model.vtu"); }, problem);
+  }
+}
+
+TEST(CtLandmarks, SkinObjectsAndTheSkinUnderThemReadBack) {
+  VolumeMesh mesh;
+  CtLandmarks given;
+  given.skin_objects = {{150, 170, 4.1, 3.9, {{145, 368.2}, {150, 368.4}, {175, 363.1}}}, {180, 190, 2.5, 2.6, {}}};
+  given.skin_objects[1].skin = {{175, 363.0}, {195, 355.5}};
+  set_ct_landmarks(mesh, given);
+  EXPECT_EQ(mesh.field_data.at(kSkinObjectsField).rows(), 2);
+  EXPECT_EQ(mesh.field_data.at(kSkinUnderObjectsField).rows(), 5);
+  const std::optional<CtLandmarks> back = ct_landmarks(mesh, "model.vtu");
+  ASSERT_TRUE(back);
+  ASSERT_EQ(back->skin_objects.size(), 2u);
+  for (size_t o = 0; o < 2; ++o) {
+    EXPECT_EQ(back->skin_objects[o].z_low, given.skin_objects[o].z_low);
+    EXPECT_EQ(back->skin_objects[o].z_high, given.skin_objects[o].z_high);
+    EXPECT_EQ(back->skin_objects[o].thickness_low, given.skin_objects[o].thickness_low);
+    EXPECT_EQ(back->skin_objects[o].thickness_high, given.skin_objects[o].thickness_high);
+    EXPECT_EQ(back->skin_objects[o].skin, given.skin_objects[o].skin);
+  }
+  given.skin_objects.clear();  // set again without: none left behind
+  set_ct_landmarks(mesh, given);
+  EXPECT_FALSE(mesh.field_data.count(kSkinObjectsField) || mesh.field_data.count(kSkinUnderObjectsField));
+  EXPECT_TRUE(ct_landmarks(mesh, "model.vtu")->skin_objects.empty());
+}
+
+TEST(CtLandmarks, MalformedSkinObjectsAreAnErrorNamingTheArrayAndHowToLeaveThemOut) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  Eigen::MatrixXd good_object(1, 4), good_skin(2, 3);
+  good_object << 150, 170, 4, 4;
+  good_skin << 0, 145, 368, 0, 175, 363;
+  Eigen::MatrixXd upside_down = good_object, no_thickness = good_object, not_finite = good_object;
+  upside_down(0, 1) = 140;
+  no_thickness(0, 3) = 0;
+  not_finite(0, 2) = nan;
+  Eigen::MatrixXd other_object = good_skin, not_increasing = good_skin, one_point = good_skin.topRows(1);
+  other_object(1, 0) = 1;
+  not_increasing(1, 1) = 140;
+  const std::vector<std::tuple<Eigen::MatrixXd, Eigen::MatrixXd, std::string>> cases = {
+      {Eigen::MatrixXd::Zero(1, 3), good_skin, "skin_objects"},
+      {upside_down, good_skin, "skin_objects"},
+      {no_thickness, good_skin, "skin_objects"},
+      {not_finite, good_skin, "skin_objects"},
+      {good_object, other_object, "skin_under_objects"},
+      {good_object, not_increasing, "skin_under_objects"},
+      {good_object, one_point, "skin_under_objects"},
+      {good_object, Eigen::MatrixXd(0, 3), "skin_under_objects"}};
+  for (const auto& [objects, skin, name] : cases) {
+    VolumeMesh mesh;
+    set_ct_landmarks(mesh, CtLandmarks{});
+    mesh.field_data[kSkinObjectsField] = objects;
+    if (skin.rows() > 0) mesh.field_data[kSkinUnderObjectsField] = skin;
+    test::expect_error([&] { ct_landmarks(mesh, "model.vtu"); }, "model.vtu: the field data '" + name + "'");
+    test::expect_error([&] { ct_landmarks(mesh, "model.vtu"); }, "to have them left out");
   }
 }
 
