@@ -5,10 +5,10 @@
 # with the date, the commit, the core count and the CPU model. Everything outside the markers is left as it is.
 #
 # Usage, from anywhere in the repository, after a Release build of facehex:
-#   scripts/regenerate-docs.sh [--only benchmarks|results|correspondence|registered|landmarks|landing|pull|objects]
+#   scripts/regenerate-docs.sh [--only benchmarks|results|correspondence|registered|landmarks|landing|pull|objects|voxels]
 #                              [--keep DIR]
 #                              [--from DIR]
-#     --only benchmarks|results|correspondence|registered|landmarks|landing|pull|objects  run and write one part only (correspondence:
+#     --only benchmarks|results|correspondence|registered|landmarks|landing|pull|objects|voxels  run and write one part only (correspondence:
 #                                the correspondence section of docs/results.md, the paper's feature lines: `facehex
 #                                bench --correspondence --skin-correspondence features`; registered: its tables of the
 #                                registered skin, --skin-correspondence registered; landmarks: the automatic landmarks against
@@ -18,7 +18,9 @@
 #                                --pull-found-landmarks off, in docs/results.md; pull: the known-answer cases and the real
 #                                CTs' landing with the landmarks' pull in part or off, in docs/results.md; objects:
 #                                the Visible Human with straps and tape on its face (scripts/strap_ct.py), its landmarks
-#                                against the bare CT's and the hand-placed ones, in docs/benchmarks.md)
+#                                against the bare CT's and the hand-placed ones, in docs/benchmarks.md; voxels: the
+#                                Visible Human resampled to finer and coarser voxels (scripts/resample_ct.py), `facehex
+#                                run` and its landmarks against the hand-placed ones, in docs/benchmarks.md)
 #     --keep DIR                 keep the raw JSON, logs and plots in DIR (default: a temporary folder, removed)
 #     --from DIR                 run nothing: write the pages from the JSON a previous --keep DIR left
 #   FACEHEX=path/to/facehex overrides build/bin/facehex.
@@ -45,8 +47,8 @@ while [ $# -gt 0 ]; do
     *) echo "regenerate-docs.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
-case "$only" in ""|benchmarks|results|correspondence|registered|landmarks|landing|pull|objects) ;;
-  *) echo "regenerate-docs.sh: --only benchmarks|results|correspondence|registered|landmarks|landing|pull|objects" >&2; exit 2 ;;
+case "$only" in ""|benchmarks|results|correspondence|registered|landmarks|landing|pull|objects|voxels) ;;
+  *) echo "regenerate-docs.sh: --only benchmarks|results|correspondence|registered|landmarks|landing|pull|objects|voxels" >&2; exit 2 ;;
 esac
 want() { [ -z "$only" ] || [ "$only" = "$1" ]; }
 
@@ -266,6 +268,20 @@ EOF
         tests/data/landmarks/vhfemale-head.json
     fi
     rm -f "$out/strapped.mha" "$out"/objects-*.vtu
+  fi
+  if want voxels && [ -f ../shared/data/ct/vhfemale-head.mha ] && /usr/bin/python3 -c 'import vtk' 2>/dev/null; then
+    # The Visible Human at 0.5 mm (its head's box, upsampled), at 0.5 mm with 2 mm slices, and with 3 mm slices.
+    ct=../shared/data/ct/vhfemale-head.mha
+    for variant in 0.5:135,390,150,405,0,233:0.5,0.5,0.5 0.5x2:135,390,150,405,0,233:0.5,0.5,2 1x3:all:1,1,3; do
+      IFS=: read -r key box spacing <<<"$variant"
+      /usr/bin/python3 scripts/resample_ct.py "$ct" "$box" "$spacing" "$out/resampled.mha"
+      timer=()
+      [ -x /usr/bin/time ] && timer=(/usr/bin/time -f "%e %M" -o "$out/voxels-$key.time")
+      step "voxels-run-$key" "${timer[@]}" "$facehex" run "$out/resampled.mha" -o "$out/voxels-run-$key"
+      step "voxels-segment-$key" "$facehex" segment "$out/resampled.mha" -o "$out/voxels-$key.vtu" \
+        --write-landmarks "$out/voxels-landmarks-$key.json"
+      rm -f "$out/resampled.mha" "$out/voxels-$key.vtu" "$out/voxels-run-$key"/*.vtu
+    done
   fi
   if want benchmarks; then
     step bench-sizes "$facehex" bench --sizes 10000,50000,200000 --json
@@ -581,6 +597,33 @@ if only in ("", "objects") and os.path.exists(os.path.join(out, "objects-bare.js
         "bench-objects": machine_line().split(" Wall-clock")[0] + "\n\n" +
         table(["layer of 0 HU on the skin", "object found", "landmarks moved over 1.5 mm from the bare CT's",
                "from the hand-placed (bare CT -> with the layer)"], rows, ["---"] * 4)})
+
+# ---- docs/benchmarks.md: finer and coarser voxels ----
+if only in ("", "voxels") and os.path.exists(os.path.join(out, "voxels-landmarks-1x3.json")):
+    placed = {l["name"]: l for l in json.load(open(os.path.join(root, "tests/data/landmarks/vhfemale-head.json")))["landmarks"]}
+    rows = []
+    for key, label in (("0.5", "0.5 mm (upsampled), 511 x 511 x 467"), ("0.5x2", "0.5 mm, 2 mm slices, 511 x 511 x 117"),
+                       ("1x3", "1 mm, 3 mm slices, 512 x 512 x 78")):
+        report = load(f"voxels-run-{key}/report.json")
+        quality = report["patient_hex"]["quality"]
+        standard = report["standard"]["quality"]
+        timing = os.path.join(out, f"voxels-{key}.time")
+        seconds, memory = ("–", "–")
+        if os.path.exists(timing):
+            elapsed, kb = open(timing).read().split()[-2:]
+            seconds, memory = f"{float(elapsed):.1f}", f"{int(kb) / 1e6:.2f}"
+        found = {l["name"]: l for l in load(f"voxels-landmarks-{key}.json")["landmarks"]}
+        off = {n: math.dist(found[n]["position"], placed[n]["position"]) for n in placed if n in found}
+        worst = max(off, key=off.get)
+        estimated = [n for n in found if found[n]["status"] == "estimated"]
+        rows.append([label, seconds, memory, n(report["patient"]["parameterization"]["tets"]), quality["inverted"],
+                     f(quality["shape_mean"] / standard["shape_mean"], 3), f(quality["dihedral_distortion"]["mean_deg"]),
+                     f"{sum(off.values()) / len(off):.2f}", f"{off[worst]:.1f} ({worst}" +
+                     (", estimated)" if worst in estimated else ")"), ", ".join(sorted(estimated)) or "none"])
+    write_blocks("docs/benchmarks.md", {
+        "bench-voxels": machine_line() + "\n\n" +
+        table(["scan", "run (s)", "peak memory (GB)", "model tets", "inverted cells", "shape / standard's",
+               "dihedral change (°)", "landmarks from the hand-placed: mean (mm)", "farthest", "estimated"], rows)})
 
 # ---- docs/results.md: where the standard's landmarks land ----
 if only in ("", "landing"):

@@ -46,6 +46,9 @@ constexpr double kLidsNear = 3;  // mm above and below the line from which the l
 constexpr double kLidsFar = 6;   // mm above and below the line up to which it is (short of the brow and the cheek)
 // Rule 5: the nose's side.
 constexpr double kWallSlope = 1;  // mm of y per mm inwards: steeper than 45 degrees
+// The farthest out an inner end is, in the fraction of its side's exocanthion's offset: adults' intercanthal width is
+// about a third of their biocular width, and more than two fifths only where the eyes are set far apart.
+constexpr double kMaxEndoFraction = 0.45;
 // Rule 6: the floor's height.
 constexpr double kRefine = 4;            // mm either side of the line's height
 constexpr double kFloorTolerance = 0.1;  // mm behind the rearmost y
@@ -115,9 +118,20 @@ class Slit {
       exo = on_front(kEstimatedExoOffset, z, true);
     }
     std::optional<CtLandmark> endo = seen ? nose_side(inner) : std::nullopt;
+    // An inner end further out than an adult's is where the line lost the slit on its way in (on thick slices the
+    // notch's height jumps between columns), not the corner: estimated, at the slit's height where it was lost.
+    std::optional<double> lost_level;
+    if (endo && exo) {
+      const double endo_offset = std::abs(endo->point.x() - centre_);
+      if (endo_offset > kMaxEndoFraction * std::abs(exo->point.x() - centre_)) {
+        lost_level = endo->point.z() - rise(endo_offset);
+        endo.reset();
+      }
+    }
     if (!endo && exo) {
       const double exo_offset = std::abs(exo->point.x() - centre_);
-      endo = on_front(kEstimatedEndoFraction * exo_offset, exo->point.z() - rise(exo_offset) - kCanthalDrop, true);
+      endo = on_front(kEstimatedEndoFraction * exo_offset,
+                      lost_level ? *lost_level : exo->point.z() - rise(exo_offset) - kCanthalDrop, true);
     }
     return {endo, exo};
   }

@@ -27,7 +27,9 @@
 //  5. endocanthion: going inwards along the line, the last column before the line climbs the nose's side (its y rising
 //     more than 1 mm per mm) or leaves the slit: its height moves by kReach or more between neighbouring columns, the
 //     most the line may move, so that it follows no notch of its own (smooth skin) or has taken another one (the lid's
-//     fold above the inner corner);
+//     fold above the inner corner); none where that column lies further out than kMaxEndoFraction of the
+//     exocanthion's offset (no adult's inner corner does: the line lost the slit, as between thick slices), and the
+//     estimate of rule 7 then lies at the slit's height there;
 //  6. the height of a found corner: the middle of the slit's floor in its column (the samples within kFloorTolerance
 //     of the rearmost y within kRefine of the line), unless that run reaches the window's end;
 //  7. a corner not seen (no slit: open eyes seen as a hole, a notch too shallow for the scan's voxels, no seed) is

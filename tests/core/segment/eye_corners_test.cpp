@@ -29,6 +29,7 @@ struct EyePhantom {
   double temple_recession = 0;  // mm per mm the front recedes from kTempleStart out (a temple turned away)
   static constexpr double kTempleStart = kExo - 4;
   bool slit = true;
+  double slit_inner = kEndo;    // mm out: where the groove the scan shows begins
   double scan_half_width = 70;  // mm either side of the plane the scan holds
 
   static double base(double offset) { return -0.003 * offset * offset; }
@@ -39,7 +40,8 @@ struct EyePhantom {
     const double offset = std::abs(x);
     if (offset < nose_side) return base(nose_side) + 1.5 * (nose_side - offset);
     double y = base(offset) - recession(offset);
-    if (slit && offset >= kEndo && offset <= kExo && std::abs(z - slit_z(offset)) < kSlitHeight / 2) y -= depth(offset);
+    if (slit && offset >= slit_inner && offset <= kExo && std::abs(z - slit_z(offset)) < kSlitHeight / 2)
+      y -= depth(offset);
     if (fold && offset < kEndo && std::abs(z - slit_z(kEndo) - kFoldRise) < kSlitHeight / 2) y -= slit_depth;
     return y;
   }
@@ -122,6 +124,23 @@ TEST(EyeCorners, TheInnerCornerIsWhereTheLineLeavesTheSlitForALidFold) {
     for (const int side : {-1, 1})
       expect_corner_at(found, side < 0 ? 0 : 2, head_turn_of(plane).to_model(face.corner(side, false)),
                        ", turned " + std::to_string(turn_degrees));
+  }
+}
+
+// A slit the scan shows only from 25 mm out (its inner part a slice too thin to show, as on thick slices): the line
+// followed inwards leaves it there, further out than any adult's inner corner, so the inner corners are estimated by
+// proportions, at the slit's height where the line left it, rather than found at the groove's end.
+TEST(EyeCorners, AnInnerEndFurtherOutThanAnAdultsIsEstimatedAtTheSlitsHeight) {
+  EyePhantom face;
+  face.slit_inner = 25;
+  const EyeCorners found = corners_of(face, MidSagittalPlane{});
+  for (const int side : {-1, 1}) {
+    const int endo = side < 0 ? 0 : 2, exo = side < 0 ? 1 : 3;
+    expect_corner_at(found, exo, face.corner(side, true), "");
+    ASSERT_TRUE(found[endo]);
+    EXPECT_TRUE(found[endo]->estimated) << kEyeCornerNames[endo] << " at " << found[endo]->point.transpose();
+    EXPECT_NEAR(std::abs(found[endo]->point.x()), 0.30 * EyePhantom::kExo, 0.5);
+    EXPECT_NEAR(found[endo]->point.z(), EyePhantom::slit_z(25), 1.0);
   }
 }
 
@@ -211,6 +230,32 @@ TEST(EyeCorners, VisibleHumanFemaleNearTheHandPlacedOnes) {
   expect_near_placed(
       ct, std::string(FACEHEX_TEST_DATA_DIR) + "/landmarks/vhfemale-head.json", plane,
       {{"endocanthion right", 2.0}, {"exocanthion right", 2.5}, {"endocanthion left", 2.5}, {"exocanthion left", 2.5}});
+}
+
+TEST(EyeCorners, VisibleHumanFemaleOnThreeMillimetreSlicesFoundNearOrEstimated) {
+  // The same CT resampled to 3 mm slices, as a routine head CT's: the slits are a slice tall at most. No corner may be
+  // found far from the hand-placed one (an inner end where the line lost the slit is estimated instead), and the
+  // estimates lie within the bundled CT's bound.
+  const std::string path = std::string(FACEHEX_SHARED_DIR) + "/data/ct/vhfemale-head.mha";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "no shared data at " << path;
+  CtVolume ct = read_ct_volume(path);
+  GridGeometry thick = ct.intensity.geometry;
+  thick.spacing.z() = 3;
+  thick.dims[2] = static_cast<int>((ct.intensity.geometry.dims[2] - 1) / 3) + 1;
+  ct.intensity = resample(ct.intensity, thick);
+  std::map<std::string, NamedLandmark> placed;
+  for (const NamedLandmark& l :
+       read_landmark_file(std::string(FACEHEX_TEST_DATA_DIR) + "/landmarks/vhfemale-head.json"))
+    placed[l.name] = l;
+  const EyeCorners found =
+      find_eye_corners(ct.intensity, estimate_thresholds(ct.intensity).skin, testing::visible_human_plane(),
+                       placed.at("nasion").position, placed.at("pronasale").position);
+  for (int c = 0; c < 4; ++c) {
+    ASSERT_TRUE(found[c]) << kEyeCornerNames[c];
+    const double off = (found[c]->point - placed.at(kEyeCornerNames[c]).position).norm();
+    EXPECT_LE(off, found[c]->estimated ? 5.0 : 3.0) << kEyeCornerNames[c] << (found[c]->estimated ? " (estimated)" : "")
+                                                    << " found at " << found[c]->point.transpose();
+  }
 }
 
 TEST(EyeCorners, BundledCtHasNoSlitDeepEnoughAndEstimatesThemWithinFiveMillimetres) {

@@ -5,6 +5,7 @@
 
 #include "core/face/automatic_constraints.h"
 #include "core/face/landmark_file.h"
+#include "core/fields/constraint_set.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh/ct_landmarks.h"
 #include "core/mesh/hex_to_tets.h"
@@ -13,6 +14,7 @@
 #include "core/segment/voxel_grid.h"
 #include "core/standard/closed_domain.h"
 #include "core/util/error.h"
+#include "core/util/resources.h"
 #include "core/workflow/patient_setup.h"
 #include "core/workflow/standard_setup.h"
 #include "core/workflow/transfer.h"
@@ -144,6 +146,32 @@ TEST_F(Workflow, TheParameterizedModelKeepsTheModelsPointDataWithItsPlugs) {
   other.V.array() += 1;
   EXPECT_EQ(parameterized_tet_mesh(p, &other).point_data.count(kSideMaskArray), 0u);
   EXPECT_TRUE(parameterized_tet_mesh(p, &other).field_data.empty());
+}
+
+// An object the segmentation found on the skin (core/segment/skin_objects.h) goes with the patient's landmarks and is
+// named in the note both front ends show.
+TEST_F(Workflow, AnObjectOnTheSkinTheModelCarriesIsNamedInTheNote) {
+  VolumeMesh model = read_volume_mesh(resource_dir() + "/patients/headsq/patient.vtu");
+  const std::map<std::string, double> values = feature_values(read_constraint_set(default_standard().constraints));
+  write_volume_mesh(path("bare.vtu"), model);
+  const PatientSetup bare = load_patient(path("bare.vtu"), {}, "", &values);
+  ASSERT_TRUE(bare.landmarks) << bare.features_problem;
+  EXPECT_TRUE(bare.landmarks->skin_objects.empty());
+  EXPECT_EQ(bare.constraints_note.find("an object lies"), std::string::npos) << bare.constraints_note;
+
+  // Above the model's top: it changes no landmark, and is still listed.
+  CtLandmarks found = ct_landmarks(model, "patient.vtu").value_or(CtLandmarks{});
+  found.skin_objects = {{300, 320, 4, 4, {{295, 180}, {325, 175}}}};
+  set_ct_landmarks(model, found);
+  write_volume_mesh(path("strapped.vtu"), model);
+  const PatientSetup strapped = load_patient(path("strapped.vtu"), {}, "", &values);
+  ASSERT_TRUE(strapped.landmarks) << strapped.features_problem;
+  ASSERT_EQ(strapped.landmarks->skin_objects.size(), 1u);
+  EXPECT_NE(
+      strapped.constraints_note.find("an object lies on the skin's front from z = 300.0 to 320.0 mm, 4.0 mm thick"),
+      std::string::npos)
+      << strapped.constraints_note;
+  EXPECT_EQ(strapped.landmarks->points, bare.landmarks->points);
 }
 
 TEST_F(Workflow, AStandardMustBeHexDominantAndItsDomainKindKnown) {
