@@ -64,7 +64,12 @@ void add_segment_options(Args& args) {
       .option("max-depth", "mm below the skin beyond which nothing is in the model", "25")
       .option("bone-gap", "mm: gaps in the bone narrower than twice this (teeth) still hide the tissue behind", "5")
       .option("cavity-closing", "mm: openings (nostrils, lips, eyelids) narrower than twice this are closed", "4")
-      .option("smoothing", "mm, Gaussian blur of the model mask before its surface is taken", "1.5");
+      .option("smoothing", "mm, Gaussian blur of the model mask before its surface is taken", "1.5")
+      .option("skin-objects",
+              "on: objects lying on the skin's front above the nose tip (a head strap, thick tape) are found by their "
+              "edges in the CT and the landmarks there read on the skin under them; off: the landmarks are read on "
+              "the skin as segmented, an object's front included",
+              "on");
 }
 
 void add_transfer_options(Args& args) {
@@ -170,6 +175,10 @@ SegmentOptions segment_options(const Args& args) {
   o.bone_gap_radius = not_negative("bone-gap");
   o.cavity_closing_radius = not_negative("cavity-closing");
   o.smoothing_sigma = not_negative("smoothing");
+  const std::string objects = args.get("skin-objects");
+  if (objects != "on" && objects != "off")
+    throw UsageError("--skin-objects", "expects on or off, got '" + objects + "'");
+  o.find_skin_objects = objects == "on";
   return o;
 }
 

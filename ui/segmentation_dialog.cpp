@@ -175,6 +175,13 @@ SegmentationDialog::SegmentationDialog(QWidget* parent) : QDialog(parent) {
             tr("Openings narrower than twice this (nostrils, lips, eyelids) are closed."));
   addLength(smoothing_, tr("Smoothing"), 0, "segmentSmoothing", "--smoothing",
             tr("Gaussian blur of the model before its surface is taken."));
+  skinObjects_ = new QCheckBox(tr("landmarks under straps, tape"), this);
+  skinObjects_->setObjectName("segmentSkinObjects");
+  skinObjects_->setToolTip(
+      tr("An object lying on the skin's front above the nose tip (a head strap, thick tape) is found by its edges in "
+         "the CT, and the landmarks there are read on the skin under it. Untick to read them on the skin as "
+         "segmented (the command line's --skin-objects off)."));
+  tissueForm->addRow(QString(), skinObjects_);
   auto* columns = new QHBoxLayout;
   columns->addLayout(form, 1);
   columns->addWidget(tissue, 0, Qt::AlignTop);
@@ -253,6 +260,7 @@ void SegmentationDialog::setOptions(const SegmentOptions& o) {
   boneGap_->setValue(o.bone_gap_radius);
   cavityClosing_->setValue(o.cavity_closing_radius);
   smoothing_->setValue(o.smoothing_sigma);
+  skinObjects_->setChecked(o.find_skin_objects);
 }
 
 SegmentOptions SegmentationDialog::options() const {
@@ -281,6 +289,7 @@ SegmentOptions SegmentationDialog::options() const {
   o.bone_gap_radius = boneGap_->value();
   o.cavity_closing_radius = cavityClosing_->value();
   o.smoothing_sigma = smoothing_->value();
+  o.find_skin_objects = skinObjects_->isChecked();
   return o;
 }
 

@@ -53,7 +53,7 @@ class SegmentationDialog : public QDialog {
   QLabel *heading_, *failure_, *madeAt_;
   QDoubleSpinBox *edgeLength_, *browClearance_, *chinClearance_, *earClearance_;
   QDoubleSpinBox *minThickness_, *maxDepth_, *boneGap_, *cavityClosing_, *smoothing_;  // the soft-tissue layer
-  QCheckBox* coarsenLargeFaces_;
+  QCheckBox *coarsenLargeFaces_, *skinObjects_;
   QComboBox *anterior_, *superior_;
   QComboBox* series_;                      // a DICOM folder's series, shown when it holds several
   std::vector<DicomSeries> folderSeries_;  // the CT's series when it is a DICOM folder (dicom_series_in)

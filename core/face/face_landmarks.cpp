@@ -735,8 +735,8 @@ std::string skin_object_text(const SkinObject& o) {
   std::ostringstream os;
   os << std::fixed << std::setprecision(1) << "an object lies on the skin's front from z = " << o.z_low << " to "
      << o.z_high << " mm, " << 0.5 * (o.thickness_low + o.thickness_high)
-     << " mm thick (a strap or tape): the landmarks there are read on the skin under it (estimated); the model keeps "
-        "it as soft tissue";
+     << " mm thick (a strap or tape): the landmarks there are read on the skin under it (estimated; --skin-objects "
+        "off reads them on its front); the model keeps it as soft tissue";
   return os.str();
 }
 

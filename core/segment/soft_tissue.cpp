@@ -283,9 +283,9 @@ SurfaceMesh level_surface_with_cuts(const Mask& tissue, FaceCuts& cuts, const Se
 }
 
 // The landmarks read in the CT by the ones found on the model's skin (its mid-sagittal plane, nasion, pronasale and
-// labralia) into `found`: the eye corners (eye_corners.h), the stomion (stomion.h) and the objects on the skin above
-// the nose tip (skin_objects.h). False, and none read, when those are not found: the transfer says why.
-bool read_slit_landmarks(const CtVolume& ct, const PatientModel& model, CtLandmarks& found) {
+// labralia) into `found`: the eye corners (eye_corners.h), the stomion (stomion.h) and, with `objects`, the objects on
+// the skin above the nose tip (skin_objects.h). False, and none read, when those are not found: the transfer says why.
+bool read_slit_landmarks(const CtVolume& ct, const PatientModel& model, bool objects, CtLandmarks& found) {
   FaceLandmarks landmarks;
   try {
     landmarks = find_face_landmarks(model.mesh.V, side_mask_of(model.mesh), landmark_options_for(model.mesh, "model"));
@@ -297,7 +297,7 @@ bool read_slit_landmarks(const CtVolume& ct, const PatientModel& model, CtLandma
   if (has("nasion") && has("pronasale"))
     found.eye_corners = find_eye_corners(ct.intensity, skin, landmarks.plane, landmarks.points.at("nasion"),
                                          landmarks.points.at("pronasale"));
-  if (has("pronasale"))
+  if (objects && has("pronasale"))
     found.skin_objects = find_skin_objects(ct.intensity, skin, landmarks.plane, landmarks.points.at("pronasale"));
   if (has("labrale superius") && has("labrale inferius"))
     found.stomion = find_stomion(ct.intensity, skin, landmarks.plane, landmarks.points.at("labrale superius"),
@@ -545,7 +545,8 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
       if (tragus) tragus->point = turn.to_model(tragus->point);
   }
   step("the eye corners and the stomion", 0.93);
-  if (read_slit_landmarks(ct, model, found) || model.cuts.anatomy) set_ct_landmarks(model.mesh, found);
+  if (read_slit_landmarks(ct, model, options.find_skin_objects, found) || model.cuts.anatomy)
+    set_ct_landmarks(model.mesh, found);
   model.boundary_faces = std::move(tets.boundary_faces);
   model.boundary_sides = tets.boundary_labels.array() - 1;
   step("checks", 0.95);

@@ -55,7 +55,8 @@ constexpr double kMostScanEdgeLength = 4.0;
 double scan_edge_length(const Eigen::Vector3d& spacing, double target_edge_length);
 
 // Each setting below is an option of the command line (app/transfer_options.cpp: --skin, --bone, --min-thickness,
-// --bone-gap, --cavity-closing, --smoothing, --max-depth, the cut options, --edge-length), named in the errors.
+// --bone-gap, --cavity-closing, --smoothing, --max-depth, the cut options, --edge-length, --skin-objects), named in the
+// errors.
 struct SegmentOptions {
   std::optional<double> skin_threshold, bone_threshold;  // file units; estimated from the histogram when unset
   double working_spacing = 1.0;                          // mm, isotropic grid the CT is resampled to
@@ -76,6 +77,10 @@ struct SegmentOptions {
   // holds no shape finer than the scan resolves, so shorter edges only cost time (a CT of 3 mm slices meshes at 3 mm).
   // The command line sets false when --edge-length is given.
   bool follow_scan_spacing = true;
+  // Objects lying on the skin's front above the nose tip (a head strap, thick tape) found by their edges, and the
+  // landmarks there read on the skin under them (skin_objects.h); false: the landmarks are read on the skin as
+  // segmented, an object's front included.
+  bool find_skin_objects = true;
   CtOrientation orientation;  // only used when reading a file
   std::string dicom_series;   // only used when reading a DICOM folder: read_dicom_series' `series`
 };

@@ -559,6 +559,10 @@ TEST_F(Cli, TheBundledCtMeshedAt3mmEndsWithNoInvertedCell) {
   const Result bad = run("run " + facehex::default_ct() + " --pull-found-landmarks maybe -o " + path("bad"));
   EXPECT_EQ(bad.status, 2) << bad.output;
   EXPECT_NE(bad.output.find("--pull-found-landmarks: expects on or off, got 'maybe'"), std::string::npos) << bad.output;
+  const Result objects = run("segment " + facehex::default_ct() + " --skin-objects maybe -o " + path("bad.vtu"));
+  EXPECT_EQ(objects.status, 2) << objects.output;
+  EXPECT_NE(objects.output.find("--skin-objects: expects on or off, got 'maybe'"), std::string::npos) << objects.output;
+  EXPECT_FALSE(fs::exists(path("bad.vtu")));
   // A landmark left out of the pull by name: that one lands where the skin's registration puts it (the right mouth
   // corner millimetres off), the others as pulled.
   const Result some = run("run " + facehex::default_ct() +

@@ -678,6 +678,7 @@ void GuiTest::segmentationDialogRoundTripsItsOptions() {
   given.bone_gap_radius = 3.5;
   given.cavity_closing_radius = 6;
   given.smoothing_sigma = 2.2;
+  given.find_skin_objects = false;
   dialog.setOptions(given);
   o = dialog.options();
   QCOMPARE(o.min_thickness, 5.0);
@@ -685,6 +686,10 @@ void GuiTest::segmentationDialogRoundTripsItsOptions() {
   QCOMPARE(o.bone_gap_radius, 3.5);
   QCOMPARE(o.cavity_closing_radius, 6.0);
   QCOMPARE(o.smoothing_sigma, 2.2);
+  QVERIFY(!o.find_skin_objects);
+  QVERIFY(!dialog.findChild<QCheckBox*>("segmentSkinObjects")->isChecked());
+  dialog.findChild<QCheckBox*>("segmentSkinObjects")->setChecked(true);
+  QVERIFY(dialog.options().find_skin_objects);
   dialog.findChild<QDoubleSpinBox*>("segmentMinThickness")->setValue(4);
   QCOMPARE(dialog.options().min_thickness, 4.0);
   QCOMPARE(o.tets.target_edge_length, 3.5);

@@ -123,7 +123,7 @@ TEST(SkinObjects, VisibleHumanBareAndWithAStrapReadFromItsCt) {
   }
 }
 
-TEST(SkinObjects, VisibleHumanWithAForeheadStrapKeepsItsGlabellaOnTheSkin) {
+TEST(SkinObjects, VisibleHumanWithAForeheadStrapKeepsItsGlabellaOnTheSkinUnlessObjectsAreOff) {
   // Segmented whole: the model carries the strap as soft tissue, its landmarks are read on the skin under it.
   if (!std::filesystem::exists(std::string(FACEHEX_SHARED_DIR) + "/data/ct/vhfemale-head.mha"))
     GTEST_SKIP() << "no shared data";
@@ -137,6 +137,15 @@ TEST(SkinObjects, VisibleHumanWithAForeheadStrapKeepsItsGlabellaOnTheSkin) {
   const Eigen::Vector3d glabella = l.points.at("glabella"), placed = hand_placed_visible_human().at("glabella");
   EXPECT_LT((glabella - placed).norm(), 3.0) << "glabella at " << glabella.transpose();
   EXPECT_NEAR(glabella.y(), placed.y(), 1.0) << "glabella at " << glabella.transpose();
+
+  // Without looking for objects (--skin-objects off) the glabella is read on the strap's front.
+  SegmentOptions off;
+  off.find_skin_objects = false;
+  const PatientModel as_segmented = build_patient_model(visible_human_with_strap(150, 170, 4), off);
+  const FaceLandmarks on_front = find_face_landmarks(as_segmented.mesh.V, side_mask_of(as_segmented.mesh),
+                                                     landmark_options_for(as_segmented.mesh, "model"));
+  EXPECT_TRUE(on_front.skin_objects.empty());
+  EXPECT_GT(on_front.points.at("glabella").y(), placed.y() + 2) << on_front.points.at("glabella").transpose();
 }
 
 }  // namespace
