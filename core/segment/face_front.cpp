@@ -56,4 +56,11 @@ double FaceFront::operator()(double x, double z) const {
   return at(0, 0) * (1 - fx) * (1 - fz) + at(1, 0) * fx * (1 - fz) + at(0, 1) * (1 - fx) * fz + at(1, 1) * fx * fz;
 }
 
+double FaceFront::mean_across(double x, double half_width, double z) const {
+  double sum = 0;
+  int columns = 0;
+  for (double dx = -half_width; dx <= half_width + 1e-9; dx += kGrid, ++columns) sum += (*this)(x + dx, z);
+  return sum / columns;
+}
+
 }  // namespace facehex

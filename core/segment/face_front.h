@@ -24,6 +24,9 @@ class FaceFront {
 
   // y at (x, z), NaN outside the grid or next to a point without a front.
   double operator()(double x, double z) const;
+  // The mean of y at height z over the columns every kGrid mm from x - half_width to x + half_width: a profile's point
+  // with a column's noise averaged. NaN where one of them is.
+  double mean_across(double x, double half_width, double z) const;
 
  private:
   double x0_, z0_;

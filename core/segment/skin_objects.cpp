@@ -47,13 +47,7 @@ std::vector<SkinObject> find_skin_objects(const Field& ct, double skin_threshold
   const FaceFront front(ct, skin_threshold, frame, x0, x1, z0, z1, tip.y() + kRayFront, tip.y() - kRayBack);
 
   std::vector<double> profile;
-  for (double z = z0; z <= z1 + 1e-9; z += kStep) {
-    double sum = 0;
-    int columns = 0;
-    for (double dx = -kProfileHalfWidth; dx <= kProfileHalfWidth + 1e-9; dx += FaceFront::kGrid, ++columns)
-      sum += front(centre(z) + dx, z);
-    profile.push_back(sum / columns);
-  }
+  for (double z = z0; z <= z1 + 1e-9; z += kStep) profile.push_back(front.mean_across(centre(z), kProfileHalfWidth, z));
   const int n = static_cast<int>(profile.size());
   const double w = std::max(kMinEdgeSpan, std::abs(ct.geometry.spacing.z()));
   const int wi = static_cast<int>(std::lround(w / kStep)), si = static_cast<int>(std::lround(kSlopeSpan / kStep));
@@ -102,12 +96,10 @@ std::vector<SkinObject> find_skin_objects(const Field& ct, double skin_threshold
       continue;
     SkinObject o{lower[a].z, b->z, lower[a].thickness, b->thickness, {}};
     // Rule 3.
-    const auto thickness = [&](double z) {
-      return o.thickness_low + (o.thickness_high - o.thickness_low) * (z - o.z_low) / (o.z_high - o.z_low);
-    };
     const auto line = [](double z, double za, double ya, double zb, double yb) {
       return ya + (yb - ya) * (z - za) / (zb - za);
     };
+    const auto thickness = [&](double z) { return line(z, o.z_low, o.thickness_low, o.z_high, o.thickness_high); };
     const double below = o.z_low - w, above = o.z_high + w, lo = o.z_low + w, hi = o.z_high - w;
     const auto skin = [&](double z) {
       if (z <= below || z >= above) return at(z);

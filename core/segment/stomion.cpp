@@ -34,14 +34,9 @@ std::optional<CtLandmark> find_stomion(const Field& ct, double skin_threshold, c
                         back_y - kRayBack);
   std::vector<Eigen::Vector3d> profile;
   for (double z = bottom.z(); z <= top.z() + 1e-9; z += kStep) {
-    double sum = 0;
-    int columns = 0;
-    for (double x = centre - kProfileHalfWidth; x <= centre + kProfileHalfWidth + 1e-9; x += FaceFront::kGrid) {
-      sum += front(x, z);
-      ++columns;
-    }
-    if (std::isnan(sum)) return std::nullopt;
-    profile.emplace_back(centre, sum / columns, z);
+    const double y = front.mean_across(centre, kProfileHalfWidth, z);
+    if (std::isnan(y)) return std::nullopt;
+    profile.emplace_back(centre, y, z);
   }
   const auto rearmost = std::min_element(
       profile.begin(), profile.end(), [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return a.y() < b.y(); });
