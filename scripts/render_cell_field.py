@@ -4,6 +4,7 @@
 # Usage, from the repository root:
 #   xvfb-run -a python3 scripts/render_cell_field.py OUT/patient_hex.vtu ARRAY MAX front|side OUT.png TITLE
 import sys, vtk
+from window_png import write_png
 mesh, array, top, view, out, title = sys.argv[1], sys.argv[2], float(sys.argv[3]), sys.argv[4], sys.argv[5], sys.argv[6]
 r = vtk.vtkXMLUnstructuredGridReader(); r.SetFileName(mesh); r.Update(); g = r.GetOutput()
 on_cells = g.GetCellData().GetArray(array) is not None
@@ -27,5 +28,4 @@ b = g.GetBounds(); centre = [(b[0] + b[1]) / 2, (b[2] + b[3]) / 2, (b[4] + b[5])
 cam = ren.GetActiveCamera(); cam.SetFocalPoint(*centre); cam.SetViewUp(0, 0, 1)
 cam.SetPosition(centre[0], centre[1] + 500, centre[2]) if view == 'front' else cam.SetPosition(centre[0] + 500, centre[1], centre[2])
 ren.ResetCamera(); cam.Zoom(1.1); win.Render()
-shot = vtk.vtkWindowToImageFilter(); shot.SetInput(win)
-w = vtk.vtkPNGWriter(); w.SetFileName(out); w.SetInputConnection(shot.GetOutputPort()); w.Write()
+write_png(win, out)

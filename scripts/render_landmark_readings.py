@@ -15,6 +15,8 @@ import sys
 
 import vtk
 
+from window_png import write_png
+
 COLOURS = [(0, 0, 0), (1, 1, 1), (0.1, 0.35, 1), (1, 0.55, 0)]
 
 
@@ -159,12 +161,7 @@ def main():
     window.AddRenderer(renderer)
     window.SetSize(width, height)
     window.Render()
-    grab = vtk.vtkWindowToImageFilter()
-    grab.SetInput(window)
-    writer = vtk.vtkPNGWriter()
-    writer.SetFileName(out)
-    writer.SetInputConnection(grab.GetOutputPort())
-    writer.Write()
+    write_png(window, out)
 
 
 if __name__ == "__main__":

@@ -13,6 +13,8 @@ import numpy as np
 import vtk
 from vtk.util.numpy_support import vtk_to_numpy as v2n, numpy_to_vtk as n2v
 
+from window_png import write_png
+
 model_file, landmarks_file, view, out, title = sys.argv[1:6]
 reference_file = sys.argv[6] if len(sys.argv) > 6 else None
 
@@ -130,9 +132,4 @@ text.GetTextProperty().SetColor(0, 0, 0)
 text.SetPosition(10, 10)
 renderer.AddActor2D(text)
 window.Render()
-grab = vtk.vtkWindowToImageFilter()
-grab.SetInput(window)
-writer = vtk.vtkPNGWriter()
-writer.SetFileName(out)
-writer.SetInputConnection(grab.GetOutputPort())
-writer.Write()
+write_png(window, out)

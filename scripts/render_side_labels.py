@@ -6,6 +6,7 @@
 import sys, vtk
 import numpy as np
 from vtk.util.numpy_support import vtk_to_numpy as v2n, numpy_to_vtk as n2v
+from window_png import write_png
 mesh, out, title = sys.argv[1:4]
 r = vtk.vtkXMLUnstructuredGridReader(); r.SetFileName(mesh); r.Update(); g = r.GetOutput()
 if g.GetPointData().GetArray('side_mask') is None:
@@ -27,5 +28,4 @@ win = vtk.vtkRenderWindow(); win.SetOffScreenRendering(1); win.AddRenderer(ren);
 # The bundled standard's frame: +y anterior, +z superior, the nose tip near (0, 95, -58).
 cam = ren.GetActiveCamera(); cam.SetFocalPoint(0, 80, -60); cam.SetPosition(0, 160, -160); cam.SetViewUp(0, 0.8, 0.6)
 cam.SetViewAngle(22); win.Render()
-shot = vtk.vtkWindowToImageFilter(); shot.SetInput(win)
-w = vtk.vtkPNGWriter(); w.SetFileName(out); w.SetInputConnection(shot.GetOutputPort()); w.Write()
+write_png(win, out)

@@ -7,6 +7,7 @@
 import vtk, sys
 import numpy as np
 from vtk.util.numpy_support import vtk_to_numpy as v2n, numpy_to_vtk as n2v
+from window_png import write_png
 hexf, fieldsf, view, out, title = sys.argv[1:6]
 def read(f):
     r = vtk.vtkXMLUnstructuredGridReader(); r.SetFileName(f); r.Update(); return r.GetOutput()
@@ -48,4 +49,5 @@ elif view == 'side': cam.SetPosition(cc[0] + 600, cc[1] + 150, cc[2])
 elif view == 'back': cam.SetPosition(cc[0], cc[1] - 600, cc[2])
 cam.SetViewUp(*up); ren.ResetCamera(); cam.Zoom(1.2)
 t = vtk.vtkTextActor(); t.SetInput(title); t.GetTextProperty().SetFontSize(18); t.GetTextProperty().SetColor(0, 0, 0); t.SetPosition(10, 10); ren.AddActor2D(t)
-rw.Render(); w = vtk.vtkWindowToImageFilter(); w.SetInput(rw); wr = vtk.vtkPNGWriter(); wr.SetFileName(out); wr.SetInputConnection(w.GetOutputPort()); wr.Write()
+rw.Render()
+write_png(rw, out)
