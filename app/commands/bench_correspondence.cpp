@@ -221,8 +221,9 @@ void add_correspondence_options(Args& args) {
               "0.08,0.04,4,0")
       .flag("keep-warped-cts", "with --correspondence: keep each warped CT in the report's folder (STEM-warp-SEED.mha)")
       .flag("true-landmarks",
-            "with --correspondence: a model's feature constraints at the standard's landmarks moved by the warp, not "
-            "at those found on it (separates the landmark finder's error)")
+            "with --correspondence: a model's feature constraints at the standard's landmarks moved by the warp, and "
+            "a warped CT's at the original CT's landmarks moved by the warp, not at those found on it (separates the "
+            "landmark finder's error)")
       .flag("mapping-only", "with --correspondence: the plain mapping alone, no relaxation and no repair (quick)");
 }
 

@@ -51,6 +51,23 @@ Eigen::Vector3d chin_point(const Eigen::MatrixXd& skin, const FaceLandmarks& lm)
   return best;
 }
 
+// The landmarks moved by a warp (their plane as it was).
+FaceLandmarks warped_landmarks(FaceLandmarks landmarks, const SmoothWarp& warp) {
+  for (auto& [name, point] : landmarks.points) point = warp.apply(point);
+  return landmarks;
+}
+
+// The patient's feature constraints at `landmarks`, which the registered transfer takes as given pairs: the transfer
+// then sees the true landmarks instead of those found on the model (CorrespondenceOptions::true_landmarks).
+void give_landmarks(PatientSetup& patient, FaceLandmarks landmarks, const std::map<std::string, double>& values) {
+  patient.constraints = side_constraints();
+  for (const Constraint& c : feature_constraints(landmarks, values, kFeatureBand).constraints)
+    patient.constraints.constraints.push_back(c);
+  patient.features_problem.clear();
+  landmarks.given = true;
+  patient.landmarks = std::move(landmarks);
+}
+
 struct Truth {
   Eigen::MatrixXd V;  // where the standard's vertices should land
   double warp_mean = 0;
@@ -128,7 +145,9 @@ void measure_landmark_shifts(const FaceLandmarks& reference, const PatientSetup&
 // The CT case's input shifts (CorrespondenceCaseResult::landmark_shift, cut_shift).
 void measure_input_shifts(const PatientSetup& original, const PatientSetup& warped, const SmoothWarp& warp,
                           CorrespondenceCaseResult& r) {
-  if (original.landmarks)
+  // Landmarks given to the warped CT (the original's moved by the warp) were not found there: nothing to compare.
+  const bool given = warped.landmarks && warped.landmarks->given;
+  if (original.landmarks && !given)
     measure_landmark_shifts(*original.landmarks, warped, warp, r);
   else if (!warped.landmarks)
     r.landmarks_problem = warped.features_problem;
@@ -242,15 +261,9 @@ std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const Standar
         const Eigen::MatrixXd truth = warp.apply_rows(standard.mesh.V);
         PatientSetup patient = patient_from_mesh(std::move(mesh), p.kind + " " + p.name, &values);
         if (options.true_landmarks) {
-          FaceLandmarks moved = standard_landmarks;
-          for (auto& [name, point] : moved.points) point = warp.apply(point);
+          FaceLandmarks moved = warped_landmarks(standard_landmarks, warp);
           moved.plane.x = warp.apply(Eigen::Vector3d(standard_landmarks.plane.x, 0, 0)).x();
-          patient.constraints = side_constraints();
-          for (const Constraint& c : feature_constraints(moved, values, kFeatureBand).constraints)
-            patient.constraints.constraints.push_back(c);
-          patient.features_problem.clear();
-          moved.given = true;  // in the registered transfer: landmark pairs
-          patient.landmarks = moved;
+          give_landmarks(patient, std::move(moved), values);
         }
         r = measure(standard, patient, truth, regions, options, progress);
         if (!options.true_landmarks) measure_landmark_shifts(standard_landmarks, patient, warp, r);
@@ -306,6 +319,16 @@ std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const Standar
           throw;
         }
         if (!keep) fs::remove(file);
+        if (options.true_landmarks) {
+          if (!original_setup.landmarks)
+            throw Error("benchmark", p.name +
+                                         ": --true-landmarks needs the original CT's landmarks, and none were "
+                                         "found (" +
+                                         original_setup.features_problem + ")");
+          FaceLandmarks moved = warped_landmarks(*original_setup.landmarks, warp);
+          if (warped.landmarks) moved.plane = warped.landmarks->plane;  // the warped CT's own: a warp bends a plane
+          give_landmarks(warped, std::move(moved), values);
+        }
         const Eigen::MatrixXd truth = warp.apply_rows(original.patient_hex.V);
         r = measure(standard, warped, truth, regions, options, progress);
         measure_input_shifts(original_setup, warped, warp, r);

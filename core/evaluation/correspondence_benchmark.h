@@ -38,9 +38,9 @@ struct CorrespondenceBenchmarkOptions {
   // Warps by name: "random-SEED" (random_warp with the default ranges), "chin" (the chin moved 8 mm forward), "nose"
   // (the nose tip moved along the nasion-pronasale line by 20 % of that length).
   std::vector<std::string> warps = {"random-1", "random-2", "chin", "nose"};
-  // Place a self-map's or deformation's feature constraints at the standard's landmarks moved by the warp instead of
-  // at the landmarks found on the model (the CTs are not affected): separates the landmark finder's error from the
-  // rest.
+  // Place a self-map's or deformation's feature constraints at the standard's landmarks moved by the warp, and a
+  // warped CT's at the original CT's landmarks moved by the warp, instead of at the landmarks found on the model:
+  // separates the landmark finder's error from the rest.
   bool true_landmarks = false;
   // CT files; each runs once as it is and once under each CT warp seed (ct_ranges).
   std::vector<std::string> cts;

@@ -166,5 +166,35 @@ TEST(CorrespondenceBenchmark, AWarpedCtsMeshLandsOnTheWarpOfTheOriginalsMesh) {
   EXPECT_GT(r.shape_mean, 0.95 * r.standard_shape_mean);
 }
 
+// With --true-landmarks a warped CT is given the original CT's landmarks moved by the warp instead of those found on
+// it: the standard's landmark vertices then land on the truth, and what is left of the error is the segmentation's
+// and the registration's (the plain mapping, for time).
+TEST(CorrespondenceBenchmark, AWarpedCtGivenTheOriginalsLandmarksLandsThemOnTheTruth) {
+  const StandardSetup standard = load_standard("artisynth-refface");
+  CorrespondenceBenchmarkOptions options;
+  options.transfer.shape_relaxation = options.transfer.repair_folds = false;
+  options.models.clear();
+  options.deformation_models.clear();
+  options.warps.clear();
+  options.cts = {default_ct()};
+  options.ct_seeds = {1};
+  options.true_landmarks = true;
+  const auto results = run_correspondence_benchmark(standard, options);
+  ASSERT_EQ(results.size(), 1u);
+  const CorrespondenceCaseResult& r = results[0];
+  ASSERT_EQ(r.failure, "") << r.name;
+  EXPECT_TRUE(r.registered_skin) << r.registered_failure;
+  EXPECT_TRUE(r.landmark_shift.empty());  // given, not found
+  EXPECT_TRUE(r.cut_shift.count("top"));  // the segmentation's cuts are still compared
+  bool has_landmarks = false;
+  for (const auto& region : r.error.regions)
+    if (region.name == "landmarks") {
+      has_landmarks = true;
+      EXPECT_LT(region.error.mean, 0.6);
+    }
+  EXPECT_TRUE(has_landmarks);
+  EXPECT_LT(r.error.all.mean, 1.5);
+}
+
 }  // namespace
 }  // namespace facehex
