@@ -257,7 +257,8 @@ EOF
   if want objects && [ -f ../shared/data/ct/vhfemale-head.mha ] && /usr/bin/python3 -c 'import vtk' 2>/dev/null; then
     # Objects on the skin: a layer of a soft tissue's density (0 HU) in front of the skin over a band of slices.
     ct=../shared/data/ct/vhfemale-head.mha
-    step objects-bare "$facehex" segment "$ct" -o "$out/objects-bare.vtu" --write-landmarks "$out/objects-bare.json"
+    step objects-segment-bare "$facehex" segment "$ct" -o "$out/objects-bare.vtu" \
+      --write-landmarks "$out/objects-bare.json"
     for spec in 150,170,4 135,155,4 125,145,4 140,175,3 155,190,6 140,160,2.5 118,128,1 20,35,3 15,40,6; do
       /usr/bin/python3 scripts/strap_ct.py "$ct" "$spec,0" -452 "$out/strapped.mha" >/dev/null
       # the step's standard output, $out/objects-segment-$spec.json, is the command's text: the objects it found
@@ -579,6 +580,10 @@ if only in ("", "objects") and os.path.exists(os.path.join(out, "objects-bare.js
 
     bare = marks("objects-bare.json")
     placed = {l["name"]: l for l in json.load(open(os.path.join(root, "tests/data/landmarks/vhfemale-head.json")))["landmarks"]}
+    def top_cut(spec):  # the top cut's height the segmentation printed
+        log = open(os.path.join(out, f"objects-segment-{spec}.json")).read()
+        return re.search(r"cuts \(mm[^:]*: top z ([\d.]+)", log).group(1)
+
     rows = []
     for spec in ("150,170,4", "135,155,4", "125,145,4", "140,175,3", "155,190,6", "140,160,2.5", "118,128,1",
                  "20,35,3", "15,40,6"):
@@ -596,11 +601,12 @@ if only in ("", "objects") and os.path.exists(os.path.join(out, "objects-bare.js
                 hand.append(f"{n} {before:.1f} -> {now:.1f}" + (" (estimated)" if found[n]["status"] == "estimated" else ""))
         rows.append([f"{thick} mm, z {z0}-{z1} ({where})",
                      "; ".join(f"z {a}-{b}, {t} mm" for a, b, t in seen) or "none",
-                     moved, "; ".join(hand) or "as on the bare CT"])
+                     moved, "; ".join(hand) or "as on the bare CT", top_cut(spec)])
     write_blocks("docs/benchmarks.md", {
         "bench-objects": machine_line().split(" Wall-clock")[0] + "\n\n" +
         table(["layer of 0 HU on the skin", "object found", "landmarks moved over 1.5 mm from the bare CT's",
-               "from the hand-placed (bare CT -> with the layer)"], rows, ["---"] * 4)})
+               "from the hand-placed (bare CT -> with the layer)", f"top cut z (bare CT: {top_cut('bare')})"],
+              rows, ["---"] * 4 + ["---:"])})
 
 # ---- docs/benchmarks.md: finer and coarser voxels ----
 if only in ("", "voxels") and os.path.exists(os.path.join(out, "voxels-landmarks-1x3.json")):

@@ -702,6 +702,7 @@ std::string face_anatomy_text(const FaceAnatomy& a) {
   s << std::fixed << "mid-sagittal plane x " << a.centre_x << " (roll " << a.roll_degrees << " deg); pronasale "
     << point_text(a.pronasale) << (a.nose_clipped ? " (nose clipped)" : "")
     << (a.brow_unseen ? "" : ", nasion " + point_text(a.nasion)) << ", glabella " << point_text(a.glabella)
+    << (a.glabella_under_object ? " (on the skin under the object lying on it)" : "")
     << (a.brow_unseen ? " (estimated: the profile shows no nasion below a brow, the top cut is the head's top)" : "")
     << ", menton " << point_text(a.menton) << ", front of the ears y " << a.ear_front_y << " (-x ear " << ear(0)
     << ", +x ear " << ear(1)

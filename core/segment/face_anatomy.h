@@ -97,6 +97,8 @@ struct FaceAnatomy {
   double highest_head_z = 0;  // the highest level of the head in the scan
   // Rule 3b: the highest level at which the forehead's front is whole; +infinity if it is up to the head's top.
   double forehead_end_z = std::numeric_limits<double>::infinity();
+  // The glabella was read on the skin under an object lying on the brow (FaceCutOptions::glabella), not on the profile.
+  bool glabella_under_object = false;
 
   // The mid-sagittal plane's x at height z.
   double centre_at(double z) const;

@@ -189,6 +189,10 @@ FaceCuts find_face_cuts(const Mask& head, const Mask& without_ears, const Mask& 
   FaceCuts cuts;
   if (!options.top_z || !options.bottom_z || !options.posterior_y || !options.centre_x)
     cuts.anatomy = find_face_anatomy(head, without_ears, bone);
+  if (options.glabella && cuts.anatomy && !cuts.anatomy->brow_unseen) {
+    cuts.anatomy->glabella = *options.glabella;
+    cuts.anatomy->glabella_under_object = true;
+  }
   cuts.centre_x = options.centre_x ? *options.centre_x : cuts.anatomy->centre_x;
   // To the tenth of a millimetre the cuts are printed and shown with, so that a cut given as printed is the same cut.
   if (options.posterior_y)

@@ -26,16 +26,17 @@
 //                 perpendicular to it, chin_clearance under the menton (bottom_slope = -dx/dz of the plane), so that
 //                 the shoulder the tilt raises on one side stays out of the model, unless that cut would leave the
 //                 scan under the head's section at the menton's level (it stays level then);
-//   top_z       = the glabella plus brow_clearance (above the eyebrows), but at least border_margin below the CT's top,
-//                 below the head's highest level (a scan that ends within the forehead) and below the highest level at
-//                 which the forehead's front is whole (face_anatomy.h rule 3b: a scan whose last slice leans across
-//                 the forehead) and the face region's section is (section_end_z: going up from the nasion, the head
-//                 voxels in front of the posterior cut lose less than kScanEndSlope mm of mean depth per mm of height;
-//                 a last slice leaning across the region, down to the back or to the front, takes a wedge from it
-//                 level by level); the lowest of those less border_margin when the profile shows no brow
-//                 (FaceAnatomy::brow_unseen); where the landmarks' plane leans, the cut through glabella +
-//                 brow_clearance is perpendicular to it (top_slope = bottom's) unless so tilted it would rise above the
-//                 lowest of those bounds over the head's section at the glabella's level (it stays level then);
+//   top_z       = the glabella plus brow_clearance (above the eyebrows; the glabella read on the skin under an object
+//                 lying on the brow when the segmentation found one there, FaceCutOptions::glabella), but at least
+//                 border_margin below the CT's top, below the head's highest level (a scan that ends within the
+//                 forehead) and below the highest level at which the forehead's front is whole (face_anatomy.h rule 3b:
+//                 a scan whose last slice leans across the forehead) and the face region's section is (section_end_z:
+//                 going up from the nasion, the head voxels in front of the posterior cut lose less than kScanEndSlope
+//                 mm of mean depth per mm of height; a last slice leaning across the region, down to the back or to the
+//                 front, takes a wedge from it level by level); the lowest of those less border_margin when the profile
+//                 shows no brow (FaceAnatomy::brow_unseen); where the landmarks' plane leans, the cut through glabella
+//                 + brow_clearance is perpendicular to it (top_slope = bottom's) unless so tilted it would rise above
+//                 the lowest of those bounds over the head's section at the glabella's level (it stays level then);
 //   posterior_y = the line in front of the ears (ears_line: through the tragi, core/segment/tragus.h) moved
 //                 ear_clearance forward, each side the same distance in front of its own ear (a face's asymmetry, or
 //                 what is left of a turn of the head, moves them apart);
@@ -67,6 +68,9 @@ struct FaceCutOptions {
   // Degrees the head is pitched about the lateral axis (core/mesh/head_turn.h; positive: the chin raised); none when
   // unset.
   std::optional<double> head_pitch;
+  // The glabella (head frame) the top cut is placed by instead of the profile's (face_anatomy.h rule 3): the one read
+  // on the skin under an object lying on it (skin_objects.h), where the profile takes the object's front for the brow.
+  std::optional<Eigen::Vector3d> glabella;
   double brow_clearance = 15.0;  // mm above the glabella (the eyebrows lie within it)
   double chin_clearance = 15.0;  // mm below the menton (the chin's soft tissue is about 10 mm thick there)
   double ear_clearance = 9.0;    // mm in front of the front of the ears (front_of_the_ears)

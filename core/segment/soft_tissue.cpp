@@ -311,7 +311,10 @@ double scan_edge_length(const Eigen::Vector3d& spacing, double target_edge_lengt
   return std::max(target_edge_length, std::min(spacing.maxCoeff(), kMostScanEdgeLength));
 }
 
-PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& options, const ProgressCallback& progress) {
+namespace {
+
+// The segmentation with the cuts placed as `options` say (build_patient_model).
+PatientModel build_once(const CtVolume& ct, const SegmentOptions& options, const ProgressCallback& progress) {
   if (!(options.working_spacing > 0) || !(options.tets.target_edge_length > 0) || !(options.max_depth > 0))
     throw Error("segment", "working_spacing, target_edge_length and max_depth must be positive");
   // Fractions of the whole from the stages' share of the time on the bundled CT.
@@ -551,6 +554,48 @@ PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& optio
   model.boundary_sides = tets.boundary_labels.array() - 1;
   step("checks", 0.95);
   check_topology(model);
+  return model;
+}
+
+// The glabella read on the skin under an object lying on it (skin_objects.h), in the cuts' head frame, where the
+// profile's glabella that placed the top cut lies on that object (its front comes forward as a brow does): the top cut
+// belongs brow_clearance above the skin's brow instead. None where the top cut was given or placed otherwise, no
+// object lies at the profile's glabella, or the two agree within kGlabellaTolerance.
+std::optional<Eigen::Vector3d> glabella_under_object(const PatientModel& model, const SegmentOptions& options) {
+  constexpr double kObjectMargin = 2.0;       // mm: an edge's grey values blend over a slice either side
+  constexpr double kGlabellaTolerance = 2.0;  // mm in height: the two profiles' own difference on a bare brow
+  if (options.cuts.top_z || options.cuts.glabella || !model.cuts.anatomy || model.cuts.anatomy->brow_unseen)
+    return std::nullopt;
+  const FaceAnatomy& a = *model.cuts.anatomy;
+  const std::optional<CtLandmarks> read = ct_landmarks(model.mesh, "the model");
+  if (!read) return std::nullopt;
+  const bool on_object = std::any_of(read->skin_objects.begin(), read->skin_objects.end(), [&](const SkinObject& o) {
+    return a.glabella.z() >= o.z_low - kObjectMargin && a.glabella.z() <= o.z_high + kObjectMargin;
+  });
+  if (!on_object) return std::nullopt;
+  FaceLandmarks under;
+  try {
+    under = find_face_landmarks(model.mesh.V, side_mask_of(model.mesh), landmark_options_for(model.mesh, "model"));
+  } catch (const Error&) {
+    return std::nullopt;
+  }
+  const Eigen::Vector3d glabella = model.cuts.turn.to_head(under.points.at("glabella"));
+  if (std::abs(glabella.z() - a.glabella.z()) <= kGlabellaTolerance) return std::nullopt;
+  return glabella;
+}
+
+}  // namespace
+
+PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& options, const ProgressCallback& progress) {
+  PatientModel model = build_once(ct, options, progress);
+  // A strap over the brow is the profile's most anterior point there: the cut above "the glabella" would lie above
+  // the strap. The model is made again with the top cut above the glabella read on the skin under it.
+  if (const std::optional<Eigen::Vector3d> glabella = glabella_under_object(model, options)) {
+    SegmentOptions again = options;
+    again.cuts.glabella = *glabella;
+    report_progress(progress, "segmentation: again, the top cut above the glabella under the object on the skin", 0);
+    return build_once(ct, again, progress);
+  }
   return model;
 }
 

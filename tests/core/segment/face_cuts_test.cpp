@@ -625,6 +625,26 @@ TEST(FaceCuts, GivenValuesAreTakenAsThey) {
   EXPECT_EQ(cuts.centre_x, 71);
 }
 
+// The glabella read on the skin under an object over the brow (soft_tissue.cpp reads it there when the profile's lies
+// on one) places the top cut instead of the profile's, and the anatomy says so.
+TEST(FaceCuts, AGlabellaReadUnderAnObjectPlacesTheTopCut) {
+  const Head h;
+  FaceCutOptions o;
+  o.glabella = Eigen::Vector3d(60, 91, 133);
+  const FaceCuts cuts = cuts_of(h.head, h.bone, o);
+  ASSERT_TRUE(cuts.anatomy);
+  EXPECT_DOUBLE_EQ(cuts.top_z, 133 + o.brow_clearance);
+  EXPECT_TRUE(cuts.anatomy->glabella_under_object);
+  EXPECT_EQ(cuts.anatomy->glabella, *o.glabella);
+  EXPECT_NE(face_anatomy_text(*cuts.anatomy).find("glabella (60.0, 91.0, 133.0) (on the skin under the object"),
+            std::string::npos)
+      << face_anatomy_text(*cuts.anatomy);
+  // Without it, the profile's glabella (the brow's middle, z 140) places the cut.
+  const FaceCuts profile = cuts_of(h.head, h.bone, FaceCutOptions{});
+  EXPECT_NEAR(profile.top_z, 155, 1.0);
+  EXPECT_FALSE(profile.anatomy->glabella_under_object);
+}
+
 TEST(FaceCuts, RejectsCutsThatLeaveNoFace) {
   const Head h;
   expect_error([&] { cuts_of(Mask(h.head.geometry, 0), h.bone, FaceCutOptions()); }, "the head mask is empty");

@@ -137,6 +137,11 @@ TEST(SkinObjects, VisibleHumanWithAForeheadStrapKeepsItsGlabellaOnTheSkinUnlessO
   const Eigen::Vector3d glabella = l.points.at("glabella"), placed = hand_placed_visible_human().at("glabella");
   EXPECT_LT((glabella - placed).norm(), 3.0) << "glabella at " << glabella.transpose();
   EXPECT_NEAR(glabella.y(), placed.y(), 1.0) << "glabella at " << glabella.transpose();
+  // The top cut lies brow_clearance above the skin's glabella, not above the strap's lower edge, which the CT's
+  // profile takes for the brow (5.5 mm higher).
+  ASSERT_TRUE(model.cuts.anatomy);
+  EXPECT_TRUE(model.cuts.anatomy->glabella_under_object);
+  EXPECT_NEAR(model.cuts.top_z, placed.z() + model.options.cuts.brow_clearance, 2.5);
 
   // Without looking for objects (--skin-objects off) the glabella is read on the strap's front.
   SegmentOptions off;
@@ -146,6 +151,7 @@ TEST(SkinObjects, VisibleHumanWithAForeheadStrapKeepsItsGlabellaOnTheSkinUnlessO
                                                      landmark_options_for(as_segmented.mesh, "model"));
   EXPECT_TRUE(on_front.skin_objects.empty());
   EXPECT_GT(on_front.points.at("glabella").y(), placed.y() + 2) << on_front.points.at("glabella").transpose();
+  EXPECT_FALSE(as_segmented.cuts.anatomy->glabella_under_object);
 }
 
 }  // namespace
