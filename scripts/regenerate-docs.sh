@@ -580,8 +580,8 @@ if only in ("", "objects") and os.path.exists(os.path.join(out, "objects-bare.js
 
     bare = marks("objects-bare.json")
     placed = {l["name"]: l for l in json.load(open(os.path.join(root, "tests/data/landmarks/vhfemale-head.json")))["landmarks"]}
-    def top_cut(spec):  # the top cut's height the segmentation printed
-        log = open(os.path.join(out, f"objects-segment-{spec}.json")).read()
+    def top_cut(spec):  # the top cut's height the segmentation printed (on stderr)
+        log = open(os.path.join(out, f"objects-segment-{spec}.log")).read()
         return re.search(r"cuts \(mm[^:]*: top z ([\d.]+)", log).group(1)
 
     rows = []

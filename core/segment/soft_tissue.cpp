@@ -557,22 +557,17 @@ PatientModel build_once(const CtVolume& ct, const SegmentOptions& options, const
   return model;
 }
 
-// The glabella read on the skin under an object lying on it (skin_objects.h), in the cuts' head frame, where the
-// profile's glabella that placed the top cut lies on that object (its front comes forward as a brow does): the top cut
-// belongs brow_clearance above the skin's brow instead. None where the top cut was given or placed otherwise, no
-// object lies at the profile's glabella, or the two agree within kGlabellaTolerance.
+// The glabella read on the skin under the objects lying on it (skin_objects.h), in the cuts' head frame, where an
+// object was found and the head profile's glabella, which placed the top cut, lies more than kGlabellaTolerance from
+// it in height: a strap over the brow comes forward as a brow does, and one over the nose's root moves the profile's
+// nasion and the glabella read above it. The top cut belongs brow_clearance above the skin's brow instead. None where
+// the top cut was given or placed otherwise, no object was found, or the two agree.
 std::optional<Eigen::Vector3d> glabella_under_object(const PatientModel& model, const SegmentOptions& options) {
-  constexpr double kObjectMargin = 2.0;       // mm: an edge's grey values blend over a slice either side
-  constexpr double kGlabellaTolerance = 2.0;  // mm in height: the two profiles' own difference on a bare brow
+  constexpr double kGlabellaTolerance = 2.0;  // mm: the two readings' own difference on a bare brow is within it
   if (options.cuts.top_z || options.cuts.glabella || !model.cuts.anatomy || model.cuts.anatomy->brow_unseen)
     return std::nullopt;
-  const FaceAnatomy& a = *model.cuts.anatomy;
   const std::optional<CtLandmarks> read = ct_landmarks(model.mesh, "the model");
-  if (!read) return std::nullopt;
-  const bool on_object = std::any_of(read->skin_objects.begin(), read->skin_objects.end(), [&](const SkinObject& o) {
-    return a.glabella.z() >= o.z_low - kObjectMargin && a.glabella.z() <= o.z_high + kObjectMargin;
-  });
-  if (!on_object) return std::nullopt;
+  if (!read || read->skin_objects.empty()) return std::nullopt;
   FaceLandmarks under;
   try {
     under = find_face_landmarks(model.mesh.V, side_mask_of(model.mesh), landmark_options_for(model.mesh, "model"));
@@ -580,7 +575,7 @@ std::optional<Eigen::Vector3d> glabella_under_object(const PatientModel& model, 
     return std::nullopt;
   }
   const Eigen::Vector3d glabella = model.cuts.turn.to_head(under.points.at("glabella"));
-  if (std::abs(glabella.z() - a.glabella.z()) <= kGlabellaTolerance) return std::nullopt;
+  if (std::abs(glabella.z() - model.cuts.anatomy->glabella.z()) <= kGlabellaTolerance) return std::nullopt;
   return glabella;
 }
 

@@ -138,7 +138,7 @@ TEST(SkinObjects, VisibleHumanWithAForeheadStrapKeepsItsGlabellaOnTheSkinUnlessO
   EXPECT_LT((glabella - placed).norm(), 3.0) << "glabella at " << glabella.transpose();
   EXPECT_NEAR(glabella.y(), placed.y(), 1.0) << "glabella at " << glabella.transpose();
   // The top cut lies brow_clearance above the skin's glabella, not above the strap's lower edge, which the CT's
-  // profile takes for the brow (5.5 mm higher).
+  // profile takes for the brow.
   ASSERT_TRUE(model.cuts.anatomy);
   EXPECT_TRUE(model.cuts.anatomy->glabella_under_object);
   EXPECT_NEAR(model.cuts.top_z, placed.z() + model.options.cuts.brow_clearance, 2.5);
