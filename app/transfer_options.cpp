@@ -22,6 +22,13 @@ void print_segmentation(const CtSegmentation& segmentation) {
                "--mid-plane)\n";
 }
 
+// The value of an option that is either on or off.
+bool on_or_off(const Args& args, const std::string& name) {
+  const std::string value = args.get(name);
+  if (value != "on" && value != "off") throw UsageError("--" + name, "expects on or off, got '" + value + "'");
+  return value == "on";
+}
+
 }  // namespace
 
 void add_field_options(Args& args) {
@@ -175,10 +182,7 @@ SegmentOptions segment_options(const Args& args) {
   o.bone_gap_radius = not_negative("bone-gap");
   o.cavity_closing_radius = not_negative("cavity-closing");
   o.smoothing_sigma = not_negative("smoothing");
-  const std::string objects = args.get("skin-objects");
-  if (objects != "on" && objects != "off")
-    throw UsageError("--skin-objects", "expects on or off, got '" + objects + "'");
-  o.find_skin_objects = objects == "on";
+  o.find_skin_objects = on_or_off(args, "skin-objects");
   return o;
 }
 
@@ -194,10 +198,7 @@ TransferOptions transfer_options(const Args& args) {
   else
     throw UsageError("--skin-correspondence", "expects registered or features, got '" + correspondence + "'");
   o.hold_registered_skin = args.has("hold-skin");
-  const std::string pull = args.get("pull-found-landmarks");
-  if (pull != "on" && pull != "off")
-    throw UsageError("--pull-found-landmarks", "expects on or off, got '" + pull + "'");
-  o.pull_found_landmarks = pull == "on";
+  o.pull_found_landmarks = on_or_off(args, "pull-found-landmarks");
   o.landmarks_not_pulled = split_commas(args.get("landmarks-not-pulled"));
   for (const std::string& name : o.landmarks_not_pulled)
     if (!is_landmark_name(name))
