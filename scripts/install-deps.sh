@@ -16,6 +16,7 @@ packages=(
   calculix-ccx gmsh  # the FE export tests run the CalculiX solver and Gmsh on exported models
   xvfb xauth libgl1-mesa-dri
   snakemake python3-vtk9  # cohorts: workflow/Snakefile; make cohort-demo warps the bundled CT in Python
+  python3-numpy  # the docs' scripts (scripts/regenerate-docs.sh) read and write VTK arrays with it
   slurm-wlm munge  # the cohort test on a single-node Slurm cluster (scripts/local-slurm.sh)
 )
 if [ "${1:-}" = fuzz ]; then packages+=(clang libclang-rt-14-dev libomp-dev); fi

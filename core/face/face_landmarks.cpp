@@ -636,6 +636,8 @@ FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorX
   for (size_t side = 0; side < kTragusNames.size(); ++side) add(kTragusNames[side], options.ct_landmarks->tragi[side]);
   for (size_t c = 0; c < kEyeCornerNames.size(); ++c) add(kEyeCornerNames[c], options.ct_landmarks->eye_corners[c]);
   add(kStomionName, options.ct_landmarks->stomion);
+  for (size_t c = 0; c < kMouthCornerNames.size(); ++c)
+    add(kMouthCornerNames[c], options.ct_landmarks->mouth_corners[c]);
   return l;
 }
 

@@ -94,9 +94,9 @@ struct LandmarkOptions {
   // The skin to read the face from instead of the model's skin vertices, #P x 3 in the model's frame: a segmented
   // CT's, at the segmentation's working spacing (core/mesh/skin_points.h).
   std::optional<Eigen::MatrixXd> skin_points;
-  // The tragi, eye corners and stomion the segmentation found in the CT (core/mesh/ct_landmarks.h), in the model's
-  // frame: they lie behind a model's posterior cut and in the closed eyes' and lips' slits, where the skin read does
-  // not show them.
+  // The tragi, eye corners, stomion and mouth corners the segmentation found in the CT (core/mesh/ct_landmarks.h), in
+  // the model's frame: they lie behind a model's posterior cut and in the closed eyes' and lips' slits, where the skin
+  // read does not show them.
   std::optional<CtLandmarks> ct_landmarks;
   // The skin vertices on the rim of each opening of the model (walls on no side: open eyes, nostrils or a mouth, as a
   // hex standard or a face model has them), #R x 3 each, in the model's frame. The mouth's and the eyes' corners are

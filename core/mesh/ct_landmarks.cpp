@@ -10,12 +10,13 @@ namespace facehex {
 namespace {
 
 constexpr int kRows = static_cast<int>(kCtLandmarkNames.size());
+constexpr int kRowsWithoutMouthCorners = kRows - static_cast<int>(kMouthCornerNames.size());
 
 // The rows in kCtLandmarkNames order (pointers to const members for a const CtLandmarks).
 template <class Landmarks>
 auto rows_of(Landmarks& l) {
-  return std::array{&l.tragi[0],       &l.tragi[1],       &l.eye_corners[0], &l.eye_corners[1],
-                    &l.eye_corners[2], &l.eye_corners[3], &l.stomion};
+  return std::array{&l.tragi[0],       &l.tragi[1], &l.eye_corners[0],   &l.eye_corners[1],  &l.eye_corners[2],
+                    &l.eye_corners[3], &l.stomion,  &l.mouth_corners[0], &l.mouth_corners[1]};
 }
 
 }  // namespace
@@ -31,11 +32,11 @@ std::optional<CtLandmarks> ct_landmarks(const VolumeMesh& mesh, const std::strin
                             std::to_string(kRows) + " x 4: x, y, z mm and 1 if estimated) " + problem + ": " +
                             given.str() + "; remove it to have them left out");
   };
-  if (t.rows() != kRows || t.cols() != 4)
+  if ((t.rows() != kRows && t.rows() != kRowsWithoutMouthCorners) || t.cols() != 4)
     malformed("is " + std::to_string(t.rows()) + " x " + std::to_string(t.cols()));
   CtLandmarks out;
   const auto rows = rows_of(out);
-  for (int r = 0; r < kRows; ++r) {
+  for (int r = 0; r < t.rows(); ++r) {
     if (t.row(r).array().isNaN().all()) continue;
     if (!t.row(r).allFinite()) malformed("has a row with numbers that are not finite");
     if (t(r, 3) != 0 && t(r, 3) != 1) malformed("has a status that is neither 0 nor 1");

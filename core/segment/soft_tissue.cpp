@@ -20,6 +20,7 @@
 #include "core/segment/head_frame.h"
 #include "core/segment/iso_surface.h"
 #include "core/segment/morphology.h"
+#include "core/segment/mouth_slit.h"
 #include "core/segment/palate_pitch.h"
 #include "core/segment/remesh.h"
 #include "core/segment/side_labels.h"
@@ -283,7 +284,8 @@ SurfaceMesh level_surface_with_cuts(const Mask& tissue, FaceCuts& cuts, const Se
 }
 
 // The landmarks read in the CT by the ones found on the model's skin (its mid-sagittal plane, nasion, pronasale and
-// labralia) into `found`: the eye corners (eye_corners.h), the stomion (stomion.h) and, with `objects`, the objects on
+// labralia) into `found`: the eye corners (eye_corners.h), the stomion (stomion.h), the mouth corners from it
+// (mouth_slit.h) and, with `objects`, the objects on
 // the skin above the nose tip (skin_objects.h). False, and none read, when those are not found: the transfer says why.
 bool read_slit_landmarks(const CtVolume& ct, const PatientModel& model, bool objects, CtLandmarks& found) {
   FaceLandmarks landmarks;
@@ -302,6 +304,8 @@ bool read_slit_landmarks(const CtVolume& ct, const PatientModel& model, bool obj
   if (has("labrale superius") && has("labrale inferius"))
     found.stomion = find_stomion(ct.intensity, skin, landmarks.plane, landmarks.points.at("labrale superius"),
                                  landmarks.points.at("labrale inferius"));
+  if (found.stomion)
+    found.mouth_corners = find_mouth_corners(ct.intensity, skin, landmarks.plane, found.stomion->point);
   return true;
 }
 
@@ -547,7 +551,7 @@ PatientModel build_once(const CtVolume& ct, const SegmentOptions& options, const
     for (std::optional<CtLandmark>& tragus : found.tragi)
       if (tragus) tragus->point = turn.to_model(tragus->point);
   }
-  step("the eye corners and the stomion", 0.93);
+  step("the eye corners, the stomion and the mouth corners", 0.93);
   if (read_slit_landmarks(ct, model, options.find_skin_objects, found) || model.cuts.anatomy)
     set_ct_landmarks(model.mesh, found);
   model.boundary_faces = std::move(tets.boundary_faces);

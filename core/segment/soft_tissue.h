@@ -23,8 +23,9 @@
 //     When that surface has tunnels (Euler characteristic other than 2; thin tissue pierced), steps 4-6 run again
 //     with min_thickness and smoothing_sigma raised, up to twice (PatientModel::repair says what was done);
 //  8. the landmarks the model's skin does not show, read in the CT and kept as field data (core/mesh/ct_landmarks.h):
-//     the tragi (tragus.h, with the cuts), the eye corners and the stomion (eye_corners.h, stomion.h, by the
-//     landmarks found on the model), and the objects lying on the skin's front above the nose tip (skin_objects.h);
+//     the tragi (tragus.h, with the cuts), the eye corners, the stomion and the mouth corners (eye_corners.h,
+//     stomion.h, mouth_slit.h, by the landmarks found on the model), and the objects lying on the skin's front above
+//     the nose tip (skin_objects.h);
 //  9. checks: one solid, boundary of Euler characteristic 2 (a ball), each of the six sides one connected patch.
 #include <optional>
 #include <string>

@@ -634,8 +634,14 @@ TEST(FaceLandmarks, TheLandmarksAModelCarriesFromItsCtAreListedWithTheirStatusAn
   found.eye_corners[1] = CtLandmark{Eigen::Vector3d(PhantomFace::x0 - 45, 60, 30), false};
   found.eye_corners[3] = CtLandmark{Eigen::Vector3d(PhantomFace::x0 + 45, 60, 30), true};
   found.stomion = CtLandmark{Eigen::Vector3d(PhantomFace::x0, 70, -35), false};
+  found.mouth_corners[0] = CtLandmark{Eigen::Vector3d(PhantomFace::x0 - 26, 62, -37), false};
   options.ct_landmarks = found;
   const FaceLandmarks l = find_face_landmarks(face.V, face.side_mask, options);
+  // The CT's mouth corner in place of the skin's; the other, not seen in the CT, the skin's.
+  const FaceLandmarks on_skin = find_face_landmarks(face.V, face.side_mask);
+  EXPECT_EQ(l.points.at("cheilion right"), found.mouth_corners[0]->point);
+  EXPECT_NE(on_skin.points.at("cheilion right"), found.mouth_corners[0]->point);
+  EXPECT_EQ(l.points.at("cheilion left"), on_skin.points.at("cheilion left"));
   EXPECT_EQ(l.points.at("tragus right"), tragi[0]->point);
   EXPECT_EQ(l.points.at("tragus left"), tragi[1]->point);
   for (const NamedLandmark& n : named_landmarks(l)) {

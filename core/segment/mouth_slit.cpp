@@ -1,0 +1,156 @@
+#include "core/segment/mouth_slit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "core/mesh/head_turn.h"
+#include "core/segment/face_front.h"
+
+namespace facehex {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Rule 1.
+constexpr double kHalfWidth = 45;  // mm either side of the plane: past the widest adult mouth's corner
+constexpr double kWindow = 15;     // mm above and below the stomion: the corners lie a few millimetres off its level
+constexpr double kRayFront = 25;   // mm in front of the stomion where the rays start (in front of the lips)
+constexpr double kRayBack = 50;    // mm behind it where they give up (behind the cheeks at the corners)
+// Rule 2.
+constexpr double kChord = 2;       // mm: half the chord; the slit is 1 to 2 mm tall, the lips' curves wider
+constexpr double kColumnMean = 1;  // mm either side of a column
+// Rule 3.
+constexpr double kStep = 0.5;        // mm between the line's columns (the front's grid)
+constexpr double kLevelStep = 0.25;  // mm between the levels the deepest notch is looked for at
+constexpr double kReach = 0.5;       // mm in z the line may move between neighbouring columns: a mouth line's slope
+// Rule 4.
+constexpr double kDepthNear = 10;  // mm out: the slit's middle, between the philtrum's columns and the corners
+constexpr double kMinDepth = 0.8;  // mm
+// Rule 5.
+constexpr double kCornerNear = 15;  // mm out: short of the narrowest adult mouth's corner (a width of 35 mm)
+constexpr double kCornerFar = 42;   // mm out: beyond the widest's (85 mm)
+constexpr double kMeanWidth = 1.5;  // mm: three columns
+constexpr double kEndFraction = 0.5;
+// Rule 6.
+constexpr double kHeightBand = 3;  // mm
+// The coarsest voxel the slit's end is read on.
+constexpr double kMostSpacing = 1.5;  // mm
+
+// One side's slit in the head frame: side -1 the right corner (-x), +1 the left.
+class MouthSlit {
+ public:
+  MouthSlit(const FaceFront& front, double centre, double stomion_z, double lean, int side)
+      : front_(front), centre_(centre), stomion_z_(stomion_z), rise_per_mm_(-lean * side), side_(side) {}
+
+  std::optional<CtLandmark> corner() const {
+    // Rule 3: the line, (offset, level above the stomion's line) column by column.
+    std::vector<double> offsets, levels, depths;
+    double level = 0;
+    for (double offset = 0; offset <= kHalfWidth - kColumnMean + 1e-9; offset += kStep) {
+      double best = kNaN, best_level = level;
+      for (double l = level - kReach; l <= level + kReach + 1e-9; l += kLevelStep) {
+        const double d = notch(offset, l);
+        if (!std::isnan(d) && (std::isnan(best) || d > best)) best = d, best_level = l;
+      }
+      if (std::isnan(best)) break;
+      level = std::clamp(best_level, -kWindow, kWindow);
+      offsets.push_back(offset);
+      levels.push_back(level);
+      depths.push_back(best);
+    }
+    // Rule 4.
+    std::vector<double> middle;
+    for (size_t i = 0; i < offsets.size() && offsets[i] <= kDepthNear + 1e-9; ++i) middle.push_back(depths[i]);
+    if (middle.empty()) return std::nullopt;
+    std::nth_element(middle.begin(), middle.begin() + static_cast<long>(middle.size() / 2), middle.end());
+    const double depth = middle[middle.size() / 2];
+    if (depth < kMinDepth) return std::nullopt;
+    // Rule 5.
+    const int half = static_cast<int>(std::lround(kMeanWidth / kStep / 2));
+    const int n = static_cast<int>(offsets.size());
+    const auto mean_at = [&](int i) {
+      double sum = 0;
+      int count = 0;
+      for (int k = std::max(0, i - half); k <= std::min(n - 1, i + half); ++k) sum += depths[k], ++count;
+      return sum / count;
+    };
+    const double end = kEndFraction * depth;
+    for (int i = 1; i < n - half; ++i) {
+      if (offsets[i] < kCornerNear) continue;
+      if (offsets[i] > kCornerFar) break;
+      const double here = mean_at(i);
+      if (here >= end) continue;
+      const double before = mean_at(i - 1);
+      const double t = before > here ? std::clamp((before - end) / (before - here), 0.0, 1.0) : 1.0;
+      const double offset = offsets[i - 1] + t * (offsets[i] - offsets[i - 1]);
+      const double line_level = levels[i - 1] + t * (levels[i] - levels[i - 1]);
+      return at_height(offset, steepest_level(offset, line_level));
+    }
+    return std::nullopt;
+  }
+
+ private:
+  double x_at(double offset) const { return centre_ + side_ * offset; }
+  // The head frame's height of the level `level` above the stomion's line, `offset` mm out.
+  double height(double offset, double level) const { return stomion_z_ + level + rise_per_mm_ * offset; }
+  double front(double offset, double level) const { return front_(x_at(offset), height(offset, level)); }
+
+  // Rule 2.
+  double notch(double offset, double level) const {
+    double sum = 0;
+    int count = 0;
+    for (double c = offset - kColumnMean; c <= offset + kColumnMean + 1e-9; c += kStep) {
+      const double d = (front(c, level + kChord) + front(c, level - kChord)) / 2 - front(c, level);
+      if (std::isnan(d)) return kNaN;
+      sum += d;
+      ++count;
+    }
+    return sum / count;
+  }
+
+  // Rule 6: the level within kHeightBand of `level` where dy/dz is largest, from differences a grid step apart.
+  double steepest_level(double offset, double level) const {
+    double best = -std::numeric_limits<double>::infinity(), best_level = level;
+    for (double l = level - kHeightBand; l <= level + kHeightBand + 1e-9; l += kLevelStep) {
+      const double slope = (front(offset, l + kLevelStep) - front(offset, l - kLevelStep)) / (2 * kLevelStep);
+      if (!std::isnan(slope) && slope > best) best = slope, best_level = l;
+    }
+    return best_level;
+  }
+
+  std::optional<CtLandmark> at_height(double offset, double level) const {
+    const double y = front(offset, level);
+    if (std::isnan(y)) return std::nullopt;
+    return CtLandmark{Eigen::Vector3d(x_at(offset), y, height(offset, level)), false};
+  }
+
+  const FaceFront& front_;
+  double centre_, stomion_z_, rise_per_mm_;
+  int side_;
+};
+
+}  // namespace
+
+MouthCorners find_mouth_corners(const Field& ct, double skin_threshold, const MidSagittalPlane& plane,
+                                const Eigen::Vector3d& stomion) {
+  if (ct.geometry.spacing.maxCoeff() > kMostSpacing) return {};
+  const HeadTurn frame = head_turn_of(plane);
+  const Eigen::Vector3d s = frame.to_head(stomion);
+  const MidSagittalPlane head_plane = frame.to_head(plane);
+  const double centre = head_plane.x_at(s.y(), s.z());
+  const double tilt = std::abs(head_plane.slope) * kHalfWidth;  // the most the levels rise or fall
+  const double margin = kChord + kHeightBand + 1;
+  const FaceFront front(ct, skin_threshold, frame, centre - kHalfWidth, centre + kHalfWidth,
+                        s.z() - kWindow - margin - tilt, s.z() + kWindow + margin + tilt, s.y() + kRayFront,
+                        s.y() - kRayBack);
+  MouthCorners corners;
+  for (const int side : {-1, 1}) {
+    const std::optional<CtLandmark> corner = MouthSlit(front, centre, s.z(), head_plane.slope, side).corner();
+    if (corner) corners[side < 0 ? 0 : 1] = CtLandmark{frame.to_model(corner->point), false};
+  }
+  return corners;
+}
+
+}  // namespace facehex
