@@ -64,6 +64,8 @@ int cmd_info(const Argv& argv) {
     std::cout << "  landmarks found in the CT by the segmentation:\n";
     for (size_t side = 0; side < kTragusNames.size(); ++side) print(kTragusNames[side], found->tragi[side]);
     for (size_t c = 0; c < kEyeCornerNames.size(); ++c) print(kEyeCornerNames[c], found->eye_corners[c]);
+    print(kStomionName, found->stomion);
+    for (size_t c = 0; c < kMouthCornerNames.size(); ++c) print(kMouthCornerNames[c], found->mouth_corners[c]);
     for (const SkinObject& object : found->skin_objects) std::cout << "    " << skin_object_text(object) << "\n";
   }
   return 0;
