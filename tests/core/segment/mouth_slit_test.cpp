@@ -93,9 +93,10 @@ TEST(MouthSlit, TheEndsOfTheClosedLipsSlitUprightAndTurned) {
 }
 
 TEST(MouthSlit, TheEndsOfAShallowerSlitOnAShallowerFace) {
-  // The end is read against the slit's own depth: a slit half as deep on a face 8 % shallower ends where it ends.
+  // The end is read against the slit's own depth: a slit about half as deep on a face 8 % shallower (a notch under 1 mm,
+  // shallower throughout than half the default slit's) ends where it ends.
   MouthPhantom face;
-  face.depth = 1.2;
+  face.depth = 1.1;
   face.scale = 0.92;
   expect_corners(face, 0, 0);
 }
@@ -124,8 +125,9 @@ TEST(MouthSlit, NoneWithoutASlitOrOnCoarseVoxels) {
 }
 
 // The real CT: the corners against the hand-placed ones (tests/data/landmarks), read by the plane the segmentation
-// finds and the hand-placed stomion.
-TEST(MouthSlit, VisibleHumanFemaleNearTheHandPlacedOnes) {
+// finds and the hand-placed stomion; on its own 1 mm voxels, on 1.5 mm slices (the coarsest read) and on 3 mm slices
+// (none: the skin's corners stand).
+TEST(MouthSlit, VisibleHumanFemaleNearTheHandPlacedOnesAndNoneOnThickSlices) {
   const std::string path = std::string(FACEHEX_SHARED_DIR) + "/data/ct/vhfemale-head.mha";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << "no shared data at " << path;
   const CtVolume ct = read_ct_volume(path);
@@ -133,14 +135,26 @@ TEST(MouthSlit, VisibleHumanFemaleNearTheHandPlacedOnes) {
   for (const NamedLandmark& l :
        read_landmark_file(std::string(FACEHEX_TEST_DATA_DIR) + "/landmarks/vhfemale-head.json"))
     placed[l.name] = l;
-  const MouthCorners found = find_mouth_corners(ct.intensity, estimate_thresholds(ct.intensity).skin,
-                                                testing::visible_human_plane(), placed.at("stomion").position);
-  for (int c = 0; c < 2; ++c) {
-    const NamedLandmark& ref = placed.at(kMouthCornerNames[c]);
-    ASSERT_TRUE(found[c]) << ref.name;
-    EXPECT_LE((found[c]->point - ref.position).norm(), 2.0)
-        << ref.name << " found at " << found[c]->point.transpose() << ", placed at " << ref.position.transpose();
+  const double skin = estimate_thresholds(ct.intensity).skin;
+  const auto corners_on_slices = [&](double thickness) {
+    GridGeometry thick = ct.intensity.geometry;
+    thick.spacing.z() = thickness;
+    thick.dims[2] = static_cast<int>((ct.intensity.geometry.dims[2] - 1) / thickness) + 1;
+    return find_mouth_corners(thickness == 1 ? ct.intensity : resample(ct.intensity, thick), skin,
+                              testing::visible_human_plane(), placed.at("stomion").position);
+  };
+  for (const double thickness : {1.0, 1.5}) {
+    const MouthCorners found = corners_on_slices(thickness);
+    for (int c = 0; c < 2; ++c) {
+      const NamedLandmark& ref = placed.at(kMouthCornerNames[c]);
+      ASSERT_TRUE(found[c]) << ref.name << " on " << thickness << " mm slices";
+      EXPECT_LE((found[c]->point - ref.position).norm(), 2.0)
+          << ref.name << " on " << thickness << " mm slices found at " << found[c]->point.transpose() << ", placed at "
+          << ref.position.transpose();
+    }
   }
+  const MouthCorners on_thick = corners_on_slices(3);
+  EXPECT_FALSE(on_thick[0] || on_thick[1]);
 }
 
 }  // namespace
