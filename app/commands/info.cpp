@@ -66,6 +66,7 @@ int cmd_info(const Argv& argv) {
     for (size_t c = 0; c < kEyeCornerNames.size(); ++c) print(kEyeCornerNames[c], found->eye_corners[c]);
     print(kStomionName, found->stomion);
     for (size_t c = 0; c < kMouthCornerNames.size(); ++c) print(kMouthCornerNames[c], found->mouth_corners[c]);
+    print(kBonyMentonName, found->bony_menton);
     for (const SkinObject& object : found->skin_objects) std::cout << "    " << skin_object_text(object) << "\n";
   }
   return 0;

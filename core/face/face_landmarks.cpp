@@ -344,8 +344,17 @@ Eigen::Vector3d subnasale(const Profile& profile, const Eigen::Vector3d& ls, con
   return lip[top];
 }
 
+// mm either side of the bony menton's depth within which the skin under it is looked for (a working grid's voxel and a
+// half), and the most soft tissue under an adult's chin.
+constexpr double kUnderBoneColumn = 1.5;
+constexpr double kMostChinTissue = 25;
+// mm below the column's highest skin point within which its points belong to the same crossing of the skin.
+constexpr double kCrossingBand = 3;
+
 // The soft-tissue pogonion and menton under the lower lip (face_landmarks.h); none when the model ends above them.
-void add_chin(const Profile& profile, const std::vector<int>& skin, const Eigen::MatrixXd& V, FaceLandmarks& l) {
+// bony_menton: the chin's lowest bone, when the model's CT gave it.
+void add_chin(const Profile& profile, const std::vector<int>& skin, const Eigen::MatrixXd& V,
+              const std::optional<Eigen::Vector3d>& bony_menton, FaceLandmarks& l) {
   const Eigen::Vector3d li = l.points.at("labrale inferius");
   const std::optional<Eigen::Vector3d> fold = profile.next_minimum_below(li.z(), 25);
   if (!fold) return;
@@ -353,12 +362,31 @@ void add_chin(const Profile& profile, const std::vector<int>& skin, const Eigen:
   if (!pog || pog->y() <= fold->y() + 1) return;  // no chin in front of the fold: the model ends above it
   l.points["pogonion"] = *pog;
   std::optional<Eigen::Vector3d> lowest;
-  for (int v : skin) {
-    const Eigen::Vector3d p = V.row(v).transpose();
-    if (std::abs(p.x() - l.plane.x_at(p.y(), p.z())) <= 3.0 && p.y() >= pog->y() - 20 && p.z() < pog->z() &&
-        (!lowest || p.z() < lowest->z()))
-      lowest = p;
+  const auto near_plane = [&](const Eigen::Vector3d& p) { return std::abs(p.x() - l.plane.x_at(p.y(), p.z())) <= 3.0; };
+  if (bony_menton) {
+    // The skin where the vertical under the bony menton leaves the chin: the chin's underside is nearly level, and its
+    // lowest point moves along it with any change of its slope; the bone's curve does not.
+    std::vector<Eigen::Vector3d> column;
+    double top = -std::numeric_limits<double>::infinity();
+    for (int v : skin) {
+      const Eigen::Vector3d p = V.row(v).transpose();
+      if (near_plane(p) && std::abs(p.y() - bony_menton->y()) <= kUnderBoneColumn && p.z() < bony_menton->z() &&
+          p.z() > bony_menton->z() - kMostChinTissue) {
+        column.push_back(p);
+        top = std::max(top, p.z());
+      }
+    }
+    // Of the column's points at its first crossing of the skin, the one nearest the vertical.
+    for (const Eigen::Vector3d& p : column)
+      if (p.z() >= top - kCrossingBand &&
+          (!lowest || std::abs(p.y() - bony_menton->y()) < std::abs(lowest->y() - bony_menton->y())))
+        lowest = p;
   }
+  if (!lowest)
+    for (int v : skin) {
+      const Eigen::Vector3d p = V.row(v).transpose();
+      if (near_plane(p) && p.y() >= pog->y() - 20 && p.z() < pog->z() && (!lowest || p.z() < lowest->z())) lowest = p;
+    }
   // The chin's underside turns back towards the neck: a lowest point on the model's bottom edge is a cut, not a menton.
   double zmin = std::numeric_limits<double>::infinity();
   for (int v : skin) zmin = std::min(zmin, V(v, 2));
@@ -572,7 +600,11 @@ FaceLandmarks find_in_head_frame(const Eigen::MatrixXd& V, const Eigen::VectorXi
   }
   l.points = {{"pronasale", prn},       {"subnasale", sn},        {"nasion", n},  {"glabella", g},
               {"labrale superius", ls}, {"labrale inferius", li}, {"stomion", st}};
-  add_chin(profile, skin, V, l);
+  add_chin(profile, skin, V,
+           options.ct_landmarks && options.ct_landmarks->bony_menton
+               ? std::optional<Eigen::Vector3d>(options.ct_landmarks->bony_menton->point)
+               : std::nullopt,
+           l);
   // The skin is not seen under an object: what the profile shows there is the object's front less its thickness.
   for (const auto& [name, p] : l.points)
     for (const auto& [lo, hi] : under_objects)
@@ -609,6 +641,8 @@ FaceLandmarks find_on_skin(const Eigen::MatrixXd& V, const Eigen::VectorXi& side
   in_head.mid_sagittal_plane = turn.to_head(*options.mid_sagittal_plane);
   for (Eigen::MatrixXd& rim : in_head.opening_rims)
     for (Eigen::Index r = 0; r < rim.rows(); ++r) rim.row(r) = turn.to_head(rim.row(r).transpose()).transpose();
+  if (in_head.ct_landmarks && in_head.ct_landmarks->bony_menton)
+    in_head.ct_landmarks->bony_menton->point = turn.to_head(in_head.ct_landmarks->bony_menton->point);
   FaceLandmarks l = find_in_head_frame(head, side_mask, in_head);
   for (auto& [name, p] : l.points) p = turn.to_model(p);
   l.plane = *options.mid_sagittal_plane;

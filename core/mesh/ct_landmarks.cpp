@@ -10,13 +10,13 @@ namespace facehex {
 namespace {
 
 constexpr int kRows = static_cast<int>(kCtLandmarkNames.size());
-constexpr int kRowsWithoutMouthCorners = kRows - static_cast<int>(kMouthCornerNames.size());
+constexpr int kFewestRows = 7;  // the tragi, the eye corners and the stomion
 
 // The rows in kCtLandmarkNames order (pointers to const members for a const CtLandmarks).
 template <class Landmarks>
 auto rows_of(Landmarks& l) {
-  return std::array{&l.tragi[0],       &l.tragi[1], &l.eye_corners[0],   &l.eye_corners[1],  &l.eye_corners[2],
-                    &l.eye_corners[3], &l.stomion,  &l.mouth_corners[0], &l.mouth_corners[1]};
+  return std::array{&l.tragi[0],       &l.tragi[1], &l.eye_corners[0],   &l.eye_corners[1],   &l.eye_corners[2],
+                    &l.eye_corners[3], &l.stomion,  &l.mouth_corners[0], &l.mouth_corners[1], &l.bony_menton};
 }
 
 }  // namespace
@@ -32,7 +32,7 @@ std::optional<CtLandmarks> ct_landmarks(const VolumeMesh& mesh, const std::strin
                             std::to_string(kRows) + " x 4: x, y, z mm and 1 if estimated) " + problem + ": " +
                             given.str() + "; remove it to have them left out");
   };
-  if ((t.rows() != kRows && t.rows() != kRowsWithoutMouthCorners) || t.cols() != 4)
+  if (t.rows() < kFewestRows || t.rows() > kRows || t.cols() != 4)
     malformed("is " + std::to_string(t.rows()) + " x " + std::to_string(t.cols()));
   CtLandmarks out;
   const auto rows = rows_of(out);

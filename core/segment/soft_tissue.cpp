@@ -550,6 +550,7 @@ PatientModel build_once(const CtVolume& ct, const SegmentOptions& options, const
     found.tragi = model.cuts.anatomy->tragi;
     for (std::optional<CtLandmark>& tragus : found.tragi)
       if (tragus) tragus->point = turn.to_model(tragus->point);
+    found.bony_menton = CtLandmark{turn.to_model(model.cuts.anatomy->menton), false};
   }
   step("the eye corners, the stomion and the mouth corners", 0.93);
   if (read_slit_landmarks(ct, model, options.find_skin_objects, found) || model.cuts.anatomy)

@@ -115,6 +115,33 @@ TEST(FaceLandmarks, SubnasaleAtTheTopOfARoughVerticalLip) {
   }
 }
 
+TEST(FaceLandmarks, TheMentonIsTheSkinUnderTheBonyMentonWhereTheCtGaveIt) {
+  // kVerticalLip's chin recedes from y 86 at z -54 to y 76 at z -62: the vertical under a bony menton at y 80 leaves
+  // the skin at z -58.8. Without the bone, the lowest skin point lies on the model's bottom edge: no menton.
+  const ProfilePhantom face(kVerticalLip, 0.0, 1);
+  LandmarkOptions options;
+  options.mid_sagittal_plane = MidSagittalPlane{ProfilePhantom::x0, 0, 0};
+  EXPECT_FALSE(find_face_landmarks(face.V, face.side_mask, options).points.count("menton"));
+  for (const double turn_degrees : {0.0, 12.0}) {
+    // The same face turned about the vertical axis through the origin, with its plane and its bone.
+    const double c = std::cos(turn_degrees * M_PI / 180), s = std::sin(turn_degrees * M_PI / 180);
+    const auto turned = [&](const Eigen::Vector3d& p) {
+      return Eigen::Vector3d(c * p.x() + s * p.y(), -s * p.x() + c * p.y(), p.z());
+    };
+    Eigen::MatrixXd V = face.V;
+    for (Eigen::Index v = 0; v < V.rows(); ++v) V.row(v) = turned(face.V.row(v).transpose()).transpose();
+    LandmarkOptions with_bone;
+    with_bone.mid_sagittal_plane = MidSagittalPlane{0, 0, 0, std::tan(turn_degrees * M_PI / 180), 0};
+    with_bone.ct_landmarks = CtLandmarks{};
+    with_bone.ct_landmarks->bony_menton = CtLandmark{turned(Eigen::Vector3d(ProfilePhantom::x0, 80, -50)), false};
+    const FaceLandmarks l = find_face_landmarks(V, face.side_mask, with_bone);
+    ASSERT_TRUE(l.points.count("menton")) << "turned " << turn_degrees;
+    EXPECT_LT((l.points.at("menton") - turned(Eigen::Vector3d(ProfilePhantom::x0, 80, -58.8))).norm(), 0.6)
+        << "turned " << turn_degrees << ": " << l.points.at("menton").transpose();
+    EXPECT_FALSE(l.points.count("bony menton"));  // not a landmark of its own
+  }
+}
+
 TEST(FaceLandmarks, ARippleUnderTheNoseIsNotTheLips) {
   // Under the nose tip (z 0) a ripple, a hollow at z -3 and a bump at z -5.5 standing out by 4 mm (a coarse scan's, or
   // where a field-of-view cut ends), then the subnasale (z -12), the upper lip (z -22), the stomion (z -28), the

@@ -20,8 +20,9 @@ TEST(CtLandmarks, SetThenReadBackWithUnseenOnes) {
   given.eye_corners[2] = CtLandmark{Eigen::Vector3d(276.4, 344.3, 135.2), false};
   given.stomion = CtLandmark{Eigen::Vector3d(263.1, 372.9, 59.0), false};
   given.mouth_corners[1] = CtLandmark{Eigen::Vector3d(293.4, 360.9, 57.2), false};
+  given.bony_menton = CtLandmark{Eigen::Vector3d(261.8, 353.0, 22.0), false};
   set_ct_landmarks(mesh, given);
-  EXPECT_EQ(mesh.field_data.at(kCtLandmarksField).rows(), 9);
+  EXPECT_EQ(mesh.field_data.at(kCtLandmarksField).rows(), 10);
   const std::optional<CtLandmarks> back = ct_landmarks(mesh, "model.vtu");
   ASSERT_TRUE(back);
   EXPECT_FALSE(back->tragi[0]);
@@ -37,34 +38,39 @@ TEST(CtLandmarks, SetThenReadBackWithUnseenOnes) {
   EXPECT_FALSE(back->mouth_corners[0]);
   ASSERT_TRUE(back->mouth_corners[1]);
   EXPECT_EQ(back->mouth_corners[1]->point, given.mouth_corners[1]->point);
+  ASSERT_TRUE(back->bony_menton);
+  EXPECT_EQ(back->bony_menton->point, given.bony_menton->point);
 }
 
-TEST(CtLandmarks, ATableWithoutTheMouthCornersRowsIsReadWithoutThem) {
-  // A model written with the first seven rows only: its landmarks read, the mouth corners not seen.
-  VolumeMesh mesh;
+TEST(CtLandmarks, ATableOfTheFirstRowsOnlyIsReadWithoutTheOthers) {
+  // A model written with the first seven or nine rows only: its landmarks read, the later ones not seen.
   CtLandmarks given;
   given.stomion = CtLandmark{Eigen::Vector3d(263.1, 372.9, 59.0), false};
   given.mouth_corners[0] = CtLandmark{Eigen::Vector3d(223.6, 353.3, 55.8), false};
-  set_ct_landmarks(mesh, given);
-  Eigen::MatrixXd& table = mesh.field_data.at(kCtLandmarksField);
-  table = table.topRows(7).eval();
-  const std::optional<CtLandmarks> back = ct_landmarks(mesh, "model.vtu");
-  ASSERT_TRUE(back);
-  ASSERT_TRUE(back->stomion);
-  EXPECT_EQ(back->stomion->point, given.stomion->point);
-  EXPECT_FALSE(back->mouth_corners[0]);
-  EXPECT_FALSE(back->mouth_corners[1]);
+  given.bony_menton = CtLandmark{Eigen::Vector3d(261.8, 353.0, 22.0), false};
+  for (const int rows : {7, 9}) {
+    VolumeMesh mesh;
+    set_ct_landmarks(mesh, given);
+    Eigen::MatrixXd& table = mesh.field_data.at(kCtLandmarksField);
+    table = table.topRows(rows).eval();
+    const std::optional<CtLandmarks> back = ct_landmarks(mesh, "model.vtu");
+    ASSERT_TRUE(back);
+    ASSERT_TRUE(back->stomion);
+    EXPECT_EQ(back->stomion->point, given.stomion->point);
+    EXPECT_EQ(back->mouth_corners[0].has_value(), rows == 9);
+    EXPECT_FALSE(back->bony_menton);
+  }
 }
 
 TEST(CtLandmarks, MalformedFieldDataIsAnErrorNamingTheFileAndTheArray) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  const Eigen::MatrixXd wrong_shape = Eigen::MatrixXd::Zero(8, 4);
-  Eigen::MatrixXd partly_nan = Eigen::MatrixXd::Constant(9, 4, nan);
+  const Eigen::MatrixXd wrong_shape = Eigen::MatrixXd::Zero(11, 4);
+  Eigen::MatrixXd partly_nan = Eigen::MatrixXd::Constant(10, 4, nan);
   partly_nan.row(3) << 4, nan, 6, 0;
   Eigen::MatrixXd bad_status = Eigen::MatrixXd::Zero(7, 4);
   bad_status(5, 3) = 2;
   for (const auto& [bad, problem] :
-       {std::pair{wrong_shape, "is 8 x 4"}, std::pair{partly_nan, "numbers that are not finite"},
+       {std::pair{wrong_shape, "is 11 x 4"}, std::pair{partly_nan, "numbers that are not finite"},
         std::pair{bad_status, "a status that is neither 0 nor 1"}}) {
     VolumeMesh mesh;
     mesh.field_data[kCtLandmarksField] = bad;
