@@ -361,7 +361,7 @@ void add_chin(const Profile& profile, const std::vector<int>& skin, const Eigen:
   const std::optional<Eigen::Vector3d> pog = profile.extreme(fold->z() - 30, fold->z() - 1, true);
   if (!pog || pog->y() <= fold->y() + 1) return;  // no chin in front of the fold: the model ends above it
   l.points["pogonion"] = *pog;
-  std::optional<Eigen::Vector3d> lowest;
+  std::optional<Eigen::Vector3d> menton;
   const auto near_plane = [&](const Eigen::Vector3d& p) { return std::abs(p.x() - l.plane.x_at(p.y(), p.z())) <= 3.0; };
   if (bony_menton) {
     // The skin where the vertical under the bony menton leaves the chin: the chin's underside is nearly level, and its
@@ -379,19 +379,19 @@ void add_chin(const Profile& profile, const std::vector<int>& skin, const Eigen:
     // Of the column's points at its first crossing of the skin, the one nearest the vertical.
     for (const Eigen::Vector3d& p : column)
       if (p.z() >= top - kCrossingBand &&
-          (!lowest || std::abs(p.y() - bony_menton->y()) < std::abs(lowest->y() - bony_menton->y())))
-        lowest = p;
+          (!menton || std::abs(p.y() - bony_menton->y()) < std::abs(menton->y() - bony_menton->y())))
+        menton = p;
   }
-  if (!lowest)
+  if (!menton)
     for (int v : skin) {
       const Eigen::Vector3d p = V.row(v).transpose();
-      if (near_plane(p) && p.y() >= pog->y() - 20 && p.z() < pog->z() && (!lowest || p.z() < lowest->z())) lowest = p;
+      if (near_plane(p) && p.y() >= pog->y() - 20 && p.z() < pog->z() && (!menton || p.z() < menton->z())) menton = p;
     }
   // The chin's underside turns back towards the neck: a lowest point on the model's bottom edge is a cut, not a menton.
   double zmin = std::numeric_limits<double>::infinity();
   for (int v : skin) zmin = std::min(zmin, V(v, 2));
-  if (lowest && lowest->z() > zmin + 2.0)
-    l.points["menton"] = Eigen::Vector3d(l.plane.x_at(lowest->y(), lowest->z()), lowest->y(), lowest->z());
+  if (menton && menton->z() > zmin + 2.0)
+    l.points["menton"] = Eigen::Vector3d(l.plane.x_at(menton->y(), menton->z()), menton->y(), menton->z());
 }
 
 }  // namespace

@@ -29,8 +29,9 @@ std::optional<CtLandmarks> ct_landmarks(const VolumeMesh& mesh, const std::strin
     std::ostringstream given;
     given << t.format(Eigen::IOFormat(Eigen::StreamPrecision, Eigen::DontAlignCols, " ", "; "));
     throw Error(source, std::string("the field data '") + kCtLandmarksField + "' (the landmarks found in the CT, " +
-                            std::to_string(kRows) + " x 4: x, y, z mm and 1 if estimated) " + problem + ": " +
-                            given.str() + "; remove it to have them left out");
+                            std::to_string(kFewestRows) + " to " + std::to_string(kRows) +
+                            " rows x 4: x, y, z mm and 1 if estimated) " + problem + ": " + given.str() +
+                            "; remove it to have them left out");
   };
   if (t.rows() < kFewestRows || t.rows() > kRows || t.cols() != 4)
     malformed("is " + std::to_string(t.rows()) + " x " + std::to_string(t.cols()));

@@ -31,7 +31,7 @@ constexpr double kMinDepth = 0.8;  // mm
 // Rule 5.
 constexpr double kCornerNear = 15;  // mm out: short of the narrowest adult mouth's corner (a width of 35 mm)
 constexpr double kCornerFar = 42;   // mm out: beyond the widest's (85 mm)
-constexpr double kMeanWidth = 1.5;  // mm: three columns
+constexpr int kMeanReach = 2;       // columns either side of one in the running mean: five columns, 2 mm
 constexpr double kEndFraction = 0.5;
 // Rule 6.
 constexpr double kHeightBand = 3;  // mm
@@ -68,16 +68,15 @@ class MouthSlit {
     const double depth = middle[middle.size() / 2];
     if (depth < kMinDepth) return std::nullopt;
     // Rule 5.
-    const int half = static_cast<int>(std::lround(kMeanWidth / kStep / 2));
     const int n = static_cast<int>(offsets.size());
     const auto mean_at = [&](int i) {
       double sum = 0;
       int count = 0;
-      for (int k = std::max(0, i - half); k <= std::min(n - 1, i + half); ++k) sum += depths[k], ++count;
+      for (int k = std::max(0, i - kMeanReach); k <= std::min(n - 1, i + kMeanReach); ++k) sum += depths[k], ++count;
       return sum / count;
     };
     const double end = kEndFraction * depth;
-    for (int i = 1; i < n - half; ++i) {
+    for (int i = 1; i < n - kMeanReach; ++i) {
       if (offsets[i] < kCornerNear) continue;
       if (offsets[i] > kCornerFar) break;
       const double here = mean_at(i);

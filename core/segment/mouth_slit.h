@@ -18,7 +18,8 @@
 //     within kReach in z of the previous column's, out to kHalfWidth or the front's end;
 //  4. the slit's depth: the median notch on the line within kDepthNear of the plane. Lips not closed in a slit (a
 //     depth below kMinDepth: lips apart, or a slit too narrow for the scan) have none;
-//  5. the corner: the first point beyond kCornerNear where the line's notch, in a running mean over kMeanWidth,
+//  5. the corner: the first point beyond kCornerNear where the line's notch, in a running mean over kMeanReach columns
+//  either side,
 //     falls below kEndFraction of the slit's depth (linear between the two columns). None when it does not by
 //     kCornerFar (beyond the widest adult mouth: the line left the slit) or the front ends first;
 //  6. the corner's height: in its column, within kHeightBand of the line, where the front recedes fastest going down
