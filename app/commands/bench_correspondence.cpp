@@ -219,7 +219,9 @@ void add_correspondence_options(Args& args) {
               "with --correspondence: the CT warps' largest scale change, shear, bump (mm), turn about the "
               "vertical and, optionally, pitch about the lateral axis and roll about the front-to-back axis (degrees)",
               "0.08,0.04,4,0")
-      .flag("keep-warped-cts", "with --correspondence: keep each warped CT in the report's folder (STEM-warp-SEED.mha)")
+      .flag("keep-patients",
+            "with --correspondence: keep each case's patient in the report's folder: a model as "
+            "KIND-CASE.vtu (e.g. deformation-nose-on-closed-3.vtu), a warped CT as STEM-warp-SEED.mha")
       .flag("true-landmarks",
             "with --correspondence: a model's feature constraints at the standard's landmarks moved by the warp, and "
             "a warped CT's at the original CT's landmarks moved by the warp, not at those found on it (separates the "
@@ -268,7 +270,7 @@ int correspondence_bench(const Args& args) {
   for (const std::string& ct : options.cts)
     if (!std::filesystem::exists(ct)) throw Error(ct, "no such CT file (--cts)");
   OutputFolder folder(args.get("output"));
-  if (args.has("keep-warped-cts")) options.keep_warped_cts = args.get("output");
+  if (args.has("keep-patients")) options.keep_patients = args.get("output");
   const StandardSetup standard = standard_setup(args);
   TerminalProgress progress;
   const auto results = run_correspondence_benchmark(

@@ -2,12 +2,14 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "core/evaluation/standard_remesh.h"
 #include "core/evaluation/warp_volume.h"
 #include "core/face/automatic_constraints.h"
 #include "core/face/face_landmarks.h"
+#include "core/io/mesh_io.h"
 #include "core/mesh/sides.h"
 #include "core/quality/hex_quality.h"
 #include "core/quality/surface_distance.h"
@@ -258,6 +260,11 @@ std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const Standar
         for (const auto& [w, candidate] : warps)
           if (w == p.warp) warp = candidate;
         mesh.V = warp.apply_rows(mesh.V);
+        if (!options.keep_patients.empty()) {
+          std::string file = p.kind + "-" + p.name;
+          std::replace(file.begin(), file.end(), ' ', '-');
+          write_volume_mesh((fs::path(options.keep_patients) / (file + ".vtu")).string(), mesh);
+        }
         const Eigen::MatrixXd truth = warp.apply_rows(standard.mesh.V);
         PatientSetup patient = patient_from_mesh(std::move(mesh), p.kind + " " + p.name, &values);
         if (options.true_landmarks) {
@@ -304,9 +311,9 @@ std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const Standar
           throw Error("benchmark", p.name + ": the warp " + warp_description(warp) +
                                        " is not safely invertible about the head; choose other --ct-ranges");
         r.warp = warp_description(warp);
-        const bool keep = !options.keep_warped_cts.empty();
+        const bool keep = !options.keep_patients.empty();
         const fs::path file =
-            keep ? fs::path(options.keep_warped_cts) /
+            keep ? fs::path(options.keep_patients) /
                        (fs::path(p.model).stem().string() + "-warp-" + std::to_string(p.ct_seed) + ".mha")
                  : fs::temp_directory_path() /
                        ("facehex-correspondence-" + std::to_string(::getpid()) + "-" + std::to_string(i) + ".mha");

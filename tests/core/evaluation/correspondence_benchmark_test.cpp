@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 
+#include "core/io/mesh_io.h"
 #include "core/util/error.h"
 #include "core/util/resources.h"
 
@@ -45,10 +47,14 @@ TEST(CorrespondenceBenchmark, UnknownModelsAndWarpsAreNamed) {
 }
 
 // The standard onto its own split cells and onto them with a 20 % longer nose, the plain mapping alone (the
-// relaxation and the repair are measured by the full benchmark): a few seconds.
+// relaxation and the repair are measured by the full benchmark): a few seconds. Each case's model is kept.
 TEST(CorrespondenceBenchmark, FastSubsetOfThePlainMapping) {
   const StandardSetup standard = load_standard("artisynth-refface");
   CorrespondenceBenchmarkOptions options = plain_mapping_on_split(SkinCorrespondence::features, {"nose"});
+  const std::filesystem::path kept = std::filesystem::path(::testing::TempDir()) / "facehex-kept-patients";
+  std::filesystem::remove_all(kept);
+  std::filesystem::create_directories(kept);
+  options.keep_patients = kept.string();
   std::vector<std::string> names;
   const auto results =
       run_correspondence_benchmark(standard, options, [&](int, int, const std::string& n) { names.push_back(n); });
@@ -72,6 +78,17 @@ TEST(CorrespondenceBenchmark, FastSubsetOfThePlainMapping) {
   EXPECT_LT(nose.error.all.p95, 16.0);
   for (const auto* r : {&self, &nose})
     for (const auto& region : r->error.regions) EXPECT_GT(region.error.count, 0) << r->name << " " << region.name;
+  // The kept models: the split cells as they are (the standard's vertices first) and under the warp.
+  const VolumeMesh self_model = read_volume_mesh((kept / "self-map-split.vtu").string());
+  const VolumeMesh nose_model = read_volume_mesh((kept / "deformation-nose-on-split.vtu").string());
+  EXPECT_EQ(self_model.num_cells(), self.patient_tets);
+  EXPECT_EQ(nose_model.num_cells(), nose.patient_tets);
+  ASSERT_EQ(self_model.V.rows(), nose_model.V.rows());
+  EXPECT_TRUE(self_model.point_data.count("side_mask"));
+  const Eigen::Index n = standard.mesh.V.rows();
+  EXPECT_LT((self_model.V.topRows(n) - standard.mesh.V).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_NEAR((nose_model.V.topRows(n) - standard.mesh.V).rowwise().norm().mean(), nose.warp_mean, 1e-6);
+  std::filesystem::remove_all(kept);
 }
 
 // The registered skin (--skin-correspondence registered) on the same cases and a moved chin: the self-map nearly
