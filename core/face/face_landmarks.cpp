@@ -52,6 +52,19 @@ struct Profile {
     return best;
   }
 
+  // Going up from lo, the height of the first bin at least `rise` mm in front of the deepest bin between lo and it:
+  // where the profile comes forward again (the brow above the nasion), or none up to hi.
+  std::optional<double> first_rise_above(double lo, double hi, double rise) const {
+    std::optional<double> deepest;
+    for (size_t b = 0; b < bins.size(); ++b) {
+      const double z = z0 + static_cast<double>(b) + 0.5;
+      if (z < lo || z > hi || !bins[b]) continue;
+      if (deepest && bins[b]->y() >= *deepest + rise) return z;
+      if (!deepest || bins[b]->y() < *deepest) deepest = bins[b]->y();
+    }
+    return std::nullopt;
+  }
+
   // Going down from z, the first bin that is the least anterior within 2 mm either side (a local minimum), within
   // `reach` mm.
   std::optional<Eigen::Vector3d> next_minimum_below(double z, double reach) const {
@@ -285,6 +298,14 @@ constexpr double kMinUpperLipHeight = 10.0;
 // deviations below adult women's mean nose height in anthropometric surveys, so that a profile read a nose too short
 // (its landmarks shifted up by a field-of-view cut not recognised) is refused rather than taken.
 constexpr double kNasionSubnasale[2] = {38.0, 70.0};
+// mm above the nose tip: the nasion is looked for from the first up to where the profile comes kBrowRise forward
+// again above it (the brow), at most the last (adults' nasion lies 30-60 mm above the tip), else up to the second
+// (a model cut off below its brow, where the deepest point further up could be the cut's edge).
+constexpr double kNasionAboveTip[3] = {10.0, 70.0, 45.0};
+// mm: more than a dorsal hump brings the profile forward going up (the dorsum slopes back towards the nasion, a hump
+// only less steeply), less than a brow stands in front of the nasion.
+constexpr double kBrowRise = 2.0;
+
 // mm: profile points this close to the most or least anterior one are one flat stretch, whose middle is taken (a flat
 // nasion or brow, or a field-of-view cut above the nose).
 constexpr double kFlatTie = 0.5;
@@ -469,6 +490,13 @@ std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> mouth_corners_upright
   return corners;
 }
 
+// The top of the height range the nasion is looked for in, from `lo` up, over the nose tip prn
+// (kNasionAboveTip, kBrowRise).
+double nasion_search_top(const Profile& profile, double lo, const Eigen::Vector3d& prn) {
+  const std::optional<double> brow = profile.first_rise_above(lo, prn.z() + kNasionAboveTip[1], kBrowRise);
+  return brow ? *brow : prn.z() + kNasionAboveTip[2];
+}
+
 // find_face_landmarks on a model whose given plane, if any, is not turned.
 FaceLandmarks find_in_head_frame(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
                                  const LandmarkOptions& options) {
@@ -576,13 +604,18 @@ FaceLandmarks find_in_head_frame(const Eigen::MatrixXd& V, const Eigen::VectorXi
   if (above_cut) {
     prn = require(profile.extreme(0.5 * (cut->first + cut->second) - 1, 0.5 * (cut->first + cut->second) + 1, true),
                   "nose tip");
-    n = require(profile.middle_of_extreme(cut->second, prn.z() + 45, false, kFlatTie), "nasion");
+    n = require(profile.middle_of_extreme(cut->second, nasion_search_top(profile, cut->second, prn), false, kFlatTie),
+                "nasion");
     // A hollow above the cut further from the subnasale than any adult nasion: the cut reached past the nasion (the
     // forehead's own front ends it), and the proportions place it.
     above_cut = (n - sn).norm() <= kNasionSubnasale[1];
   }
   if (!cut || above_cut) {
-    if (!cut) n = require(profile.middle_of_extreme(prn.z() + 10, prn.z() + 45, false, kFlatTie), "nasion");
+    if (!cut)
+      n = require(
+          profile.middle_of_extreme(prn.z() + kNasionAboveTip[0],
+                                    nasion_search_top(profile, prn.z() + kNasionAboveTip[0], prn), false, kFlatTie),
+          "nasion");
     // Not within a few mm of the model's top: where a model is cut just above the brow (a standard), the cut's edge
     // is the most anterior point above the nasion, and it is no anatomy. A scan that ends that close above the nasion
     // shows no brow: the glabella is estimated as on a cut face.

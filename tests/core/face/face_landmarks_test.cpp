@@ -425,6 +425,27 @@ TEST(FaceLandmarks, ACutPastTheNasionHasTheNasionPlacedByProportions) {
   }
 }
 
+TEST(FaceLandmarks, ALongNosesNasionIsTheHollowBelowTheBrow) {
+  // The phantom's face above the nose tip stretched to twice its height: the nasion 52 mm above the tip (an adult
+  // man's nose can be that long) and the brow 80 mm, on a dorsum without and with a hump (1.5 mm at z 24). Looked for
+  // only up to 45 mm above the tip, the nasion was read on the dorsum, 7 mm low.
+  for (const double hump : {0.0, 1.5}) {
+    PhantomFace face;
+    for (int v = 0; v < face.V.rows(); ++v)
+      if (face.V(v, 2) > 0) {
+        face.V(v, 2) *= 2;
+        face.V(v, 1) += hump * bump(face.V(v, 2), 24, 3) * bump(face.V(v, 0) - PhantomFace::x0, 0, 8);
+      }
+    const FaceLandmarks l = find_face_landmarks(face.V, face.side_mask);
+    EXPECT_NEAR(l.points.at("pronasale").z(), 0, 1.5) << hump;
+    EXPECT_NEAR(l.points.at("nasion").z(), 2 * kPhantomProfileZ.at("nasion"), 1.5) << hump;
+    // The stretched brow is flat over 16 mm, and the glabella, its middle within 30 mm of the nasion, lies low in it.
+    EXPECT_NEAR(l.points.at("glabella").z(), 2 * kPhantomProfileZ.at("glabella"), 2.5) << hump;
+    EXPECT_TRUE(l.estimated.empty()) << hump;
+    EXPECT_NO_THROW(check_plausible(l, "test"));
+  }
+}
+
 TEST(FaceLandmarks, FlatLipsAreFoundInOrder) {
   // A third of the relief: the lips stand out of the profile's chords by about a millimetre.
   const PhantomFace face(0.33);
