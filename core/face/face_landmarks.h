@@ -21,14 +21,16 @@
 //    the most anterior point between the hollows either side of its turn (the front of a flat lip, not the corner of
 //    its rise). subnasale, the point between the upper lip and the nose deepest behind the chord joining them, moved up
 //    to the top of the lip's part as deep within 0.75 mm, depths averaged over three bins (where the columella meets
-//    the lip); nasion: the least anterior point 10-45 mm above the nose tip; glabella (brow ridge): the middle of the
-//    points within 0.5 mm of the most anterior one 3-30 mm above the nasion (a flat brow's centre), or, where the
-//    skin ends too close above the nasion to show a brow, the profile's front 12 mm above it (estimated); pogonion
-//    (soft-tissue chin): the most anterior point up to 30 mm below the labiomental fold (the first local minimum below
-//    the labrale inferius); menton (soft tissue): on a model whose CT gave the bony menton (ct_landmarks), the skin
-//    within 3 mm of the plane on the vertical under it (within 1.5 mm in y, up to 25 mm below), nearest the bone, as
-//    cephalometry defines it; else the lowest skin point within 3 mm of the plane and 20 mm behind the pogonion (the
-//    underside of the chin); moved onto the plane, unless it lies on the model's bottom edge.
+//    the lip); nasion: the least anterior point from 10 mm above the nose tip up to where the
+//    profile comes 2 mm forward of it again (the brow; within 70 mm of the tip, else up to 45 mm); glabella (brow
+//    ridge): the middle of the points within 0.5 mm of the most anterior one 3-30 mm above the nasion (a flat brow's
+//    centre), or, where the skin ends too close above the nasion to show a brow, the profile's front 12 mm above it
+//    (estimated); pogonion (soft-tissue chin): the most anterior point up to 30 mm below the labiomental fold (the
+//    first local minimum below the labrale inferius); menton (soft tissue): on a model whose CT gave the bony menton
+//    (ct_landmarks), the skin within 3 mm of the plane on the vertical under it (within 1.5 mm in y, up to 25 mm
+//    below), nearest the bone, as cephalometry defines it; else the lowest skin point within 3 mm of the plane and 20
+//    mm behind the pogonion (the underside of the chin); moved onto the plane, unless it lies on the model's bottom
+//    edge.
 // A field-of-view cut: when the front of the profile is a plateau (within clipped_depth of its most anterior point;
 // bins without a vertex, between the vertices of a coarse model, neither end nor extend it) at least clipped_length
 // long, the scan cut the face flat there (a nose drops more than that within 25 mm of its
