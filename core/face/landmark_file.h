@@ -4,14 +4,19 @@
 // Two formats, told apart by the name (".mrk.json": 3D Slicer markups; any other ".json": FaceHex's own):
 //  - FaceHex: {"format": "facehex-landmarks", "version": 1, "units": "mm",
 //              "landmarks": [{"name": "pronasale", "position": [x, y, z], "status": "found"}, ...]}
-//    in the segmentation frame (+x lateral towards the patient's left, +y anterior, +z superior); "status" is
-//    "found", "estimated" (placed by proportions, e.g. inside a field-of-view cut) or "given" (by the user), and may
-//    be left out (then "given").
+//    in the segmentation frame (+y anterior, +z superior, +x lateral: the side whose landmarks are named left, see
+//    below); "status" is "found", "estimated" (placed by proportions, e.g. inside a field-of-view cut) or "given" (by
+//    the user), and may be left out (then "given").
 //  - 3D Slicer markups (schema markups-schema-v1.0.3): {"markups": [{"type": "Fiducial", "coordinateSystem": "LPS"
 //    or "RAS", "coordinateUnits": "mm", "controlPoints": [{"label": "pronasale", "position": [x, y, z]}, ...]}]}.
 //    The segmentation frame of a CT read without reorientation is the file's physical frame, which Slicer takes as
 //    LPS: points are written as LPS and read from LPS unchanged or from RAS with x and y negated. A control point's
 //    "description" carries the status.
+// Left and right: a paired landmark at +x of the segmentation frame is named left. That is the patient's left on a
+// volume whose stored frame is a mirror image of the patient (as the two CTs of tests/data/landmarks are taken to
+// be), but the patient's right on a DICOM series, which the reader turns half a turn about the vertical axis into
+// the right-handed segmentation frame (core/segment/ct_volume.h); and the Slicer file of such a model is in the
+// segmentation frame, not the series' LPS. A known limitation: docs/user-guide.md section 3.
 // Names are those of kLandmarkNames; unknown names, duplicates, missing or non-finite coordinates, other units or
 // coordinate systems are errors naming the file and the point.
 #include <Eigen/Core>
@@ -30,7 +35,7 @@ struct NamedLandmark {
 };
 
 // The standard facial landmarks FaceHex knows, in anatomical order: the mid-sagittal profile from the top, then the
-// paired ones (patient's left, then right).
+// paired ones (left, then right: +x, then -x).
 const std::vector<std::string>& landmark_names();
 // Whether `name` is one of landmark_names(); and those names joined by ", ", for messages.
 bool is_landmark_name(const std::string& name);

@@ -1,7 +1,8 @@
 #pragma once
 // The mouth corners (cheilion right and left) on the skin, from the mouth line traced out from the mid-sagittal plane.
 //
-// Frame as in face_landmarks.h: +x towards the patient's left (the right corner lies at -x), +y anterior, +z superior.
+// Frame as in face_landmarks.h: +x the side named left (landmark_file.h; the right corner lies at -x), +y anterior, +z
+// superior.
 //  - the skin's front near the mouth as a height field: for 1 mm cells of (x, z), the most anterior skin vertex; the
 //    depth y at (x, z) is the mean of those cells' y weighted by a Gaussian of 1 mm over the distance in (x, z)
 //    (within 3 mm; none where no cell is that near), so that a column's profile is smooth between the mesh's vertices;

@@ -3,7 +3,7 @@
 // slit is a notch in the skin one or two millimetres tall and a few deep; the segmentation's smoothed skin bridges
 // it, so the corners are read from the CT, where the notch is kept.
 //
-// In the head frame of the face's mid-sagittal plane (core/mesh/head_turn.h, +x the patient's left, +y anterior, +z
+// In the head frame of the face's mid-sagittal plane (core/mesh/head_turn.h, +x the side named left, +y anterior, +z
 // superior), with x = c the plane at the nasion's height and "offset" the distance |x - c|, each side on its own; on a
 // head tilted towards a shoulder (the plane leaning), the levels below are heights above the line through the nasion
 // across the plane (perpendicular to its trace), along which a tilted face's eye line runs:

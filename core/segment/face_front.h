@@ -2,7 +2,7 @@
 // The front of the face read from a CT's own grey values, for the landmarks in narrow slits that the segmentation's
 // smoothed skin bridges (closed eyelids, closed lips: eye_corners.h, stomion.h).
 //
-// In a head frame (core/mesh/head_turn.h: +x the patient's left, +y anterior, +z superior): y(x, z), where a ray cast
+// In a head frame (core/mesh/head_turn.h: +x the side named left, +y anterior, +z superior): y(x, z), where a ray cast
 // along -y from y_start first meets the skin threshold (trilinear, the crossing refined by bisection to 1/256 mm), on
 // a grid of (x, z) 0.5 mm apart; bilinear between the grid's points. NaN where the ray starts inside the skin or meets
 // none before y_stop. Outside the scan is air, so a field-of-view cut shows as a flat front, not as the border slice

@@ -6,7 +6,7 @@
 // (core/face/mouth_corners.h) the corner is a threshold crossing of the skin's steepness, which drifts along a mouth
 // line whose steepness hovers about it.
 //
-// In the head frame of the face's mid-sagittal plane (core/mesh/head_turn.h, +x the patient's left, +y anterior, +z
+// In the head frame of the face's mid-sagittal plane (core/mesh/head_turn.h, +x the side named left, +y anterior, +z
 // superior), with x = c the plane at the stomion's height and "offset" the distance |x - c|, each side on its own; on
 // a head tilted towards a shoulder (the plane leaning), the levels below are heights above the line through the
 // stomion across the plane, along which a tilted face's mouth line runs:
