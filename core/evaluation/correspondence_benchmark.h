@@ -47,8 +47,8 @@ struct CorrespondenceBenchmarkOptions {
   std::vector<std::uint64_t> ct_seeds = {1, 2};
   RandomWarpRanges ct_ranges = {0.08, 0.04, 4, 4.0, 25.0, 40.0};
   // When set, each case's patient is kept in this folder to rerun or inspect it by hand: a self-map's or deformation's
-  // tet model as CASE.vtu (the case's name, spaces as '-'), a warped CT as STEM-warp-SEED.mha; otherwise a warped CT
-  // is a temporary file.
+  // tet model as KIND-CASE.vtu (spaces as '-', e.g. deformation-nose-on-closed-3.vtu), a warped CT as
+  // STEM-warp-SEED.mha; otherwise a warped CT is a temporary file.
   std::string keep_patients;
 };
 

@@ -298,10 +298,11 @@ constexpr double kMinUpperLipHeight = 10.0;
 // deviations below adult women's mean nose height in anthropometric surveys, so that a profile read a nose too short
 // (its landmarks shifted up by a field-of-view cut not recognised) is refused rather than taken.
 constexpr double kNasionSubnasale[2] = {38.0, 70.0};
-// mm above the nose tip: the nasion is looked for from the first up to where the profile comes kBrowRise forward
-// again above it (the brow), at most the last (adults' nasion lies 30-60 mm above the tip), else up to the second
-// (a model cut off below its brow, where the deepest point further up could be the cut's edge).
-constexpr double kNasionAboveTip[3] = {10.0, 70.0, 45.0};
+// mm above the nose tip: the nasion is looked for from kNasionLowest up to where the profile comes kBrowRise forward
+// again above it (the brow) within kBrowReach (adults' nasion lies 30-60 mm above the tip), else up to
+// kNasionHighestWithoutBrow (a model cut off below its brow, where the deepest point further up could be the cut's
+// edge).
+constexpr double kNasionLowest = 10.0, kBrowReach = 70.0, kNasionHighestWithoutBrow = 45.0;
 // mm: more than a dorsal hump brings the profile forward going up (the dorsum slopes back towards the nasion, a hump
 // only less steeply), less than a brow stands in front of the nasion.
 constexpr double kBrowRise = 2.0;
@@ -490,11 +491,11 @@ std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> mouth_corners_upright
   return corners;
 }
 
-// The top of the height range the nasion is looked for in, from `lo` up, over the nose tip prn
-// (kNasionAboveTip, kBrowRise).
-double nasion_search_top(const Profile& profile, double lo, const Eigen::Vector3d& prn) {
-  const std::optional<double> brow = profile.first_rise_above(lo, prn.z() + kNasionAboveTip[1], kBrowRise);
-  return brow ? *brow : prn.z() + kNasionAboveTip[2];
+// The nasion over the nose tip prn: the deepest point of the profile from `lo` up to the brow (kBrowReach, kBrowRise),
+// a flat hollow's middle; none where the profile has no point there.
+std::optional<Eigen::Vector3d> nasion_above(const Profile& profile, double lo, const Eigen::Vector3d& prn) {
+  const std::optional<double> brow = profile.first_rise_above(lo, prn.z() + kBrowReach, kBrowRise);
+  return profile.middle_of_extreme(lo, brow ? *brow : prn.z() + kNasionHighestWithoutBrow, false, kFlatTie);
 }
 
 // find_face_landmarks on a model whose given plane, if any, is not turned.
@@ -604,18 +605,13 @@ FaceLandmarks find_in_head_frame(const Eigen::MatrixXd& V, const Eigen::VectorXi
   if (above_cut) {
     prn = require(profile.extreme(0.5 * (cut->first + cut->second) - 1, 0.5 * (cut->first + cut->second) + 1, true),
                   "nose tip");
-    n = require(profile.middle_of_extreme(cut->second, nasion_search_top(profile, cut->second, prn), false, kFlatTie),
-                "nasion");
+    n = require(nasion_above(profile, cut->second, prn), "nasion");
     // A hollow above the cut further from the subnasale than any adult nasion: the cut reached past the nasion (the
     // forehead's own front ends it), and the proportions place it.
     above_cut = (n - sn).norm() <= kNasionSubnasale[1];
   }
   if (!cut || above_cut) {
-    if (!cut)
-      n = require(
-          profile.middle_of_extreme(prn.z() + kNasionAboveTip[0],
-                                    nasion_search_top(profile, prn.z() + kNasionAboveTip[0], prn), false, kFlatTie),
-          "nasion");
+    if (!cut) n = require(nasion_above(profile, prn.z() + kNasionLowest, prn), "nasion");
     // Not within a few mm of the model's top: where a model is cut just above the brow (a standard), the cut's edge
     // is the most anterior point above the nasion, and it is no anatomy. A scan that ends that close above the nasion
     // shows no brow: the glabella is estimated as on a cut face.

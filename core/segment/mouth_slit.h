@@ -19,9 +19,8 @@
 //  4. the slit's depth: the median notch on the line within kDepthNear of the plane. Lips not closed in a slit (a
 //     depth below kMinDepth: lips apart, or a slit too narrow for the scan) have none;
 //  5. the corner: the first point beyond kCornerNear where the line's notch, in a running mean over kMeanReach columns
-//  either side,
-//     falls below kEndFraction of the slit's depth (linear between the two columns). None when it does not by
-//     kCornerFar (beyond the widest adult mouth: the line left the slit) or the front ends first;
+//     either side, falls below kEndFraction of the slit's depth (linear between the two columns). None when it does
+//     not by kCornerFar (beyond the widest adult mouth: the line left the slit) or the front ends first;
 //  6. the corner's height: in its column, within kHeightBand of the line, where the front recedes fastest going down
 //     (the largest dy/dz: the upper lip turning in over the slit); its y the front's there.
 // None on a CT with voxels coarser than kMostSpacing in any axis: a slit a millimetre or two tall is then a voxel's
