@@ -750,7 +750,7 @@ void ModelView::updateLandmarks() {
   if (shown) {
     for (const auto& [name, x] : landmarks->points) {
       markers.add(x, landmarkColour());
-      p.labels.push_back(landmarkLabel(name));
+      p.labels.push_back(landmarkLabel(patient_side_name(name, landmarks->scan_frame)));
       p.overlay->AddActor2D(p.labels.back());
       // A handle slides on the model's surface: one that lies off it (a tragus) is shown, not dragged.
       if (!lies_on_model_skin(name)) continue;

@@ -329,7 +329,8 @@ bool TransferController::placeFeatureConstraints(Role role, double band) {
 bool TransferController::loadLandmarks(Role role, const QString& path, double band) {
   return reportErrors([&] {
     const std::string p = path.toStdString();
-    const FaceLandmarks given = landmarks_from(read_landmark_file(p), p);
+    if (!session_->hasModel(role)) throw Error("features", "open the " + roleName(role).toStdString() + " model first");
+    const FaceLandmarks given = landmarks_from(read_landmark_file(p, scan_frame(session_->model(role).mesh, p)), p);
     placeFeatures(role, band, &given, tr("landmarks from %1").arg(QFileInfo(path).fileName()));
   });
 }
@@ -339,7 +340,7 @@ bool TransferController::saveLandmarks(Role role, const QString& path) {
     const std::string p = path.toStdString();
     if (!session_->hasModel(role) || !session_->landmarks(role))
       throw Error(p, "the " + roleName(role).toStdString() + " model has no landmarks");
-    write_landmark_file(p, named_landmarks(*session_->landmarks(role)));
+    write_landmark_file(p, named_landmarks(*session_->landmarks(role)), session_->landmarks(role)->scan_frame);
   });
 }
 
@@ -354,7 +355,8 @@ bool TransferController::moveLandmark(Role role, const std::string& name, const 
     moved->position = closest_skin_point(mesh.V, side_mask_of(mesh), point);
     moved->status = LandmarkStatus::given;
     const FaceLandmarks given = landmarks_from(named, "the moved " + name);
-    placeFeatures(role, band, &given, tr("move the %1").arg(QString::fromStdString(name)));
+    placeFeatures(role, band, &given,
+                  tr("move the %1").arg(QString::fromStdString(patient_side_name(name, scan_frame(mesh, "")))));
   });
 }
 

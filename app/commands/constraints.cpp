@@ -38,16 +38,18 @@ int cmd_constraints(const Argv& argv) {
   const Eigen::VectorXi mask = side_mask_of(mesh);
   FaceLandmarks landmarks;
   const std::optional<FaceLandmarks> given =
-      args.has("landmarks") ? std::optional<FaceLandmarks>(
-                                  landmarks_from(read_landmark_file(args.get("landmarks")), args.get("landmarks")))
-                            : std::nullopt;
+      args.has("landmarks")
+          ? std::optional<FaceLandmarks>(landmarks_from(
+                read_landmark_file(args.get("landmarks"), scan_frame(mesh, path)), args.get("landmarks")))
+          : std::nullopt;
   const std::map<std::string, double> values =
       args.has("own-values") ? own_feature_values(mesh, args.number("band", 0.01, 50), path)
                              : feature_values(read_constraint_set(find_standard(args.get("standard")).constraints));
   const ConstraintSet set = automatic_constraints(mesh.V, mask, landmark_options_for(mesh, path), values,
                                                   args.number("band", 0.01, 50), &landmarks, given ? &*given : nullptr);
   write_constraint_set(args.get("output"), set);
-  if (args.has("write-landmarks")) write_landmark_file(args.get("write-landmarks"), named_landmarks(landmarks));
+  if (args.has("write-landmarks"))
+    write_landmark_file(args.get("write-landmarks"), named_landmarks(landmarks), landmarks.scan_frame);
   std::cout << "mid-sagittal plane " << mid_sagittal_plane_text(landmarks.plane) << " (" << landmarks.plane_source
             << ")\n";
   std::cout << landmarks_text(landmarks, "");

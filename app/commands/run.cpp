@@ -54,7 +54,8 @@ int cmd_run(const Argv& argv) {
 
   const CliTransfer t = cli_transfer(args, input, constraints, "--constraints", args.get("landmarks"));
   if (t.patient.landmarks)
-    write_landmark_file((out_dir / "landmarks.json").string(), named_landmarks(*t.patient.landmarks));
+    write_landmark_file((out_dir / "landmarks.json").string(), named_landmarks(*t.patient.landmarks),
+                        t.patient.landmarks->scan_frame);
   const TransferResult& r = t.result;
   write_volume_mesh((out_dir / "patient_model.vtu").string(), parameterized_tet_mesh(r.run.patient, &t.patient.mesh),
                     parameterized_model_writing());

@@ -53,7 +53,7 @@ int cmd_segment(const Argv& argv) {
     });
   std::cout << "\nwrote " << args.get("output") << "\n";
   if (landmarks) {
-    write_landmark_file(args.get("write-landmarks"), named_landmarks(*landmarks));
+    write_landmark_file(args.get("write-landmarks"), named_landmarks(*landmarks), landmarks->scan_frame);
     std::cout << "wrote " << args.get("write-landmarks") << "\n";
   }
   return 0;

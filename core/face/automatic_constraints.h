@@ -19,7 +19,8 @@ std::map<std::string, double> feature_values(const ConstraintSet& standard);
 
 // The feature constraints alone at the landmarks of the model (V #V x 3, side_mask #V), with the given feature
 // values: at `given` landmarks (the user's), else at those find_face_landmarks finds with `landmark_options`. Either
-// set must pass check_plausible. Given landmarks have their mid-sagittal plane through their pronasale, leaning and
+// set must pass check_plausible, and given ones on the skin (all but the tragi) must lie within 10 mm of it. Given
+// landmarks have their mid-sagittal plane through their pronasale, leaning and
 // turned as landmark_options' plane when it has one (a segmented CT's: a turned head's given landmarks lie on a turned
 // plane), else vertical and unturned. `landmarks_out` receives where they were placed. Throws
 // facehex::Error("landmarks", ...) when a landmark is not found or the set is implausible (naming the landmark and

@@ -423,6 +423,7 @@ LandmarkOptions landmark_options_for(const VolumeMesh& model, const std::string&
   options.mid_sagittal_plane = mid_sagittal_plane(model, source);
   options.skin_points = skin_points(model, source);
   options.ct_landmarks = ct_landmarks(model, source);
+  options.scan_frame = scan_frame(model, source);
   return options;
 }
 
@@ -692,6 +693,7 @@ std::string opening_name(const Eigen::Vector3d& centroid, const FaceLandmarks& l
 FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
                                   const LandmarkOptions& options) {
   FaceLandmarks l = find_on_skin(V, side_mask, options);
+  l.scan_frame = options.scan_frame;
   if (!options.ct_landmarks) return l;
   const auto add = [&l](const char* name, const std::optional<CtLandmark>& landmark) {
     if (landmark) place(l, name, landmark->point, landmark->estimated);
@@ -707,8 +709,9 @@ FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorX
 void check_plausible(const FaceLandmarks& l, const std::string& remedy) {
   const auto has = [&](const char* name) { return l.points.count(name) > 0; };
   const auto at = [&](const char* name) { return l.points.at(name); };
+  const auto named = [&](const std::string& name) { return patient_side_name(name, l.scan_frame); };
   const auto fail = [&](const std::string& landmark, const std::string& problem) {
-    throw Error("landmarks", "implausible " + landmark + ": " + problem + "; " + remedy);
+    throw Error("landmarks", "implausible " + named(landmark) + ": " + problem + "; " + remedy);
   };
   const auto number = [](double v) {
     std::ostringstream s;
@@ -733,7 +736,7 @@ void check_plausible(const FaceLandmarks& l, const std::string& remedy) {
     if (!has(a) || !has(b)) return;
     const double d = (at(a) - at(b)).norm();
     if (d < lo || d > hi)
-      fail(blame, std::string("the distance ") + a + " - " + b + " is " + number(d) + ", outside the adult range " +
+      fail(blame, "the distance " + named(a) + " - " + named(b) + " is " + number(d) + ", outside the adult range " +
                       number(lo) + " to " + number(hi) + why);
   };
   range("nasion", "subnasale", kNasionSubnasale[0], kNasionSubnasale[1], "subnasale");
@@ -753,7 +756,7 @@ void check_plausible(const FaceLandmarks& l, const std::string& remedy) {
   for (const char* eye : {"endocanthion left", "exocanthion left", "endocanthion right", "exocanthion right"}) {
     if (!has(eye)) continue;
     for (const char* mouth : {"cheilion left", "cheilion right"})
-      if (has(mouth) && at(eye).z() <= at(mouth).z()) fail(eye, std::string("it lies below the ") + mouth);
+      if (has(mouth) && at(eye).z() <= at(mouth).z()) fail(eye, "it lies below the " + named(mouth));
     if (has("glabella") && at(eye).z() >= at("glabella").z()) fail(eye, "it lies above the glabella");
   }
   // A segmented CT's posterior cut follows its tragi (core/segment/face_cuts.h): the message says how to place it.
@@ -813,8 +816,8 @@ std::string landmarks_text(const FaceLandmarks& l, const std::string& indent) {
        << " mm: landmarks inside the cut are estimated from typical proportions\n";
   for (const auto& [name, p] : l.points) {
     const bool estimated = std::find(l.estimated.begin(), l.estimated.end(), name) != l.estimated.end();
-    os << indent << name << " at (" << p.x() << ", " << p.y() << ", " << p.z() << ") mm"
-       << (estimated ? " (estimated)" : "") << "\n";
+    os << indent << patient_side_name(name, l.scan_frame) << " at (" << p.x() << ", " << p.y() << ", " << p.z()
+       << ") mm" << (estimated ? " (estimated)" : "") << "\n";
   }
   return os.str();
 }

@@ -67,6 +67,7 @@
 #include "core/mesh/ct_landmarks.h"
 #include "core/mesh/mesh.h"
 #include "core/mesh/mid_sagittal_plane.h"
+#include "core/mesh/scan_frame.h"
 
 namespace facehex {
 
@@ -84,6 +85,9 @@ struct FaceLandmarks {
   // profile is read under them, and the landmarks there are estimated.
   std::vector<SkinObject> skin_objects;
   bool given = false;  // read from the user's file (landmarks_from), not found
+  // The model's scan frame (LandmarkOptions::scan_frame): the points are named by the model's sides (its +x one left),
+  // and what the user reads of them (landmarks_text, check_plausible's errors, landmark files) by the patient's.
+  ScanFrame scan_frame;
 };
 
 struct LandmarkOptions {
@@ -102,6 +106,8 @@ struct LandmarkOptions {
   // the model's frame: they lie behind a model's posterior cut and in the closed eyes' and lips' slits, where the skin
   // read does not show them.
   std::optional<CtLandmarks> ct_landmarks;
+  // Where the model lies in its scan (core/mesh/scan_frame.h), passed on to FaceLandmarks::scan_frame.
+  ScanFrame scan_frame;
   // The skin vertices on the rim of each opening of the model (walls on no side: open eyes, nostrils or a mouth, as a
   // hex standard or a face model has them), #R x 3 each, in the model's frame. The mouth's and the eyes' corners are
   // then the ends of the largest such opening of that name (opening_name), as the standard's are

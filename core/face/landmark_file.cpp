@@ -41,7 +41,7 @@ void check_name(const std::string& path, const std::string& name, std::set<std::
   if (!seen.insert(name).second) throw Error(path, "landmark '" + name + "' is given twice");
 }
 
-std::vector<NamedLandmark> read_facehex(const std::string& path, const json& doc) {
+std::vector<NamedLandmark> read_facehex(const std::string& path, const json& doc, const ScanFrame& frame) {
   if (doc.value("format", "") != "facehex-landmarks")
     throw Error(path,
                 "not a FaceHex landmark file (\"format\": \"facehex-landmarks\" is missing); a 3D Slicer "
@@ -55,20 +55,21 @@ std::vector<NamedLandmark> read_facehex(const std::string& path, const json& doc
     if (!l.is_object() || !l.contains("name") || !l["name"].is_string())
       throw Error(path, "every landmark needs a \"name\"");
     NamedLandmark n;
-    n.name = l["name"].get<std::string>();
-    check_name(path, n.name, seen);
-    if (!l.contains("position")) throw Error(path, "landmark '" + n.name + "' has no \"position\"");
-    n.position = position_of(path, l["position"], n.name);
+    const std::string name = l["name"].get<std::string>();
+    check_name(path, name, seen);
+    if (!l.contains("position")) throw Error(path, "landmark '" + name + "' has no \"position\"");
+    n.position = position_of(path, l["position"], name);
+    n.name = patient_side_name(name, frame);
     if (l.contains("status")) {
       if (!l["status"].is_string()) throw Error(path, "landmark '" + n.name + "': \"status\" must be a word");
-      n.status = status_of(path, l["status"].get<std::string>(), n.name);
+      n.status = status_of(path, l["status"].get<std::string>(), name);
     }
     out.push_back(n);
   }
   return out;
 }
 
-std::vector<NamedLandmark> read_slicer(const std::string& path, const json& doc) {
+std::vector<NamedLandmark> read_slicer(const std::string& path, const json& doc, const ScanFrame& frame) {
   if (!doc.contains("markups") || !doc["markups"].is_array() || doc["markups"].empty())
     throw Error(path, "not a 3D Slicer markups file (no \"markups\" list)");
   std::vector<NamedLandmark> out;
@@ -86,13 +87,15 @@ std::vector<NamedLandmark> read_slicer(const std::string& path, const json& doc)
       if (!c.is_object() || !c.contains("label") || !c["label"].is_string())
         throw Error(path, "every control point needs a \"label\" naming the landmark");
       NamedLandmark n;
-      n.name = c["label"].get<std::string>();
-      check_name(path, n.name, seen);
-      if (!c.contains("position")) throw Error(path, "landmark '" + n.name + "' has no \"position\"");
-      n.position = position_of(path, c["position"], n.name);
-      if (system == "RAS") n.position.head<2>() *= -1;
+      const std::string name = c["label"].get<std::string>();
+      check_name(path, name, seen);
+      if (!c.contains("position")) throw Error(path, "landmark '" + name + "' has no \"position\"");
+      Eigen::Vector3d scan = position_of(path, c["position"], name);
+      if (system == "RAS") scan.head<2>() *= -1;
+      n.name = patient_side_name(name, frame);
+      n.position = frame.from_scan(scan);
       if (c.contains("description") && c["description"].is_string() && !c["description"].get<std::string>().empty())
-        n.status = status_of(path, c["description"].get<std::string>(), n.name);
+        n.status = status_of(path, c["description"].get<std::string>(), name);
       out.push_back(n);
     }
   }
@@ -136,7 +139,7 @@ const char* status_name(LandmarkStatus status) {
   return "given";
 }
 
-std::vector<NamedLandmark> read_landmark_file(const std::string& path) {
+std::vector<NamedLandmark> read_landmark_file(const std::string& path, const ScanFrame& frame) {
   std::ifstream in(path);
   if (!in) throw Error(path, "cannot open the landmark file");
   json doc;
@@ -148,7 +151,7 @@ std::vector<NamedLandmark> read_landmark_file(const std::string& path) {
   if (!doc.is_object()) throw Error(path, "a landmark file holds one JSON object");
   std::vector<NamedLandmark> out;
   try {
-    out = is_slicer(path) ? read_slicer(path, doc) : read_facehex(path, doc);
+    out = is_slicer(path) ? read_slicer(path, doc, frame) : read_facehex(path, doc, frame);
   } catch (const json::exception& e) {  // a value of another type than the format's, e.g. a number for a markup
     throw Error(path, "a value has the wrong type: " + without_json_error_code(e.what()));
   }
@@ -156,17 +159,19 @@ std::vector<NamedLandmark> read_landmark_file(const std::string& path) {
   return out;
 }
 
-void write_landmark_file(const std::string& path, const std::vector<NamedLandmark>& landmarks) {
+void write_landmark_file(const std::string& path, const std::vector<NamedLandmark>& landmarks, const ScanFrame& frame) {
   json doc;
   if (is_slicer(path)) {
     json points = json::array();
     int id = 1;
-    for (const NamedLandmark& l : landmarks)
+    for (const NamedLandmark& l : landmarks) {
+      const Eigen::Vector3d scan = frame.to_scan(l.position);
       points.push_back({{"id", std::to_string(id++)},
-                        {"label", l.name},
+                        {"label", patient_side_name(l.name, frame)},
                         {"description", status_name(l.status)},
-                        {"position", {l.position.x(), l.position.y(), l.position.z()}},
+                        {"position", {scan.x(), scan.y(), scan.z()}},
                         {"positionStatus", "defined"}});
+    }
     doc = {
         {"@schema",
          "https://raw.githubusercontent.com/slicer/slicer/master/Modules/Loadable/Markups/Resources/Schema/"
@@ -176,7 +181,7 @@ void write_landmark_file(const std::string& path, const std::vector<NamedLandmar
   } else {
     json list = json::array();
     for (const NamedLandmark& l : landmarks)
-      list.push_back({{"name", l.name},
+      list.push_back({{"name", patient_side_name(l.name, frame)},
                       {"position", {l.position.x(), l.position.y(), l.position.z()}},
                       {"status", status_name(l.status)}});
     doc = {{"format", "facehex-landmarks"}, {"version", 1}, {"units", "mm"}, {"landmarks", list}};

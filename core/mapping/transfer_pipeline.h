@@ -34,8 +34,9 @@ struct TransferOptions {
   // whole skin alone follows its shape, not its features, and leaves a mouth or eyes of other proportions than the
   // standard's several millimetres off (docs/results.md).
   bool pull_found_landmarks = true;
-  // Landmarks (landmark_file.h names) that pull the registration in no case, found, estimated or given: one the user
-  // does not trust on this face (a flat forehead's glabella reads millimetres up or down it, docs/results.md).
+  // Landmarks (landmark_file.h names, left and right the patient's) that pull the registration in no case, found,
+  // estimated or given: one the user does not trust on this face (a flat forehead's glabella reads millimetres up or
+  // down it, docs/results.md).
   std::vector<std::string> landmarks_not_pulled;
   // A parameterization with inverted tets is not a bijection. Local folds (at most max_inverted_fraction of the
   // patient's tets) are reported and their effect on the hex mesh repaired by the untangler; more stop the run with

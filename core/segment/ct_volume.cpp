@@ -15,6 +15,7 @@
 #include <vtkXMLImageDataReader.h>
 
 #include <Eigen/Geometry>
+#include <Eigen/SVD>
 #include <algorithm>
 #include <cctype>
 #include <cstring>
@@ -55,6 +56,23 @@ struct FileVolume {
   CtOrientation axes;
 };
 
+// LPS from RAS and back: x and y negated.
+const Eigen::Matrix3d kLpsFromRas = Eigen::Vector3d(-1, -1, 1).asDiagonal();
+
+// The scan frame of a NIfTI file: its orientation matrix takes VTK's image coordinates to RAS.
+ScanFrame nifti_scan_frame(vtkMatrix4x4* m) {
+  ScanFrame f;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) f.rotation(r, c) = m->GetElement(r, c);
+    f.translation(r) = m->GetElement(r, 3);
+  }
+  // Orthonormal columns (the matrix is a rotation, possibly with a flip; kept exact for the frame's check).
+  Eigen::JacobiSVD<Eigen::Matrix3d> svd(f.rotation, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  f.rotation = kLpsFromRas * svd.matrixU() * svd.matrixV().transpose();
+  f.translation = kLpsFromRas * f.translation;
+  return f;
+}
+
 // The axes by a NIfTI orientation (VTK image coordinates -> RAS, spacing factored out; vtkNIFTIImageReader has already
 // reversed the slices when qfac is -1). Each voxel axis must lie along a patient axis: an oblique volume is refused.
 CtOrientation nifti_axes(const std::string& path, vtkMatrix4x4* m) {
@@ -79,7 +97,7 @@ CtOrientation nifti_axes(const std::string& path, vtkMatrix4x4* m) {
 
 // The axes as 2 characters each ("+y", or blanks when not stated).
 constexpr size_t kAxesBytes = 4;
-constexpr size_t kVolumeHeaderBytes = kAxesBytes + 3 * sizeof(int) + 6 * sizeof(double);
+constexpr size_t kVolumeHeaderBytes = kAxesBytes + 3 * sizeof(int) + 6 * sizeof(double) + 12 * sizeof(double);
 
 // Voxel values as floats, rescaled by slope * v + intercept; from the first component of each tuple.
 template <typename T>
@@ -116,11 +134,13 @@ std::vector<char> read_volume_bytes_here(const std::string& path, const CtOrient
   io::run_vtk(path, "reading the CT", reader);  // VTK's messages become one line of the exception
 
   CtOrientation axes;
+  ScanFrame frame;
   double slope = 1, intercept = 0;
   if (auto* nifti = vtkNIFTIImageReader::SafeDownCast(reader)) {
     if (nifti->GetRescaleSlope() != 0) slope = nifti->GetRescaleSlope(), intercept = nifti->GetRescaleIntercept();
     vtkMatrix4x4* orientation = nifti->GetSFormMatrix() ? nifti->GetSFormMatrix() : nifti->GetQFormMatrix();
     if (orientation && (given.anterior.empty() || given.superior.empty())) axes = nifti_axes(path, orientation);
+    if (orientation) frame = nifti_scan_frame(orientation);
   }
 
   vtkImageData* image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
@@ -143,6 +163,8 @@ std::vector<char> read_volume_bytes_here(const std::string& path, const CtOrient
   std::memcpy(p, dims, sizeof dims), p += sizeof dims;
   std::memcpy(p, spacing, sizeof spacing), p += sizeof spacing;
   std::memcpy(p, origin, sizeof origin), p += sizeof origin;
+  std::memcpy(p, frame.rotation.data(), 9 * sizeof(double)), p += 9 * sizeof(double);
+  std::memcpy(p, frame.translation.data(), 3 * sizeof(double)), p += 3 * sizeof(double);
   float* voxels = reinterpret_cast<float*>(p);
   const int components = scalars->GetNumberOfComponents();
   switch (scalars->GetDataType()) {
@@ -167,6 +189,8 @@ FileVolume volume_from_bytes(const std::vector<char>& bytes, const std::string& 
   std::memcpy(g.dims.data(), p, sizeof g.dims), p += sizeof g.dims;
   std::memcpy(g.spacing.data(), p, 3 * sizeof(double)), p += 3 * sizeof(double);
   std::memcpy(g.origin.data(), p, 3 * sizeof(double)), p += 3 * sizeof(double);
+  std::memcpy(ct.scan_frame.rotation.data(), p, 9 * sizeof(double)), p += 9 * sizeof(double);
+  std::memcpy(ct.scan_frame.translation.data(), p, 3 * sizeof(double)), p += 3 * sizeof(double);
   if (bytes.size() != header + g.size() * sizeof(float))
     throw Error(path, "incomplete volume from the reading process");
   ct.intensity.data.resize(g.size());
@@ -180,11 +204,14 @@ FileVolume read_volume_file(const std::string& path, const CtOrientation& given)
   const std::string name = lower(path);
   if (ends_with(name, ".mhd") || ends_with(name, ".mha")) check_metaimage_header(path);
   if (ends_with(name, ".nii") || ends_with(name, ".nii.gz")) check_nifti_header(path);
-  if (ends_with(name, ".nrrd") || ends_with(name, ".nhdr")) check_nrrd_header(path);
+  const bool ras_space = (ends_with(name, ".nrrd") || ends_with(name, ".nhdr")) && check_nrrd_header(path).ras_space;
   const ChildLimits limits = limits_for_reading(path, size_t{4} << 30);  // the voxels in the file's type and as floats
-  return volume_from_bytes(compute_in_child(
-                               path, "reading the CT", [&] { return read_volume_bytes_here(path, given); }, limits),
-                           path);
+  FileVolume volume =
+      volume_from_bytes(compute_in_child(
+                            path, "reading the CT", [&] { return read_volume_bytes_here(path, given); }, limits),
+                        path);
+  if (ras_space) volume.ct.scan_frame.rotation = kLpsFromRas;
+  return volume;
 }
 
 }  // namespace
@@ -199,6 +226,7 @@ CtVolume read_ct_volume(const std::string& path, const CtOrientation& orientatio
   if (fs::is_directory(path)) {
     DicomVolume dicom = read_dicom_series(path, dicom_series);
     ct = CtVolume{std::move(dicom.intensity), path, dicom.gantry_tilt_degrees};
+    ct.scan_frame.rotation = dicom.patient_axes;
     if (axes.anterior.empty()) axes.anterior = dicom.anterior;
     if (axes.superior.empty()) axes.superior = dicom.superior;
   } else {
@@ -277,6 +305,9 @@ CtVolume reorient(CtVolume ct, const CtOrientation& orientation) {
   CtVolume out;
   out.source = ct.source;
   out.gantry_tilt_degrees = ct.gantry_tilt_degrees;
+  Eigen::Matrix3d new_from_old = Eigen::Matrix3d::Zero();
+  for (int a = 0; a < 3; ++a) new_from_old(a, source[a]) = sign[a];
+  out.scan_frame = ct.scan_frame.after_model_change(new_from_old, Eigen::Vector3d::Zero());
   GridGeometry& g = out.intensity.geometry;
   for (int a = 0; a < 3; ++a) {
     const int s = source[a];

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "core/mesh/scan_frame.h"
 #include "core/segment/voxel_grid.h"
 
 namespace facehex {
@@ -14,6 +15,8 @@ struct CtVolume {
   // A DICOM series acquired with its gantry tilted, resampled onto an upright grid (dicom_series.h): the tilt, degrees;
   // 0 otherwise.
   double gantry_tilt_degrees = 0;
+  // Where the grid's physical coordinates (mm) lie in the scan's LPS patient frame (core/mesh/scan_frame.h).
+  ScanFrame scan_frame;
 };
 
 // Which axis of the file's voxel grid points anterior and which superior: "+x", "-x", "+y", "-y", "+z" or "-z".
@@ -27,7 +30,8 @@ struct CtOrientation {
 };
 
 // Reads a CT volume: .mhd/.mha (MetaImage), .nii/.nii.gz (NIfTI, scl_slope/inter applied), .nrrd/.nhdr, .vti, or a
-// folder holding one DICOM series (GDCM; rescale slope/intercept applied). Spacing and origin are the file's. Throws
+// folder holding one DICOM series (GDCM; rescale slope/intercept applied). Spacing and origin are the file's, and
+// scan_frame says where the reoriented grid lies in the file's patient frame. Throws
 // facehex::Error(path, ...) on a missing, unreadable, non-3D or blank (constant) volume, a DICOM folder with several
 // series and none named by `dicom_series` (read_dicom_series' `series`; given for a file, an error too), or an
 // invalid orientation.
@@ -43,7 +47,8 @@ void write_ct_volume(const std::string& path, const CtVolume& ct);
 bool is_ct_input(const std::string& path);
 const std::vector<std::string>& ct_volume_extensions();  // ".mhd", ".mha", ".nii", ".nii.gz", ".nrrd", ".nhdr"
 
-// Permutes/flips the voxel grid so that `orientation.anterior` becomes +y and `orientation.superior` becomes +z.
+// Permutes/flips the voxel grid so that `orientation.anterior` becomes +y and `orientation.superior` becomes +z; the
+// scan frame follows.
 CtVolume reorient(CtVolume ct, const CtOrientation& orientation);
 
 }  // namespace facehex

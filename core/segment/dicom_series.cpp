@@ -222,6 +222,7 @@ DicomVolume read_dicom_series(const std::string& folder, const std::string& name
     const double along = slices.back().position - slices.front().position;
     volume.gantry_tilt_degrees = std::atan2(offsets.back().norm(), along) * 180 / M_PI;
   }
+  volume.patient_axes = axes;
   volume.anterior = nearest_axis(axes, Eigen::Vector3d(0, -1, 0));  // LPS: anterior is -y
   volume.superior = nearest_axis(axes, Eigen::Vector3d(0, 0, 1));
   if (volume.anterior[1] == volume.superior[1])

@@ -35,6 +35,9 @@ std::vector<DicomSeries> dicom_series_in(const std::string& folder);
 struct DicomVolume {
   Field intensity;
   std::string anterior, superior;  // voxel axes, see above
+  // The voxel axes in the patient's LPS frame (columns: rows, columns, normal): the intensity's physical coordinates
+  // p are the patient's at patient_axes * p.
+  Eigen::Matrix3d patient_axes = Eigen::Matrix3d::Identity();
   // The angle between the slices' normal and the line through their origins (a gantry tilt), in degrees; 0 when
   // their origins lie on the normal.
   double gantry_tilt_degrees = 0;

@@ -108,6 +108,12 @@ NrrdHeader check_nrrd_header(const std::string& path) {
   };
   if (field("dimension") != "3") throw Error(path, "NRRD dimension is '" + field("dimension") + "'; a CT volume has 3");
   NrrdHeader h;
+  if (fields.count("space")) {
+    std::string space = fields["space"];
+    std::transform(space.begin(), space.end(), space.begin(), [](unsigned char c) { return std::tolower(c); });
+    h.ras_space = space == "right-anterior-superior" || space == "ras" || space == "right-anterior-superior-time" ||
+                  space == "rast";
+  }
   const std::vector<double> sizes = numbers(path, "sizes", field("sizes"));
   for (int a = 0; a < 3; ++a) {
     if (sizes[a] < 1 || sizes[a] > 1e5 || sizes[a] != std::floor(sizes[a]))

@@ -10,6 +10,9 @@ namespace facehex {
 struct NrrdHeader {
   std::array<long long, 3> dims = {0, 0, 0};
   int bytes_per_voxel = 0;
+  // The "space" field names RAS ("right-anterior-superior", "RAS", or the same with time): the physical
+  // coordinates are RAS; else (LPS, another space or none) they are taken as LPS.
+  bool ras_space = false;
 };
 
 // Checks the magic, a text header, dimension 3, three positive sizes (the first at least 10: VTK takes a shorter one

@@ -11,6 +11,7 @@
 #include "core/fields/constraint_set.h"
 #include "core/mesh/ct_landmarks.h"
 #include "core/mesh/mid_sagittal_plane.h"
+#include "core/mesh/scan_frame.h"
 #include "core/mesh/side_mask.h"
 #include "core/mesh/skin_points.h"
 #include "core/segment/distance_transform.h"
@@ -540,6 +541,7 @@ PatientModel build_once(const CtVolume& ct, const SegmentOptions& options, const
   MidSagittalPlane plane = landmark_plane(model.cuts, options.cuts);
   plane.y = turn.axis.y();
   set_mid_sagittal_plane(model.mesh, turn.to_model(plane));
+  set_scan_frame(model.mesh, ct.scan_frame);
   // The skin at the working spacing, for the landmarks (core/mesh/skin_points.h).
   const std::vector<Eigen::Vector3d> skin_points = first_skin.empty() ? skin_of(surface, sides) : first_skin;
   Eigen::MatrixXd skin(static_cast<Eigen::Index>(skin_points.size()), 3);

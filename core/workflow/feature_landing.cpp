@@ -18,7 +18,8 @@ std::vector<FeatureLanding> feature_landing(const StandardFeatures& standard, co
     const Eigen::Vector3d landed = transferred.row(vertex->second).transpose();
     const Eigen::Vector3d apart = frame.to_head(landed) - frame.to_head(l.position);
     const bool pulled_it = std::find(pulled.begin(), pulled.end(), l.name) != pulled.end();
-    out.push_back({l.name, std::hypot(apart.x(), apart.z()), l.status, landed, l.position, pulled_it});
+    out.push_back({patient_side_name(l.name, patient.scan_frame), std::hypot(apart.x(), apart.z()), l.status, landed,
+                   l.position, pulled_it});
   }
   return out;
 }

@@ -18,7 +18,7 @@
 namespace facehex {
 
 struct FeatureLanding {
-  std::string name;
+  std::string name;     // the patient's side for a paired landmark (core/mesh/scan_frame.h)
   double distance = 0;  // mm, across the face
   LandmarkStatus patient_status = LandmarkStatus::found;
   Eigen::Vector3d landed = Eigen::Vector3d::Zero();   // the standard's landmark where the transfer put it (mm)

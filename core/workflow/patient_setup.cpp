@@ -46,7 +46,8 @@ void choose_constraints(PatientSetup& patient, const std::string& constraints_fi
     const std::optional<FaceLandmarks> given =
         landmarks_file.empty()
             ? std::nullopt
-            : std::optional<FaceLandmarks>(landmarks_from(read_landmark_file(landmarks_file), landmarks_file));
+            : std::optional<FaceLandmarks>(landmarks_from(
+                  read_landmark_file(landmarks_file, scan_frame(patient.mesh, patient.path)), landmarks_file));
     // A model with open eyes or an open mouth (a face model, a standard's re-meshing) has its corners read at its
     // openings' ends, as the standard's are.
     LandmarkOptions landmark_options = landmark_options_for(patient.mesh, patient.path);

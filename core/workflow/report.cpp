@@ -177,6 +177,9 @@ json read_run_report(const std::string& path) {
 json landmarks_json(const std::optional<FaceLandmarks>& landmarks) {
   if (!landmarks) return nullptr;
   const size_t estimated = landmarks->estimated.size();
+  std::vector<std::string> estimated_names;  // as the patient's sides
+  for (const std::string& name : landmarks->estimated)
+    estimated_names.push_back(patient_side_name(name, landmarks->scan_frame));
   json objects = json::array();
   for (const SkinObject& o : landmarks->skin_objects)
     objects.push_back({{"z_low", o.z_low},
@@ -186,7 +189,7 @@ json landmarks_json(const std::optional<FaceLandmarks>& landmarks) {
   return {{"source", landmarks->given ? "given" : "found"},
           {"found", landmarks->points.size() - estimated},
           {"estimated", estimated},
-          {"estimated_names", landmarks->estimated},
+          {"estimated_names", estimated_names},
           {"skin_objects", objects},
           {"mid_sagittal_plane",
            {{"x", landmarks->plane.x},

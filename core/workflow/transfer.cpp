@@ -70,7 +70,8 @@ LandmarkPull landmark_pull(const StandardSetup& standard, const PatientSetup& pa
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> matched;
   for (const NamedLandmark& l : named_landmarks(*patient.landmarks)) {
     const std::vector<std::string>& left_out = options.landmarks_not_pulled;
-    if (std::find(left_out.begin(), left_out.end(), l.name) != left_out.end()) continue;
+    const std::string patient_name = patient_side_name(l.name, patient.landmarks->scan_frame);  // as the user names it
+    if (std::find(left_out.begin(), left_out.end(), patient_name) != left_out.end()) continue;
     const auto vertex = features.landmark_vertices.find(l.name);
     const auto point = features.landmarks.points.find(l.name);
     if (vertex != features.landmark_vertices.end()) {

@@ -363,7 +363,10 @@ TEST_F(Cli, BadInputsGiveOneLineErrorsNamingTheFileAndNoOutput) {
 }
 
 // A DICOM folder as scanners export it, the axial series beside a localizer: segmenting it asks which series (exit
-// 1, the list numbered, the option named, nothing written); named, it is segmented; named for a file, an error.
+// 1, the list numbered, the option named, nothing written); named, it is segmented; named for a file, an error. The
+// landmarks it writes as a Slicer file are in the series' LPS frame with the patient's sides (the left eye's and
+// mouth's corners at larger x than the right's), and read back onto the model by constraints, they are written again
+// the same.
 TEST_F(Cli, ADicomFolderWithSeveralSeriesIsSegmentedByTheOneNamed) {
   const fs::path folder = dir_ / "export";
   fs::create_directories(folder);
@@ -378,9 +381,22 @@ TEST_F(Cli, ADicomFolderWithSeveralSeriesIsSegmentedByTheOneNamed) {
       << r.output;
   EXPECT_NE(r.output.find("--series"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(path("m.vtu")));
-  r = run("segment " + folder.string() + " --series 1 -o " + path("m.vtu"));
+  r = run("segment " + folder.string() + " --series 1 -o " + path("m.vtu") + " --write-landmarks " +
+          path("l.mrk.json"));
   EXPECT_EQ(r.status, 0) << r.output;
   EXPECT_TRUE(fs::exists(path("m.vtu")));
+  std::map<std::string, Eigen::Vector3d> written;
+  for (const facehex::NamedLandmark& l : facehex::read_landmark_file(path("l.mrk.json"))) written[l.name] = l.position;
+  for (const std::string pair : {"exocanthion", "endocanthion", "cheilion"}) {
+    ASSERT_TRUE(written.count(pair + " left") && written.count(pair + " right")) << pair;
+    EXPECT_GT(written.at(pair + " left").x(), written.at(pair + " right").x() + 20) << pair;
+  }
+  r = run("constraints " + path("m.vtu") + " -o " + path("c.json") + " --landmarks " + path("l.mrk.json") +
+          " --write-landmarks " + path("back.mrk.json"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::vector<facehex::NamedLandmark> back = facehex::read_landmark_file(path("back.mrk.json"));
+  ASSERT_EQ(back.size(), written.size());
+  for (const facehex::NamedLandmark& l : back) EXPECT_LT((l.position - written.at(l.name)).norm(), 1e-6) << l.name;
   r = run("segment " + facehex::default_ct() + " --series 1 -o " + path("n.vtu"));
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("not a DICOM folder"), std::string::npos) << r.output;

@@ -1,13 +1,16 @@
 #include "core/segment/ct_volume.h"
 
 #include <gtest/gtest.h>
+#include <vtkMatrix4x4.h>
 #include <vtkMetaImageReader.h>
 #include <vtkNIFTIImageWriter.h>
 #include <vtkNew.h>
 
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 #include "core/segment/voxel_grid.h"
 #include "core/util/error.h"
@@ -31,6 +34,21 @@ std::string write_small_mhd(const std::filesystem::path& dir) {
         raw.write(reinterpret_cast<const char*>(&v), sizeof v);
       }
   return (dir / "small.mhd").string();
+}
+
+// Every voxel of `ct` (read from a file whose voxel (i, j, k) holds i + 10 j + 100 k) lies where the file puts voxel
+// (i, j, k) in its patient frame, LPS: `scan_point(i, j, k)`.
+void expect_voxels_at_their_scan_points(const CtVolume& ct,
+                                        const std::function<Eigen::Vector3d(int, int, int)>& scan_point) {
+  const GridGeometry& g = ct.intensity.geometry;
+  for (size_t n = 0; n < g.size(); ++n) {
+    const auto [i, j, k] = g.ijk(n);
+    const int v = static_cast<int>(std::lround(ct.intensity.data[n]));
+    const Eigen::Vector3d expected = scan_point(v % 10, (v / 10) % 10, v / 100);
+    ASSERT_TRUE(ct.scan_frame.to_scan(g.point(i, j, k)).isApprox(expected, 1e-9))
+        << "value " << v << ": " << ct.scan_frame.to_scan(g.point(i, j, k)).transpose() << " instead of "
+        << expected.transpose();
+  }
 }
 
 // A folder of the running test's own (ctest may run several tests of this program at once).
@@ -82,6 +100,72 @@ TEST(CtVolume, ReorientsSoThatAnteriorIsPlusYAndSuperiorPlusZ) {
   EXPECT_EQ(ct.intensity(1, 0, 2), 1 + 10 * 2 + 100 * 4);
   EXPECT_EQ(ct.intensity(1, 4, 2), 1 + 10 * 2);
   EXPECT_NEAR(g.origin.y(), -(30 + 4 * 2), 1e-12);  // physical y = -old z
+  // The MetaImage's physical frame is its scan frame: each voxel still lies where the file put it.
+  expect_voxels_at_their_scan_points(
+      ct, [](int i, int j, int k) { return Eigen::Vector3d(10 + 0.5 * i, 20 + j, 30 + 2 * k); });
+  EXPECT_FALSE(ct.scan_frame.left_at_minus_x());
+  EXPECT_TRUE(read_ct_volume(write_small_mhd(scratch())).scan_frame.rotation.isIdentity());
+}
+
+// NIfTI's world is RAS: the scan frame negates its x and y. Stored as scanners store LPS (rows towards the patient's
+// left, columns towards posterior), or in RAS order: either way a right-handed volume read into the segmentation
+// frame has the patient's left at -x.
+TEST(CtVolume, ANiftiFilesVoxelsLieAtTheirWorldPointsAndItsPatientsLeftIsMinusX) {
+  vtkNew<vtkMetaImageReader> mhd;
+  mhd->SetFileName(write_small_mhd(scratch()).c_str());
+  for (const double flip : {-1.0, 1.0}) {
+    vtkNew<vtkMatrix4x4> qform;  // voxel axes i, j along RAS -x, -y (LPS order) or +x, +y; k superior
+    qform->SetElement(0, 0, flip);
+    qform->SetElement(1, 1, flip);
+    qform->SetElement(0, 3, 100);
+    qform->SetElement(1, 3, 120);
+    qform->SetElement(2, 3, -30);
+    vtkNew<vtkNIFTIImageWriter> nifti;
+    nifti->SetInputConnection(mhd->GetOutputPort());
+    nifti->SetQFormMatrix(qform);
+    const std::string path = (scratch() / (flip < 0 ? "lps.nii" : "ras.nii")).string();
+    nifti->SetFileName(path.c_str());
+    nifti->Write();
+    const CtVolume ct = read_ct_volume(path);
+    // World = qform applied to the image's points: VTK's writer folds the image's origin (10, 20, 30) into the
+    // qform's offset, which the file then holds (flip -1: qoffset (90, 100, 0)).
+    expect_voxels_at_their_scan_points(ct, [flip](int i, int j, int k) {
+      const Eigen::Vector3d ras(100 + flip * (10 + 0.5 * i), 120 + flip * (20 + j), -30 + 30 + 2 * k);
+      return Eigen::Vector3d(-ras.x(), -ras.y(), ras.z());
+    });
+    EXPECT_TRUE(ct.scan_frame.left_at_minus_x()) << path;
+  }
+}
+
+// A NRRD file says its space: RAS is turned into LPS, LPS (or none) taken as it is.
+TEST(CtVolume, ANrrdFilesSpaceSaysWhereItsVoxelsLie) {
+  int files = 0;
+  for (const std::string space : {"right-anterior-superior", "RAS", "left-posterior-superior", ""}) {
+    const std::string path = (scratch() / ("space" + std::to_string(++files) + ".nrrd")).string();
+    std::filesystem::create_directories(scratch());
+    std::ofstream out(path, std::ios::binary);
+    out << "NRRD0004\ntype: short\ndimension: 3\nsizes: 10 4 5\nencoding: raw\nendian: little\n";
+    if (!space.empty())
+      out << "space: " << space << "\nspace directions: (0.5,0,0) (0,1,0) (0,0,2)\nspace origin: (10,20,30)\n";
+    else
+      out << "spacings: 0.5 1 2\n";
+    out << "\n";
+    for (int k = 0; k < 5; ++k)
+      for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 10; ++i) {
+          const std::int16_t v = static_cast<std::int16_t>(i + 10 * j + 100 * k);
+          out.write(reinterpret_cast<const char*>(&v), sizeof v);
+        }
+    out.close();
+    const CtVolume ct = read_ct_volume(path);
+    const double sign = space.rfind("right", 0) == 0 || space == "RAS" ? -1 : 1;
+    const Eigen::Vector3d origin = space.empty() ? Eigen::Vector3d::Zero() : Eigen::Vector3d(10, 20, 30);
+    expect_voxels_at_their_scan_points(ct, [&](int i, int j, int k) {
+      const Eigen::Vector3d p = origin + Eigen::Vector3d(0.5 * i, j, 2 * k);
+      return Eigen::Vector3d(sign * p.x(), sign * p.y(), p.z());
+    });
+    EXPECT_EQ(ct.scan_frame.left_at_minus_x(), sign < 0) << space;
+  }
 }
 
 // The small volume written as compressed NIfTI by VTK's writer, with a rescale slope and intercept in its header (as

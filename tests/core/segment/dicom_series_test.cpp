@@ -12,7 +12,12 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <nlohmann/json.hpp>
 
+#include "core/face/face_landmarks.h"
+#include "core/face/landmark_file.h"
+#include "core/io/mesh_io.h"
+#include "core/mesh/side_mask.h"
 #include "core/segment/ct_volume.h"
 #include "core/segment/patient_input.h"
 #include "core/util/error.h"
@@ -193,6 +198,63 @@ TEST(DicomSeries, BundledCtAsADicomSeriesReadsBackAsTheSameVolume) {
   EXPECT_EQ(back.intensity.geometry.dims, g.dims);
   EXPECT_TRUE(back.intensity.geometry.spacing.isApprox(g.spacing, 1e-6));
   EXPECT_EQ(back.intensity.data, ct.intensity.data);
+  // Each voxel lies at its slice's patient position: column i at LPS x = i * spacing (the writer's column i holds our
+  // x = nx - 1 - i), row j at y = j * spacing; so the patient's left is at -x of the segmentation frame.
+  const GridGeometry& b = back.intensity.geometry;
+  for (const std::array<int, 3>& v : {std::array<int, 3>{0, 0, 0}, {g.dims[0] - 1, 5, 7}, {3, g.dims[1] - 1, 2}}) {
+    const Eigen::Vector3d lps((g.dims[0] - 1 - v[0]) * g.spacing(0), (g.dims[1] - 1 - v[1]) * g.spacing(1),
+                              g.origin(2) + v[2] * g.spacing(2));
+    EXPECT_TRUE(back.scan_frame.to_scan(b.point(v[0], v[1], v[2])).isApprox(lps, 1e-9))
+        << back.scan_frame.to_scan(b.point(v[0], v[1], v[2])).transpose() << " vs " << lps.transpose();
+  }
+  EXPECT_TRUE(back.scan_frame.left_at_minus_x());
+}
+
+// The bundled CT as that LPS series, segmented: the model carries its scan frame through a .vtu file, and its
+// landmarks are written where a DICOM viewer shows the series (the segmentation frame's (x, y, z) at LPS (-x, -y, z),
+// the series' positions starting at x = y = 0), with the patient's sides: the eye and mouth corners at the model's +x
+// lie at the patient's right. Read back onto the model, the files give the model's landmarks.
+TEST(DicomSeries, ASegmentedSeriesWritesItsLandmarksInThePatientsFrameAndSides) {
+  const fs::path dir = fresh_dir("landmarks");
+  write_bundled_series(dir, [](int) { return 0; });
+  const PatientTetModel model = load_patient_model(dir.string());
+  const std::string vtu = (dir / "model.vtu").string();
+  write_volume_mesh(vtu, model.mesh);
+  const VolumeMesh read = read_volume_mesh(vtu);
+  const ScanFrame frame = scan_frame(read, vtu);
+  EXPECT_TRUE(frame.rotation.isApprox(Eigen::Vector3d(-1, -1, 1).asDiagonal().toDenseMatrix(), 1e-12));
+  EXPECT_TRUE(frame.translation.isZero(1e-9)) << frame.translation.transpose();
+  const FaceLandmarks found = find_face_landmarks(read.V, side_mask_of(read), landmark_options_for(read, vtu));
+  ASSERT_TRUE(found.points.count("exocanthion left") && found.points.count("cheilion left"));
+  const std::vector<NamedLandmark> named = named_landmarks(found);
+  for (const std::string file : {"l.mrk.json", "l.json"}) {
+    const std::string path = (dir / file).string();
+    write_landmark_file(path, named, found.scan_frame);
+    std::ifstream in(path);
+    const nlohmann::json doc = nlohmann::json::parse(in);
+    const bool slicer = file == "l.mrk.json";
+    std::map<std::string, Eigen::Vector3d> written;
+    for (const nlohmann::json& p : slicer ? doc["markups"][0]["controlPoints"] : doc["landmarks"])
+      written[p[slicer ? "label" : "name"].get<std::string>()] = Eigen::Vector3d(
+          p["position"][0].get<double>(), p["position"][1].get<double>(), p["position"][2].get<double>());
+    for (const auto& [name, x] : found.points) {
+      const std::string side = name.find(" left") != std::string::npos    ? "left"
+                               : name.find(" right") != std::string::npos ? "right"
+                                                                          : "";
+      std::string patient_name = name;
+      if (!side.empty())
+        patient_name.replace(name.size() - side.size(), side.size(), side == "left" ? "right" : "left");
+      ASSERT_TRUE(written.count(patient_name)) << file << ": " << patient_name;
+      const Eigen::Vector3d expected = slicer ? Eigen::Vector3d(-x.x(), -x.y(), x.z()) : x;
+      EXPECT_TRUE(written.at(patient_name).isApprox(expected, 1e-6)) << file << ": " << name;
+    }
+    const std::vector<NamedLandmark> back = read_landmark_file(path, frame);
+    ASSERT_EQ(back.size(), named.size());
+    for (size_t i = 0; i < back.size(); ++i) {
+      EXPECT_EQ(back[i].name, named[i].name);
+      EXPECT_TRUE(back[i].position.isApprox(named[i].position, 1e-9)) << back[i].name;
+    }
+  }
 }
 
 // The bundled CT's slices moved forward by a row every fourth slice (a gantry tilt of atan(3.2 / 6)): segmented from

@@ -229,6 +229,35 @@ TEST_F(Workflow, AHeadCtEndingBehindTheFaceIsMeshedInFrontOfWhereItEndsAndOneEnd
   }
 }
 
+// A landmark file placed on a model's scan (a 3D Slicer file, in the scan's LPS frame, with the patient's sides) is
+// read through the scan frame the model carries: on the bundled patient model given a DICOM-like frame (a half turn
+// about the vertical axis and an offset), the Slicer file of its found landmarks gives them back where they were
+// found, under the model's names; the same points written without the frame lie mirrored, off the skin: refused.
+TEST_F(Workflow, AGivenSlicerFileIsReadThroughTheModelsScanFrame) {
+  std::map<std::string, double> values;
+  for (const auto& spec : feature_specs()) values[spec.name] = 0.5;
+  VolumeMesh model = read_volume_mesh(default_patient().mesh);
+  ScanFrame frame;
+  frame.rotation = Eigen::Vector3d(-1, -1, 1).asDiagonal();
+  frame.translation = Eigen::Vector3d(120, 140, -60);
+  set_scan_frame(model, frame);
+  write_volume_mesh(path("framed.vtu"), model);
+  const PatientSetup found = load_patient(path("framed.vtu"), {}, "", &values);
+  ASSERT_TRUE(found.landmarks) << found.features_problem;
+  write_landmark_file(path("placed.mrk.json"), named_landmarks(*found.landmarks), frame);
+  write_landmark_file(path("unframed.mrk.json"), named_landmarks(*found.landmarks));
+  const PatientSetup given = load_patient(path("framed.vtu"), {}, "", &values, {}, path("placed.mrk.json"));
+  ASSERT_TRUE(given.landmarks) << given.features_problem;
+  EXPECT_TRUE(given.landmarks->given);
+  for (const auto& [name, x] : found.landmarks->points) {
+    ASSERT_TRUE(given.landmarks->points.count(name)) << name;
+    EXPECT_LT((given.landmarks->points.at(name) - x).norm(), 1e-9) << name;
+  }
+  const PatientSetup mirrored = load_patient(path("framed.vtu"), {}, "", &values, {}, path("unframed.mrk.json"));
+  EXPECT_FALSE(mirrored.landmarks);
+  EXPECT_NE(mirrored.features_problem.find("mm from the model's skin"), std::string::npos) << mirrored.features_problem;
+}
+
 TEST(ExitCode, ZeroOnlyWhenNoCellIsInvertedOrFlat) {
   QualitySummary q;
   q.cells = 10;

@@ -1,0 +1,48 @@
+#include "core/mesh/scan_frame.h"
+
+#include "core/util/error.h"
+
+namespace facehex {
+
+ScanFrame ScanFrame::after_model_change(const Eigen::Matrix3d& A, const Eigen::Vector3d& b) const {
+  // p_scan = R p_old + t and p_old = A^T (p_new - b).
+  ScanFrame f;
+  f.rotation = rotation * A.transpose();
+  f.translation = translation - f.rotation * b;
+  return f;
+}
+
+ScanFrame scan_frame(const VolumeMesh& mesh, const std::string& source) {
+  const auto field = mesh.field_data.find(kScanFrameField);
+  if (field == mesh.field_data.end()) return {};
+  const Eigen::MatrixXd& m = field->second;
+  ScanFrame f;
+  if (m.rows() == 3 && m.cols() == 4 && m.allFinite()) {
+    f.rotation = m.leftCols<3>();
+    f.translation = m.col(3);
+  }
+  if (m.rows() != 3 || m.cols() != 4 || !m.allFinite() ||
+      !(f.rotation.transpose() * f.rotation).isApprox(Eigen::Matrix3d::Identity(), 1e-6))
+    throw Error(source, std::string("the field data '") + kScanFrameField +
+                            "' (where the model lies in its scan: a 3 x 4 matrix [R | t] with R orthogonal) is not "
+                            "that; remove it to take the model's own frame as the scan's");
+  return f;
+}
+
+void set_scan_frame(VolumeMesh& mesh, const ScanFrame& frame) {
+  Eigen::MatrixXd m(3, 4);
+  m << frame.rotation, frame.translation;
+  mesh.field_data[kScanFrameField] = m;
+}
+
+std::string patient_side_name(const std::string& name, const ScanFrame& frame) {
+  if (!frame.left_at_minus_x()) return name;
+  const auto ends_with = [&name](const std::string& suffix) {
+    return name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+  };
+  if (ends_with(" left")) return name.substr(0, name.size() - 5) + " right";
+  if (ends_with(" right")) return name.substr(0, name.size() - 6) + " left";
+  return name;
+}
+
+}  // namespace facehex
