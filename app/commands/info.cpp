@@ -9,6 +9,7 @@
 #include "core/mesh/corner_jacobian.h"
 #include "core/mesh/ct_landmarks.h"
 #include "core/mesh/mid_sagittal_plane.h"
+#include "core/mesh/scan_frame.h"
 #include "core/mesh/sides.h"
 #include "core/mesh/skin_points.h"
 
@@ -52,9 +53,11 @@ int cmd_info(const Argv& argv) {
   if (const std::optional<Eigen::MatrixXd> skin = skin_points(m, path))
     std::cout << "  skin points " << skin->rows()
               << " (the CT's skin at the segmentation's working spacing; the landmarks are found on them)\n";
+  const ScanFrame frame = scan_frame(m, path);
+  if (m.field_data.count(kScanFrameField)) std::cout << "  scan frame: " << scan_frame_text(frame) << "\n";
   if (const std::optional<CtLandmarks> found = ct_landmarks(m, path)) {
-    const auto print = [](const char* name, const std::optional<CtLandmark>& l) {
-      std::cout << "    " << name << " ";
+    const auto print = [&frame](const char* name, const std::optional<CtLandmark>& l) {
+      std::cout << "    " << patient_side_name(name, frame) << " ";
       if (l)
         std::cout << "(" << l->point.x() << ", " << l->point.y() << ", " << l->point.z() << ") mm"
                   << (l->estimated ? " (estimated)" : "") << "\n";

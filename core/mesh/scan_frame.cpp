@@ -1,5 +1,8 @@
 #include "core/mesh/scan_frame.h"
 
+#include <iomanip>
+#include <sstream>
+
 #include "core/util/error.h"
 
 namespace facehex {
@@ -33,6 +36,31 @@ void set_scan_frame(VolumeMesh& mesh, const ScanFrame& frame) {
   Eigen::MatrixXd m(3, 4);
   m << frame.rotation, frame.translation;
   mesh.field_data[kScanFrameField] = m;
+}
+
+std::string scan_frame_text(const ScanFrame& frame) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(1) << "the patient's left at " << (frame.left_at_minus_x() ? "-x" : "+x")
+    << " of the model; ";
+  const Eigen::Matrix3d& R = frame.rotation;
+  const bool permutation = ((R.array().abs() - 1).abs() < 1e-9 || R.array().abs() < 1e-9).all();
+  if (permutation) {
+    s << "model (x, y, z) at scan (";
+    for (int r = 0; r < 3; ++r) {
+      int c = 0;
+      R.row(r).cwiseAbs().maxCoeff(&c);
+      const double t = frame.translation(r);
+      s << (r ? ", " : "") << (R(r, c) < 0 ? "-" : "") << char('x' + c);
+      if (t != 0) s << (t < 0 ? " - " : " + ") << std::abs(t);
+    }
+    s << ") mm (LPS)";
+  } else {
+    s << std::setprecision(3) << "scan (LPS) = R model + t, R rows";
+    for (int r = 0; r < 3; ++r) s << " (" << R(r, 0) << ", " << R(r, 1) << ", " << R(r, 2) << ")";
+    s << std::setprecision(1) << ", t (" << frame.translation.x() << ", " << frame.translation.y() << ", "
+      << frame.translation.z() << ") mm";
+  }
+  return s.str();
 }
 
 std::string patient_side_name(const std::string& name, const ScanFrame& frame) {

@@ -43,6 +43,10 @@ ScanFrame scan_frame(const VolumeMesh& mesh, const std::string& source);
 // Stores the frame; the identity is stored too (a model from a CT always says where it lies).
 void set_scan_frame(VolumeMesh& mesh, const ScanFrame& frame);
 
+// "the patient's left at -x of the model; model (x, y, z) at scan (-x + 250.0, -y + 250.0, z - 40.0) mm (LPS)" for a
+// frame whose rotation permutes and flips the axes; the rotation's rows and the offset otherwise.
+std::string scan_frame_text(const ScanFrame& frame);
+
 // A landmark's name as the model names it (its +x side left) turned into the patient's side by `frame`: "left" and
 // "right" swapped at the end of a paired landmark's name when the patient's left lies at -x, unchanged otherwise. Its
 // own inverse: a name read from a user's file is turned into the model's name by the same call.

@@ -397,6 +397,12 @@ TEST_F(Cli, ADicomFolderWithSeveralSeriesIsSegmentedByTheOneNamed) {
   const std::vector<facehex::NamedLandmark> back = facehex::read_landmark_file(path("back.mrk.json"));
   ASSERT_EQ(back.size(), written.size());
   for (const facehex::NamedLandmark& l : back) EXPECT_LT((l.position - written.at(l.name)).norm(), 1e-6) << l.name;
+  r = run("info " + path("m.vtu"));
+  EXPECT_NE(r.output.find("scan frame: the patient's left at -x of the model; model (x, y, z) at scan (-x, -y, z) mm"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("landmarks found in the CT by the segmentation:\n    tragus left ("), std::string::npos)
+      << r.output;
   r = run("segment " + facehex::default_ct() + " --series 1 -o " + path("n.vtu"));
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("not a DICOM folder"), std::string::npos) << r.output;
@@ -418,6 +424,9 @@ TEST_F(Cli, SegmentTakesTheCutsGivenAndRejectsBadOnes) {
   EXPECT_NE(r.output.find("mid-sagittal plane x = 100.0 mm at z = 0.0 mm, leaning 0.0 degrees"), std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("skin points "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("scan frame: the patient's left at +x of the model; model (x, y, z) at scan (x, y, z) mm"),
+            std::string::npos)
+      << r.output;
   EXPECT_NE(r.output.find("landmarks found in the CT by the segmentation:\n    tragus right ("), std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("\n    exocanthion left "), std::string::npos) << r.output;

@@ -61,6 +61,17 @@ TEST(ScanFrame, PairedNamesSwapWhereThePatientsLeftIsAtMinusX) {
   EXPECT_EQ(patient_side_name("exocanthion left", mirror), "exocanthion left");
 }
 
+TEST(ScanFrame, TextSaysWhereThePatientsLeftIsAndHowTheAxesMap) {
+  EXPECT_EQ(
+      scan_frame_text(half_turn()),
+      "the patient's left at -x of the model; model (x, y, z) at scan (-x + 250.0, -y + 250.0, z - 40.0) mm (LPS)");
+  EXPECT_EQ(scan_frame_text(ScanFrame()),
+            "the patient's left at +x of the model; model (x, y, z) at scan (x, y, z) mm (LPS)");
+  ScanFrame oblique;
+  oblique.rotation = Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  EXPECT_NE(scan_frame_text(oblique).find("R rows (0.995, -0.100, 0.000) (0.100, 0.995, 0.000)"), std::string::npos) << scan_frame_text(oblique);
+}
+
 TEST(ScanFrame, MalformedFieldDataIsAnErrorNamingTheFileAndTheArray) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   Eigen::MatrixXd sheared(3, 4);
