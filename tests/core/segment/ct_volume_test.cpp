@@ -8,9 +8,11 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
 
 #include "core/segment/voxel_grid.h"
 #include "core/util/error.h"
@@ -134,6 +136,22 @@ TEST(CtVolume, ANiftiFilesVoxelsLieAtTheirWorldPointsAndItsPatientsLeftIsMinusX)
       return Eigen::Vector3d(-ras.x(), -ras.y(), ras.z());
     });
     EXPECT_TRUE(ct.scan_frame.left_at_minus_x()) << path;
+    if (flip < 0) continue;
+    // The same file with qfac -1 (pixdim[0], as FSL's radiological files have it): its slices run downwards from the
+    // offset, world (110 + 0.5 i, 140 + j, -2 k); VTK's reader reverses them, the frame follows.
+    std::string bytes;
+    {
+      std::ifstream in(path, std::ios::binary);
+      bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    const float qfac = -1;
+    std::memcpy(&bytes[76], &qfac, sizeof qfac);
+    const std::string reversed = (scratch() / "qfac.nii").string();
+    std::ofstream(reversed, std::ios::binary) << bytes;
+    const CtVolume down = read_ct_volume(reversed);
+    expect_voxels_at_their_scan_points(
+        down, [](int i, int j, int k) { return Eigen::Vector3d(-(110 + 0.5 * i), -(140 + j), -2.0 * k); });
+    EXPECT_TRUE(down.scan_frame.left_at_minus_x());
   }
 }
 
