@@ -136,8 +136,9 @@ FaceLandmarks find_face_landmarks(const Eigen::MatrixXd& V, const Eigen::VectorX
 // height) 38-70 mm; subnasale-menton (lower face height) 45-95 mm and 0.45-0.70 of nasion-menton; glabella 3-35 mm
 // above the nasion; mouth width (cheilion to cheilion) 35-85 mm; eye corners above the mouth corners and below the
 // glabella, biocular width (exocanthia) 70-120 mm, intercanthal width 20-50 mm, each eye 20-45 mm wide; bitragion
-// breadth 110-175 mm, nasion-tragus 80-150 mm, the tragi between the menton and the glabella in height. Landmarks
-// absent from the set are not checked. Throws facehex::Error("landmarks", ...) naming the landmark and `remedy` (e.g.
+// breadth 110-175 mm, nasion-tragus 80-150 mm, the tragi between the menton and the glabella in height; each paired
+// landmark on its side of the mid-sagittal plane (`landmarks.plane`: the model's left ones at +x of it), which a file
+// with left and right swapped breaks. Landmarks absent from the set are not checked. Throws facehex::Error("landmarks", ...) naming the landmark and `remedy` (e.g.
 // "give them with --landmarks FILE").
 void check_plausible(const FaceLandmarks& landmarks, const std::string& remedy);
 

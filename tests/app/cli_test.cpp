@@ -333,6 +333,16 @@ TEST_F(Cli, ConstraintsWriteAndTakeLandmarkFiles) {
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("implausible stomion"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(path("x.json")));
+  // The mouth corners' sides swapped (a Slicer file placed with the patient's sides read as the viewer's): named.
+  std::vector<facehex::NamedLandmark> swapped = found;
+  for (auto& l : swapped)
+    if (l.name.rfind("cheilion", 0) == 0) l.name = l.name == "cheilion left" ? "cheilion right" : "cheilion left";
+  facehex::write_landmark_file(path("swapped.mrk.json"), swapped);
+  r = run("constraints " + model + " -o " + path("x.json") + " --landmarks " + path("swapped.mrk.json"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("implausible cheilion"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("across the mid-sagittal plane"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(path("x.json")));
 }
 
 TEST_F(Cli, BadInputsGiveOneLineErrorsNamingTheFileAndNoOutput) {

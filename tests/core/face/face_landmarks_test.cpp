@@ -707,7 +707,7 @@ TEST(FaceLandmarks, TheLandmarksAModelCarriesFromItsCtAreListedWithTheirStatusAn
   EXPECT_NE(std::find(l.estimated.begin(), l.estimated.end(), "exocanthion left"), l.estimated.end());
   EXPECT_EQ(std::find(l.estimated.begin(), l.estimated.end(), "exocanthion right"), l.estimated.end());
   EXPECT_EQ(implausibility(l), "");
-  // Outer eye corners 125 mm apart (wider than any adult's), an eye 60 mm wide: errors naming the corner.
+  // Outer eye corners 125 mm apart (wider than any adult's), an eye 49 mm wide: errors naming the corner.
   FaceLandmarks wide = l;
   wide.points["exocanthion left"].x() = PhantomFace::x0 + 80;
   EXPECT_NE(implausibility(wide).find("implausible exocanthion: the distance exocanthion left - exocanthion right is "
@@ -715,18 +715,32 @@ TEST(FaceLandmarks, TheLandmarksAModelCarriesFromItsCtAreListedWithTheirStatusAn
             std::string::npos)
       << implausibility(wide);
   wide.points["exocanthion left"].x() = PhantomFace::x0 + 50;
-  wide.points["endocanthion left"] = Eigen::Vector3d(PhantomFace::x0 - 10, 60, 30);
+  wide.points["endocanthion left"] = Eigen::Vector3d(PhantomFace::x0 + 1, 60, 30);
   EXPECT_NE(implausibility(wide).find("implausible exocanthion left: the distance endocanthion left - exocanthion "
-                                      "left is 60.0 mm"),
+                                      "left is 49.0 mm"),
             std::string::npos)
       << implausibility(wide);
   // Tragi 50 mm apart (no adult head is so narrow), one above the glabella, both 140 mm further back (no head is so
   // deep): each is an error naming the tragus and the remedy.
   FaceLandmarks narrow = l;
-  narrow.points["tragus left"].x() = PhantomFace::x0 - 20;
+  narrow.points["tragus left"].x() = PhantomFace::x0 + 20;
+  narrow.points["tragus right"].x() = PhantomFace::x0 - 30;
   EXPECT_NE(implausibility(narrow).find("implausible tragus: the distance tragus left - tragus right is 50.0 mm"),
             std::string::npos)
       << implausibility(narrow);
+  // The tragi's sides swapped: the left one lies across the plane, on the right's side; with a scan frame whose
+  // patient's left is at -x (a DICOM series), the error names them as the patient's.
+  FaceLandmarks swapped = l;
+  std::swap(swapped.points["tragus left"], swapped.points["tragus right"]);
+  EXPECT_NE(implausibility(swapped).find("implausible tragus left: it lies 70.5 mm across the mid-sagittal plane, on "
+                                         "the tragus right's side"),
+            std::string::npos)
+      << implausibility(swapped);
+  swapped.scan_frame.rotation = Eigen::Vector3d(-1, -1, 1).asDiagonal();
+  EXPECT_NE(implausibility(swapped).find("implausible tragus right: it lies 70.5 mm across the mid-sagittal plane, on "
+                                         "the tragus left's side"),
+            std::string::npos)
+      << implausibility(swapped);
   FaceLandmarks high = l;
   high.points["tragus left"].z() = 60;
   EXPECT_NE(implausibility(high).find("implausible tragus left: it lies above the glabella"), std::string::npos)
