@@ -107,8 +107,8 @@ void rescaled_to_float(const T* values, int components, size_t count, double slo
 }
 
 // A volume file through VTK's readers (in the file's voxel axes), as the bytes the reading child sends its parent:
-// the axes, the geometry, then the voxels as floats, converted straight from the file's type (a volume is hundreds of
-// MB: each copy on the way costs). `given` axes make the file's own unneeded.
+// the axes, the geometry, the scan frame, then the voxels as floats, converted straight from the file's type (a volume
+// is hundreds of MB: each copy on the way costs). `given` axes make the file's own unneeded.
 std::vector<char> read_volume_bytes_here(const std::string& path, const CtOrientation& given) {
   const std::string name = lower(path);
   vtkSmartPointer<vtkAlgorithm> reader;
