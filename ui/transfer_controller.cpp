@@ -310,15 +310,20 @@ bool TransferController::reportErrors(const std::function<void()>& f) {
   }
 }
 
+const LoadedModel& TransferController::openedModel(Role role, const std::string& subject) const {
+  if (!session_->hasModel(role)) throw Error(subject, "open the " + roleName(role).toStdString() + " model first");
+  return session_->model(role);
+}
+
 void TransferController::placeFeatures(Role role, double band, const FaceLandmarks* given, const QString& what) {
-  if (!session_->hasModel(role)) throw Error("features", "open the " + roleName(role).toStdString() + " model first");
+  const LoadedModel& model = openedModel(role, "features");
   if (!session_->hasModel(Role::Standard))
     throw Error("features", "open a standard first: the features take the values of its constraint set");
-  const VolumeMesh& mesh = session_->model(role).mesh;
+  const VolumeMesh& mesh = model.mesh;
   FaceLandmarks landmarks;
-  const ConstraintSet features = landmark_feature_constraints(
-      mesh.V, side_mask_of(mesh), landmark_options_for(mesh, session_->model(role).path.toStdString()),
-      feature_values(session_->constraints(Role::Standard).set), band, &landmarks, given);
+  const ConstraintSet features =
+      landmark_feature_constraints(mesh.V, side_mask_of(mesh), landmark_options_for(mesh, model.path.toStdString()),
+                                   feature_values(session_->constraints(Role::Standard).set), band, &landmarks, given);
   session_->setFeatureConstraints(role, features, landmarks, what);
 }
 
@@ -329,8 +334,8 @@ bool TransferController::placeFeatureConstraints(Role role, double band) {
 bool TransferController::loadLandmarks(Role role, const QString& path, double band) {
   return reportErrors([&] {
     const std::string p = path.toStdString();
-    if (!session_->hasModel(role)) throw Error("features", "open the " + roleName(role).toStdString() + " model first");
-    const FaceLandmarks given = landmarks_from(read_landmark_file(p, scan_frame(session_->model(role).mesh, p)), p);
+    const FaceLandmarks given =
+        landmarks_from(read_landmark_file(p, scan_frame(openedModel(role, "features").mesh, p)), p);
     placeFeatures(role, band, &given, tr("landmarks from %1").arg(QFileInfo(path).fileName()));
   });
 }
@@ -363,7 +368,7 @@ bool TransferController::moveLandmark(Role role, const std::string& name, const 
 bool TransferController::loadConstraints(Role role, const QString& path, bool merge) {
   return reportErrors([&] {
     const std::string p = path.toStdString();
-    if (!session_->hasModel(role)) throw Error(p, "open the " + roleName(role).toStdString() + " model first");
+    openedModel(role, p);
     const ConstraintSet set = read_constraint_set(p);
     const QString name = QFileInfo(path).fileName();
     if (merge)

@@ -77,6 +77,8 @@ class TransferController : public QObject {
   bool start(const QString& what, Work work);
   void deliver();
   bool reportErrors(const std::function<void()>& f);
+  // The role's model; throws facehex::Error(subject, "open the ... model first") when there is none.
+  const LoadedModel& openedModel(Role role, const std::string& subject) const;
   // The model's feature constraints placed at `given` landmarks, else at those found (one undoable edit).
   void placeFeatures(Role role, double band, const FaceLandmarks* given, const QString& what);
 

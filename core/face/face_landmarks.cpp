@@ -722,15 +722,11 @@ void check_plausible(const FaceLandmarks& l, const std::string& remedy) {
   for (const auto& [name, p] : l.points)
     if (!p.allFinite()) fail(name, "its position is not a number");
   for (const auto& [name, p] : l.points) {
-    const bool left = name.size() > 5 && name.compare(name.size() - 5, 5, " left") == 0;
-    const bool right = name.size() > 6 && name.compare(name.size() - 6, 6, " right") == 0;
+    const int side = named_side(name);
     const double beyond = p.x() - l.plane.x_at(p.y(), p.z());  // mm towards the model's +x, its left ones' side
-    if ((left && beyond <= 0) || (right && beyond >= 0)) {
-      const std::string other =
-          left ? name.substr(0, name.size() - 5) + " right" : name.substr(0, name.size() - 6) + " left";
-      fail(name, "it lies " + number(std::abs(beyond)) + " across the mid-sagittal plane, on the " + named(other) +
-                     "'s side (left and right are the patient's: swapped?)");
-    }
+    if (side != 0 && side * beyond <= 0)
+      fail(name, "it lies " + number(std::abs(beyond)) + " across the mid-sagittal plane, on the " +
+                     named(other_side_name(name)) + "'s side (left and right are the patient's: swapped?)");
   }
   const char* order[] = {"glabella", "nasion",           "pronasale", "subnasale", "labrale superius",
                          "stomion",  "labrale inferius", "pogonion",  "menton"};

@@ -19,16 +19,14 @@ ScanFrame scan_frame(const VolumeMesh& mesh, const std::string& source) {
   const auto field = mesh.field_data.find(kScanFrameField);
   if (field == mesh.field_data.end()) return {};
   const Eigen::MatrixXd& m = field->second;
-  ScanFrame f;
-  if (m.rows() == 3 && m.cols() == 4 && m.allFinite()) {
-    f.rotation = m.leftCols<3>();
-    f.translation = m.col(3);
-  }
-  if (m.rows() != 3 || m.cols() != 4 || !m.allFinite() ||
-      !(f.rotation.transpose() * f.rotation).isApprox(Eigen::Matrix3d::Identity(), 1e-6))
+  const bool shaped = m.rows() == 3 && m.cols() == 4 && m.allFinite();
+  if (!shaped || !(m.leftCols<3>().transpose() * m.leftCols<3>()).isApprox(Eigen::Matrix3d::Identity(), 1e-6))
     throw Error(source, std::string("the field data '") + kScanFrameField +
                             "' (where the model lies in its scan: a 3 x 4 matrix [R | t] with R orthogonal) is not "
                             "that; remove it to take the model's own frame as the scan's");
+  ScanFrame f;
+  f.rotation = m.leftCols<3>();
+  f.translation = m.col(3);
   return f;
 }
 
@@ -63,14 +61,26 @@ std::string scan_frame_text(const ScanFrame& frame) {
   return s.str();
 }
 
-std::string patient_side_name(const std::string& name, const ScanFrame& frame) {
-  if (!frame.left_at_minus_x()) return name;
+int named_side(const std::string& name) {
   const auto ends_with = [&name](const std::string& suffix) {
     return name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
   };
-  if (ends_with(" left")) return name.substr(0, name.size() - 5) + " right";
-  if (ends_with(" right")) return name.substr(0, name.size() - 6) + " left";
-  return name;
+  return ends_with(" left") ? 1 : ends_with(" right") ? -1 : 0;
+}
+
+std::string other_side_name(const std::string& name) {
+  switch (named_side(name)) {
+    case 1:
+      return name.substr(0, name.size() - 5) + " right";
+    case -1:
+      return name.substr(0, name.size() - 6) + " left";
+    default:
+      return name;
+  }
+}
+
+std::string patient_side_name(const std::string& name, const ScanFrame& frame) {
+  return frame.left_at_minus_x() ? other_side_name(name) : name;
 }
 
 }  // namespace facehex

@@ -47,6 +47,12 @@ void set_scan_frame(VolumeMesh& mesh, const ScanFrame& frame);
 // frame whose rotation permutes and flips the axes; the rotation's rows and the offset otherwise.
 std::string scan_frame_text(const ScanFrame& frame);
 
+// Which side a landmark's name says: +1 for a paired one named left (the model's +x side), -1 for one named right, 0
+// for one on the midline.
+int named_side(const std::string& name);
+// The same landmark on the other side ("cheilion left" <-> "cheilion right"); a midline name unchanged.
+std::string other_side_name(const std::string& name);
+
 // A landmark's name as the model names it (its +x side left) turned into the patient's side by `frame`: "left" and
 // "right" swapped at the end of a paired landmark's name when the patient's left lies at -x, unchanged otherwise. Its
 // own inverse: a name read from a user's file is turned into the model's name by the same call.

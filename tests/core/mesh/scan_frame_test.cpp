@@ -46,6 +46,16 @@ TEST(ScanFrame, AfterTheModelMovesTheSamePointsLieAtTheSameScanPoints) {
     EXPECT_TRUE(moved.to_scan(A * p + b).isApprox(f.to_scan(p))) << p.transpose();
 }
 
+TEST(ScanFrame, PairedNamesSayTheirSideAndNameTheirPartner) {
+  EXPECT_EQ(named_side("cheilion left"), 1);
+  EXPECT_EQ(named_side("tragus right"), -1);
+  EXPECT_EQ(named_side("pronasale"), 0);
+  EXPECT_EQ(named_side("left"), 0);  // a suffix, not a name
+  EXPECT_EQ(other_side_name("endocanthion left"), "endocanthion right");
+  EXPECT_EQ(other_side_name("tragus right"), "tragus left");
+  EXPECT_EQ(other_side_name("menton"), "menton");
+}
+
 TEST(ScanFrame, PairedNamesSwapWhereThePatientsLeftIsAtMinusX) {
   const ScanFrame f = half_turn();
   EXPECT_TRUE(f.left_at_minus_x());
@@ -69,7 +79,8 @@ TEST(ScanFrame, TextSaysWhereThePatientsLeftIsAndHowTheAxesMap) {
             "the patient's left at +x of the model; model (x, y, z) at scan (x, y, z) mm (LPS)");
   ScanFrame oblique;
   oblique.rotation = Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  EXPECT_NE(scan_frame_text(oblique).find("R rows (0.995, -0.100, 0.000) (0.100, 0.995, 0.000)"), std::string::npos) << scan_frame_text(oblique);
+  EXPECT_NE(scan_frame_text(oblique).find("R rows (0.995, -0.100, 0.000) (0.100, 0.995, 0.000)"), std::string::npos)
+      << scan_frame_text(oblique);
 }
 
 TEST(ScanFrame, MalformedFieldDataIsAnErrorNamingTheFileAndTheArray) {
