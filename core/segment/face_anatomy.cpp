@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -438,28 +439,46 @@ MirrorPlane find_mirror_plane(const Mask& head, int lowest, int top) {
   const auto every = [&](int axis) {
     return std::max(1, static_cast<int>(std::lround(kMirrorSampling / g.spacing(axis))));
   };
-  std::vector<Eigen::Vector3d> points;
+  // The samples as voxel indices, the centroid in mm.
+  std::vector<Eigen::Vector3d> samples;
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (int k = lowest; k <= top; k += every(2))
     for (int j = 0; j < g.dims[1]; j += every(1))
       for (int i = 0; i < g.dims[0]; i += every(0))
-        if (head(i, j, k)) points.push_back(g.point(i, j, k)), centroid += points.back();
-  centroid /= static_cast<double>(points.size());
+        if (head(i, j, k)) samples.emplace_back(i, j, k), centroid += g.point(i, j, k);
+  centroid /= static_cast<double>(samples.size());
   // The face looks to (sin t, cos t, 0); the plane's normal is (cos t, -sin t, 0) rolled about that direction, so
   // that the plane's trace on a coronal plane leans towards +x going up for a positive roll.
   const auto normal = [](const MirrorPlane& plane) {
     const double t = plane.turn * M_PI / 180, r = plane.roll * M_PI / 180;
     return Eigen::Vector3d(std::cos(r) * std::cos(t), -std::cos(r) * std::sin(t), -std::sin(r));
   };
+  // The mirror image of a voxel, in voxel indices, is an affine map of its indices: the reflection through the plane
+  // conjugated by the grid's scaling, so that each sample costs a matrix-vector product and a lookup.
+  const Eigen::Vector3d upper(g.dims[0] - 0.5, g.dims[1] - 0.5, g.dims[2] - 0.5);
+  // The head as one bit per voxel: the lookups, scattered over the head, then mostly hit the cache.
+  std::vector<std::uint64_t> bits((g.size() + 63) / 64, 0);
+  for (size_t v = 0; v < g.size(); ++v)
+    if (head.data[v]) bits[v / 64] |= std::uint64_t{1} << (v % 64);
+  const auto in_head = [&](int i, int j, int k) {
+    const size_t v = g.index(i, j, k);
+    return static_cast<std::ptrdiff_t>((bits[v / 64] >> (v % 64)) & 1);
+  };
   const auto symmetry = [&](const MirrorPlane& plane, double offset) {
     const Eigen::Vector3d n = normal(plane);
     const Eigen::Vector3d c = centroid + offset * n;
+    const Eigen::Matrix3d reflect = Eigen::Matrix3d::Identity() - 2 * n * n.transpose();
+    const Eigen::Matrix3d a = g.spacing.cwiseInverse().asDiagonal() * reflect * g.spacing.asDiagonal();
+    const Eigen::Vector3d b = (reflect * g.origin + 2 * c.dot(n) * n - g.origin).cwiseQuotient(g.spacing);
     std::ptrdiff_t hits = 0;
-    for (const Eigen::Vector3d& p : points) {
-      const Eigen::Vector3d ijk = (p - 2 * (p - c).dot(n) * n - g.origin).cwiseQuotient(g.spacing);
-      const int i = static_cast<int>(std::lround(ijk.x())), j = static_cast<int>(std::lround(ijk.y())),
-                k = static_cast<int>(std::lround(ijk.z()));
-      hits += g.contains(i, j, k) && head(i, j, k);
+    for (const Eigen::Vector3d& s : samples) {
+      const Eigen::Vector3d ijk = a * s + b;
+      // Rounded to the nearest voxel (halves away from zero) once known to be inside the grid.
+      if (!(ijk.x() > -0.5 && ijk.y() > -0.5 && ijk.z() > -0.5 && ijk.x() < upper.x() && ijk.y() < upper.y() &&
+            ijk.z() < upper.z()))
+        continue;
+      hits +=
+          in_head(static_cast<int>(ijk.x() + 0.5), static_cast<int>(ijk.y() + 0.5), static_cast<int>(ijk.z() + 0.5));
     }
     return hits;
   };
@@ -530,13 +549,15 @@ HeadTurn find_head_turn(const Mask& head) {
   const auto symmetry = [&](double degrees) {
     const double a = degrees * M_PI / 180;
     const Eigen::Vector2d normal(std::cos(a), -std::sin(a));
+    const double upper_i = g.dims[0] - 0.5, upper_j = g.dims[1] - 0.5;
     size_t hits = 0;
     for (const Level& level : levels)
       for (const auto& p : level.points) {
         const Eigen::Vector2d q = p - 2 * (p - level.centroid).dot(normal) * normal;
-        const int i = static_cast<int>(std::lround((q.x() - g.origin.x()) / g.spacing.x()));
-        const int j = static_cast<int>(std::lround((q.y() - g.origin.y()) / g.spacing.y()));
-        hits += g.contains(i, j, level.k) && head(i, j, level.k);
+        const double i = (q.x() - g.origin.x()) / g.spacing.x(), j = (q.y() - g.origin.y()) / g.spacing.y();
+        // Rounded to the nearest voxel (halves away from zero) once known to be inside the grid.
+        if (i > -0.5 && j > -0.5 && i < upper_i && j < upper_j)
+          hits += head(static_cast<int>(i + 0.5), static_cast<int>(j + 0.5), level.k) != 0;
       }
     return static_cast<double>(hits) / static_cast<double>(count);
   };
