@@ -5,10 +5,10 @@
 # with the date, the commit, the core count and the CPU model. Everything outside the markers is left as it is.
 #
 # Usage, from anywhere in the repository, after a Release build of facehex:
-#   scripts/regenerate-docs.sh [--only benchmarks|results|correspondence|registered|landmarks|landing|pull|objects|voxels]
+#   scripts/regenerate-docs.sh [--only benchmarks|results|correspondence|registered|landmarks|landing|pull|patients|objects|voxels]
 #                              [--keep DIR]
 #                              [--from DIR]
-#     --only benchmarks|results|correspondence|registered|landmarks|landing|pull|objects|voxels  run and write one part only (correspondence:
+#     --only benchmarks|results|correspondence|registered|landmarks|landing|pull|patients|objects|voxels  run and write one part only (correspondence:
 #                                the correspondence section of docs/results.md, the paper's feature lines: `facehex
 #                                bench --correspondence --skin-correspondence features`; registered: its tables of the
 #                                registered skin, --skin-correspondence registered; landmarks: the automatic landmarks against
@@ -16,7 +16,8 @@
 #                                hand readings) in docs/benchmarks.md, from `facehex segment` and `constraints`; landing:
 #                                where the standard's landmarks land on the real CTs' runs, by default and with
 #                                --pull-found-landmarks off, in docs/results.md; pull: the known-answer cases and the real
-#                                CTs' landing with the landmarks' pull in part or off, in docs/results.md; objects:
+#                                CTs' landing with the landmarks' pull in part or off, in docs/results.md; patients: the
+#                                benchmark's warps of the real CTs' segmented models, in docs/results.md; objects:
 #                                the Visible Human with straps and tape on its face (scripts/strap_ct.py), its landmarks
 #                                against the bare CT's and the hand-placed ones, in docs/benchmarks.md; voxels: the
 #                                Visible Human resampled to finer and coarser voxels (scripts/resample_ct.py), `facehex
@@ -43,12 +44,12 @@ while [ $# -gt 0 ]; do
     --only) only=${2:?--only needs benchmarks or results}; shift 2 ;;
     --keep) keep=${2:?--keep needs a folder}; shift 2 ;;
     --from) from=${2:?--from needs a folder}; shift 2 ;;
-    -h|--help) sed -n '2,29p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,30p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "regenerate-docs.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
-case "$only" in ""|benchmarks|results|correspondence|registered|landmarks|landing|pull|objects|voxels) ;;
-  *) echo "regenerate-docs.sh: --only benchmarks|results|correspondence|registered|landmarks|landing|pull|objects|voxels" >&2; exit 2 ;;
+case "$only" in ""|benchmarks|results|correspondence|registered|landmarks|landing|pull|patients|objects|voxels) ;;
+  *) echo "regenerate-docs.sh: --only benchmarks|results|correspondence|registered|landmarks|landing|pull|patients|objects|voxels" >&2; exit 2 ;;
 esac
 want() { [ -z "$only" ] || [ "$only" = "$1" ]; }
 
@@ -253,6 +254,24 @@ EOF
         rm -f "$out/pull-$key-$ct_key"/*.vtu
       done
     done
+  fi
+  if want patients; then
+    # The warps of the deformation cases on the real CTs' segmented models (a real face's closed mouth and eyes),
+    # drawn about each model's own skin; the answer is the warp applied to the transfer onto the model as it is. With
+    # the landmarks found on each warped model, and with the model's own moved by the warp.
+    mkdir -p "$out/patient-models"
+    models=$out/patient-models/bundled-ct.vtu
+    step patients-segment-bundled-ct "$facehex" segment resources/ct/headsq/headsq.mhd -o "$models"
+    if [ -f ../shared/data/ct/vhfemale-head.mha ]; then
+      step patients-segment-vhf "$facehex" segment ../shared/data/ct/vhfemale-head.mha \
+        -o "$out/patient-models/vhfemale-head.vtu"
+      models="$models,$out/patient-models/vhfemale-head.vtu"
+    fi
+    step patients "$facehex" bench --correspondence --models none --deformation-models "$models" --cts none \
+      -o "$out/patients"
+    step patients-given "$facehex" bench --correspondence --models none --deformation-models "$models" --cts none \
+      --true-landmarks -o "$out/patients-given"
+    rm -rf "$out/patient-models"
   fi
   if want objects && [ -f ../shared/data/ct/vhfemale-head.mha ] && /usr/bin/python3 -c 'import vtk' 2>/dev/null; then
     # Objects on the skin: a layer of a soft tissue's density (0 HU) in front of the skin over a band of slices.
@@ -514,6 +533,25 @@ if only in ("", "registered"):
     write_blocks("docs/results.md", blocks)
     shutil.copyfile(os.path.join(out, "registered", "correspondence_skin_error.png"),
                     os.path.join(root, "docs", "img", "results_registered_skin_error.png"))
+
+# ---- docs/results.md: deformations of the real CTs' models ----
+if only in ("", "patients"):
+    found = load("patients/correspondence.json")
+    shown = ["glabella", "nasion", "pronasale", "stomion", "cheilion right", "cheilion left"]
+    rows = []
+    for c in found["cases"]:
+        shift = c.get("landmark_shift_mm", {})
+        if not shift:
+            rows.append([c["name"], "none found"] + [""] * (len(shown) + 1))
+            continue
+        worst = max(shift, key=shift.get)
+        rows.append([c["name"], f(sum(shift.values()) / len(shift)), f"{f(shift[worst], 1)} ({worst})"]
+                    + [f(shift[name], 1) if name in shift else "–" for name in shown])
+    write_blocks("docs/results.md", {
+        "results-patients-machine": machine_line(),
+        "results-patients": corr_table(found, False),
+        "results-patients-given": corr_table(load("patients-given/correspondence.json"), False),
+        "results-patients-landmarks": table(["case", "landmarks mean", "worst landmark"] + shown, rows)})
 
 # ---- docs/benchmarks.md: the landmarks against the hand-placed ones ----
 if only in ("", "landmarks"):

@@ -210,7 +210,11 @@ void add_correspondence_options(Args& args) {
       .option("output", "with --correspondence: the report's folder")
       .option("models", "with --correspondence: self-map models: split, open-E, closed-E (E: TetGen edge, mm)",
               "split,open-3,closed-3")
-      .option("deformation-models", "with --correspondence: the models the warps deform", "closed-3")
+      .option("deformation-models",
+              "with --correspondence: the models the warps deform: models of the standard as --models names them, or "
+              "patients' tet model files (e.g. a segmented CT's model; the answer: the warp applied to the transfer "
+              "onto the model as it is)",
+              "closed-3")
       .option("warps", "with --correspondence: random-SEED, chin, nose (none: no deformation)",
               "random-1,random-2,chin,nose")
       .option("cts", "with --correspondence: CT files warped for equivariance (default: the bundled CT; none: no CT)")
@@ -223,9 +227,9 @@ void add_correspondence_options(Args& args) {
             "with --correspondence: keep each case's patient in the report's folder: a model as "
             "KIND-CASE.vtu (e.g. deformation-nose-on-closed-3.vtu), a warped CT as STEM-warp-SEED.mha")
       .flag("true-landmarks",
-            "with --correspondence: a model's feature constraints at the standard's landmarks moved by the warp, and "
-            "a warped CT's at the original CT's landmarks moved by the warp, not at those found on it (separates the "
-            "landmark finder's error)")
+            "with --correspondence: a model's feature constraints at the standard's landmarks moved by the warp (a "
+            "patient model's at its own), and a warped CT's at the original CT's landmarks moved by the warp, not at "
+            "those found on it (separates the landmark finder's error)")
       .flag("mapping-only", "with --correspondence: the plain mapping alone, no relaxation and no repair (quick)");
 }
 

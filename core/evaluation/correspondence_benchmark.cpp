@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <Eigen/QR>
 #include <algorithm>
 #include <filesystem>
 
@@ -10,7 +11,10 @@
 #include "core/face/automatic_constraints.h"
 #include "core/face/face_landmarks.h"
 #include "core/io/mesh_io.h"
+#include "core/mesh/ct_landmarks.h"
+#include "core/mesh/mid_sagittal_plane.h"
 #include "core/mesh/sides.h"
+#include "core/mesh/skin_points.h"
 #include "core/quality/hex_quality.h"
 #include "core/quality/surface_distance.h"
 #include "core/segment/ct_volume.h"
@@ -30,7 +34,7 @@ constexpr double kCtEndRamp = 30.0;
 constexpr double kMinWarpJacobian = 0.2;
 
 // Rows of V whose side mask has the skin's bit.
-Eigen::MatrixXd skin_points(const VolumeMesh& mesh) {
+Eigen::MatrixXd skin_side_points(const VolumeMesh& mesh) {
   const Eigen::VectorXi mask = side_mask_of(mesh);
   std::vector<int> rows;
   for (int v = 0; v < mask.size(); ++v)
@@ -49,8 +53,57 @@ Eigen::Vector3d chin_point(const Eigen::MatrixXd& skin, const FaceLandmarks& lm)
     if (std::abs(p.x() - lm.plane.x) <= 10 && p.z() <= lip_z - 12 && p.z() >= lip_z - 45 && !(p.y() <= best.y()))
       best = p;
   }
-  if (!std::isfinite(best.y())) throw Error("landmarks", "no chin found below the lower lip of the standard");
+  if (!std::isfinite(best.y())) throw Error("landmarks", "no chin found below the lower lip of the face");
   return best;
+}
+
+// A patient model moved by a warp, with what its segmentation read in the CT moved with it, as a warped CT's would be
+// read: the landmarks (core/mesh/ct_landmarks.h) and the skin's points (core/mesh/skin_points.h) moved, the
+// mid-sagittal plane (core/mesh/mid_sagittal_plane.h) the least-squares plane through its points over the model's
+// extent moved. Objects on the skin, stored as a profile in the model's head frame, are not moved: a model that has
+// them is refused.
+VolumeMesh warped_patient_model(VolumeMesh mesh, const SmoothWarp& warp, const std::string& source) {
+  if (std::optional<MidSagittalPlane> plane = mid_sagittal_plane(mesh, source)) {
+    const Eigen::Vector3d lower = mesh.V.colwise().minCoeff().transpose(),
+                          upper = mesh.V.colwise().maxCoeff().transpose();
+    constexpr int kSamples = 11;  // per axis
+    Eigen::MatrixXd A(kSamples * kSamples, 3);
+    Eigen::VectorXd x(kSamples * kSamples);
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    std::vector<Eigen::Vector3d> moved;
+    for (int a = 0; a < kSamples; ++a)
+      for (int b = 0; b < kSamples; ++b) {
+        const double y = lower.y() + (upper.y() - lower.y()) * a / (kSamples - 1);
+        const double z = lower.z() + (upper.z() - lower.z()) * b / (kSamples - 1);
+        moved.push_back(warp.apply(Eigen::Vector3d(plane->x_at(y, z), y, z)));
+        mean += moved.back() / static_cast<double>(kSamples * kSamples);
+      }
+    for (size_t i = 0; i < moved.size(); ++i) {
+      const auto row = static_cast<Eigen::Index>(i);
+      A.row(row) << 1, moved[i].z() - mean.z(), moved[i].y() - mean.y();
+      x(row) = moved[i].x();
+    }
+    const Eigen::Vector3d fit = A.colPivHouseholderQr().solve(x);
+    plane->x = fit(0), plane->slope = fit(1), plane->turn = fit(2), plane->z = mean.z(), plane->y = mean.y();
+    set_mid_sagittal_plane(mesh, *plane);
+  }
+  if (std::optional<Eigen::MatrixXd> points = skin_points(mesh, source))
+    set_skin_points(mesh, warp.apply_rows(*points));
+  mesh.V = warp.apply_rows(mesh.V);
+  if (std::optional<CtLandmarks> carried = ct_landmarks(mesh, source)) {
+    if (!carried->skin_objects.empty())
+      throw Error(source, "a model with objects on its skin (a strap, tape) cannot be warped for the benchmark");
+    const auto move = [&](std::optional<CtLandmark>& l) {
+      if (l) l->point = warp.apply(l->point);
+    };
+    for (auto& l : carried->tragi) move(l);
+    for (auto& l : carried->eye_corners) move(l);
+    for (auto& l : carried->mouth_corners) move(l);
+    move(carried->stomion);
+    move(carried->bony_menton);
+    set_ct_landmarks(mesh, *carried);
+  }
+  return mesh;
 }
 
 // The landmarks moved by a warp (their plane as it was).
@@ -176,9 +229,9 @@ void measure_input_shifts(const PatientSetup& original, const PatientSetup& warp
 
 }  // namespace
 
-SmoothWarp standard_warp(const std::string& name, const VolumeMesh& standard) {
-  const Eigen::MatrixXd skin = skin_points(standard);
-  const Eigen::Vector3d centre = standard.V.colwise().mean().transpose();
+SmoothWarp face_warp(const std::string& name, const VolumeMesh& face) {
+  const Eigen::MatrixXd skin = skin_side_points(face);
+  const Eigen::Vector3d centre = face.V.colwise().mean().transpose();
   if (name.rfind("random-", 0) == 0) {
     std::uint64_t seed = 0;
     try {
@@ -189,12 +242,16 @@ SmoothWarp standard_warp(const std::string& name, const VolumeMesh& standard) {
     return random_warp(seed, centre, skin);
   }
   if (name == "chin" || name == "nose") {
-    const FaceLandmarks lm = find_face_landmarks(standard.V, side_mask_of(standard));
+    const FaceLandmarks lm = find_face_landmarks(face.V, side_mask_of(face));
     if (name == "chin") return local_warp(chin_point(skin, lm), Eigen::Vector3d(0, 8, 0), 20.0);
     const Eigen::Vector3d tip = lm.points.at("pronasale"), root = lm.points.at("nasion");
     return local_warp(tip, 0.2 * (tip - root), 15.0);
   }
   throw Error("--warps", "expects random-SEED, chin or nose, got '" + name + "'");
+}
+
+bool is_standard_model_name(const std::string& name) {
+  return name == "split" || name.rfind("open-", 0) == 0 || name.rfind("closed-", 0) == 0;
 }
 
 VolumeMesh standard_model(const std::string& name, const VolumeMesh& standard) {
@@ -222,7 +279,7 @@ std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const Standar
   const std::map<std::string, double> values = feature_values(standard.constraints);
   const FaceLandmarks standard_landmarks = standard_feature_landmarks(standard);
   std::vector<std::pair<std::string, SmoothWarp>> warps;
-  for (const std::string& w : options.warps) warps.emplace_back(w, standard_warp(w, standard.mesh));
+  for (const std::string& w : options.warps) warps.emplace_back(w, face_warp(w, standard.mesh));
 
   struct Planned {
     std::string kind, name, model, warp;  // model/warp: names; CT cases: model = the file
@@ -231,8 +288,15 @@ std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const Standar
   std::vector<Planned> plan;
   if (options.self_maps)
     for (const std::string& m : options.models) plan.push_back({"self-map", m, m, ""});
+  for (const std::string& m : options.deformation_models)
+    if (!is_standard_model_name(m) && !fs::is_regular_file(m))
+      throw Error("--deformation-models",
+                  "expects split, open-E, closed-E (E: edge length in mm) or a patient's tet "
+                  "model file, got '" +
+                      m + "' (no such file)");
   for (const auto& [w, warp] : warps)
-    for (const std::string& m : options.deformation_models) plan.push_back({"deformation", w + " on " + m, m, w});
+    for (const std::string& m : options.deformation_models)
+      plan.push_back({"deformation", w + " on " + (is_standard_model_name(m) ? m : fs::path(m).stem().string()), m, w});
   for (const std::string& ct : options.cts) {
     const std::string stem = fs::path(ct).filename().string();
     for (const std::uint64_t seed : options.ct_seeds)
@@ -245,8 +309,14 @@ std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const Standar
     if (it == models.end()) it = models.emplace(name, standard_model(name, standard.mesh)).first;
     return it->second;
   };
-  // Per CT file: its own segmentation and transfer, the truth's basis.
-  std::map<std::string, std::pair<PatientSetup, TransferResult>> ct_originals;
+  // Per CT file and per patient model file: the patient as it is and its transfer, the truth's basis.
+  std::map<std::string, std::pair<PatientSetup, TransferResult>> ct_originals, model_originals;
+  const auto kept_model = [&](const Planned& p, const VolumeMesh& mesh) {
+    if (options.keep_patients.empty()) return;
+    std::string file = p.kind + "-" + p.name;
+    std::replace(file.begin(), file.end(), ' ', '-');
+    write_volume_mesh((fs::path(options.keep_patients) / (file + ".vtu")).string(), mesh);
+  };
 
   std::vector<CorrespondenceCaseResult> results;
   for (size_t i = 0; i < plan.size(); ++i) {
@@ -254,17 +324,51 @@ std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const Standar
     if (on_case) on_case(static_cast<int>(i), static_cast<int>(plan.size()), p.kind + ": " + p.name);
     CorrespondenceCaseResult r;
     try {
-      if (p.kind != "ct") {
+      if (p.kind == "deformation" && !is_standard_model_name(p.model)) {
+        Stopwatch clock;
+        if (!model_originals.count(p.model)) {
+          PatientSetup setup = patient_from_mesh(read_volume_mesh(p.model), p.model, &values);
+          TransferResult t;
+          measure(standard, setup, standard.mesh.V, regions, options, progress, &t);
+          model_originals.emplace(p.model, std::make_pair(std::move(setup), std::move(t)));
+        }
+        const PatientSetup& original_setup = model_originals.at(p.model).first;
+        const Eigen::MatrixXd& original = model_originals.at(p.model).second.patient_hex.V;
+        const SmoothWarp warp = face_warp(p.warp, original_setup.mesh);
+        const Eigen::Vector3d lower = original_setup.mesh.V.colwise().minCoeff().transpose(),
+                              upper = original_setup.mesh.V.colwise().maxCoeff().transpose();
+        if (min_jacobian_determinant(warp, lower, upper, 41) <= kMinWarpJacobian)
+          throw Error("benchmark", p.name + ": the warp " + warp_description(warp) +
+                                       " is not safely invertible about the model; choose another warp");
+        VolumeMesh mesh = warped_patient_model(original_setup.mesh, warp, p.model);
+        kept_model(p, mesh);
+        PatientSetup patient = patient_from_mesh(std::move(mesh), p.kind + " " + p.name, &values);
+        if (options.true_landmarks) {
+          if (!original_setup.landmarks)
+            throw Error("benchmark", p.name +
+                                         ": --true-landmarks needs the model's own landmarks, and none were "
+                                         "found (" +
+                                         original_setup.features_problem + ")");
+          FaceLandmarks moved = warped_landmarks(*original_setup.landmarks, warp);
+          if (patient.landmarks)
+            moved.plane = patient.landmarks->plane;  // the warped model's own: a warp bends a plane
+          give_landmarks(patient, std::move(moved), values);
+        }
+        const Eigen::MatrixXd truth = warp.apply_rows(original);
+        r = measure(standard, patient, truth, regions, options, progress);
+        if (!options.true_landmarks && original_setup.landmarks)
+          measure_landmark_shifts(*original_setup.landmarks, patient, warp, r);
+        r.seconds = clock.lap();
+        r.warp_mean = (truth - original).rowwise().norm().mean();
+        r.warp = warp_description(warp);
+        r.model = p.model;
+      } else if (p.kind != "ct") {
         VolumeMesh mesh = model(p.model);
         SmoothWarp warp;  // identity
         for (const auto& [w, candidate] : warps)
           if (w == p.warp) warp = candidate;
         mesh.V = warp.apply_rows(mesh.V);
-        if (!options.keep_patients.empty()) {
-          std::string file = p.kind + "-" + p.name;
-          std::replace(file.begin(), file.end(), ' ', '-');
-          write_volume_mesh((fs::path(options.keep_patients) / (file + ".vtu")).string(), mesh);
-        }
+        kept_model(p, mesh);
         const Eigen::MatrixXd truth = warp.apply_rows(standard.mesh.V);
         PatientSetup patient = patient_from_mesh(std::move(mesh), p.kind + " " + p.name, &values);
         if (options.true_landmarks) {
@@ -317,7 +421,10 @@ std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const Standar
                        (fs::path(p.model).stem().string() + "-warp-" + std::to_string(p.ct_seed) + ".mha")
                  : fs::temp_directory_path() /
                        ("facehex-correspondence-" + std::to_string(::getpid()) + "-" + std::to_string(i) + ".mha");
-        write_ct_volume(file.string(), CtVolume{warp_volume(ct.intensity, warp), ct.source + " (warped)"});
+        CtVolume warped_ct;
+        warped_ct.intensity = warp_volume(ct.intensity, warp);
+        warped_ct.source = ct.source + " (warped)";
+        write_ct_volume(file.string(), warped_ct);
         PatientSetup warped;
         try {
           warped = load_patient(file.string(), options.segment, "", &values, progress);

@@ -3,7 +3,8 @@
 // them, and how far each vertex landed from where it should:
 //  - self-map: the standard onto tet models of its own volume (standard_remesh.h); the answer is the identity;
 //  - deformation: the same models under smooth invertible warps (smooth_warp.h) with known seeds, plus a chin moved
-//    forward and a longer nose; the answer is the warped standard;
+//    forward and a longer nose; the answer is the warped standard. Also on a patient's tet model (a segmented CT's,
+//    whose mouth and eyes are a real face's): the answer is the warp applied to the transfer onto the model as it is;
 //  - CT equivariance: a CT and warped copies of it (warp_volume.h), drawn about the CT's own face-on skin
 //    (ct_warp_frame: the same warps whatever the code under test finds), whose first and last slices stay flat
 //    (where a scan ends is no anatomy); the answer is the warp applied to the original CT's result (segmentation
@@ -32,7 +33,9 @@ struct CorrespondenceBenchmarkOptions {
   // Tet models of the standard's volume by name: "split" (hexes split, openings open), "open-E" and "closed-E"
   // (TetGen re-meshes at E mm of the open and of the closed volume).
   std::vector<std::string> models = {"split", "open-3", "closed-3"};
-  // The self-maps run on every model; each warp runs on each of deformation_models.
+  // The self-maps run on every model; each warp runs on each of deformation_models: models of the standard by name,
+  // or patients' tet model files (with side labels, as `facehex run` takes them), whose warps are drawn about their
+  // own skin and landmarks (face_warp) and whose answer is the warp applied to the transfer onto the model as it is.
   bool self_maps = true;
   std::vector<std::string> deformation_models = {"closed-3"};
   // Warps by name: "random-SEED" (random_warp with the default ranges), "chin" (the chin moved 8 mm forward), "nose"
@@ -100,9 +103,10 @@ std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const Standar
                                                                    const ProgressCallback& progress = {},
                                                                    const ResultCallback& on_result = {});
 
-// The named warp of CorrespondenceBenchmarkOptions::warps for a standard (hex-dominant, side labels). Throws
-// facehex::Error("--warps", ...) for a name it does not know.
-SmoothWarp standard_warp(const std::string& name, const VolumeMesh& standard);
+// The named warp of CorrespondenceBenchmarkOptions::warps for a face model with side labels (the standard, or a
+// patient's tet model), drawn about its own skin and landmarks. Throws facehex::Error("--warps", ...) for a name it
+// does not know.
+SmoothWarp face_warp(const std::string& name, const VolumeMesh& face);
 
 // The named model of CorrespondenceBenchmarkOptions::models. Throws facehex::Error("--models", ...) otherwise.
 VolumeMesh standard_model(const std::string& name, const VolumeMesh& standard);

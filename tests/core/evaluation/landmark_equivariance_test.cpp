@@ -16,7 +16,7 @@ TEST(LandmarkEquivariance, TheLipsFollowALongerNoseAForwardChinAndRandomWarps) {
   // random-1 shears the face so far that its forehead is the most anterior point of the middle of the profile: the
   // nose tip is not found there (the pronasale rule is not pitch-proof).
   for (const std::string warp : {"nose", "chin", "random-2", "random-3", "random-4"}) {
-    const SmoothWarp w = standard_warp(warp, m);
+    const SmoothWarp w = face_warp(warp, m);
     const FaceLandmarks found = find_face_landmarks(w.apply_rows(m.V), side_mask_of(m));
     for (const std::string name : {"subnasale", "labrale superius", "stomion", "labrale inferius"}) {
       const Eigen::Vector3d truth = w.apply(base.points.at(name));
