@@ -552,6 +552,8 @@ if only in ("", "patients"):
         "results-patients": corr_table(found, False),
         "results-patients-given": corr_table(load("patients-given/correspondence.json"), False),
         "results-patients-landmarks": table(["case", "landmarks mean", "worst landmark"] + shown, rows)})
+    shutil.copyfile(os.path.join(out, "patients", "correspondence_skin_error.png"),
+                    os.path.join(root, "docs", "img", "results_patients_skin_error.png"))
 
 # ---- docs/benchmarks.md: the landmarks against the hand-placed ones ----
 if only in ("", "landmarks"):
