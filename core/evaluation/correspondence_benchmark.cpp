@@ -123,10 +123,17 @@ void give_landmarks(PatientSetup& patient, FaceLandmarks landmarks, const std::m
   patient.landmarks = std::move(landmarks);
 }
 
-struct Truth {
-  Eigen::MatrixXd V;  // where the standard's vertices should land
-  double warp_mean = 0;
-};
+// A warped patient (--true-landmarks) given its original's landmarks moved by the warp, on its own mid-sagittal plane
+// where it has one (a warp bends a plane). `whose` names the original's for the error when it has none.
+void give_moved_landmarks(PatientSetup& warped, const PatientSetup& original, const SmoothWarp& warp,
+                          const std::string& whose, const std::map<std::string, double>& values) {
+  if (!original.landmarks)
+    throw Error("benchmark", "--true-landmarks needs the landmarks of " + whose + ", and none were found (" +
+                                 original.features_problem + ")");
+  FaceLandmarks moved = warped_landmarks(*original.landmarks, warp);
+  if (warped.landmarks) moved.plane = warped.landmarks->plane;
+  give_landmarks(warped, std::move(moved), values);
+}
 
 // One transfer through the workflow and its errors against `truth`.
 CorrespondenceCaseResult measure(const StandardSetup& standard, const PatientSetup& patient,
@@ -343,17 +350,8 @@ std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const Standar
         VolumeMesh mesh = warped_patient_model(original_setup.mesh, warp, p.model);
         kept_model(p, mesh);
         PatientSetup patient = patient_from_mesh(std::move(mesh), p.kind + " " + p.name, &values);
-        if (options.true_landmarks) {
-          if (!original_setup.landmarks)
-            throw Error("benchmark", p.name +
-                                         ": --true-landmarks needs the model's own landmarks, and none were "
-                                         "found (" +
-                                         original_setup.features_problem + ")");
-          FaceLandmarks moved = warped_landmarks(*original_setup.landmarks, warp);
-          if (patient.landmarks)
-            moved.plane = patient.landmarks->plane;  // the warped model's own: a warp bends a plane
-          give_landmarks(patient, std::move(moved), values);
-        }
+        if (options.true_landmarks)
+          give_moved_landmarks(patient, original_setup, warp, p.name + " (the model's own)", values);
         const Eigen::MatrixXd truth = warp.apply_rows(original);
         r = measure(standard, patient, truth, regions, options, progress);
         if (!options.true_landmarks && original_setup.landmarks)
@@ -433,16 +431,8 @@ std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const Standar
           throw;
         }
         if (!keep) fs::remove(file);
-        if (options.true_landmarks) {
-          if (!original_setup.landmarks)
-            throw Error("benchmark", p.name +
-                                         ": --true-landmarks needs the original CT's landmarks, and none were "
-                                         "found (" +
-                                         original_setup.features_problem + ")");
-          FaceLandmarks moved = warped_landmarks(*original_setup.landmarks, warp);
-          if (warped.landmarks) moved.plane = warped.landmarks->plane;  // the warped CT's own: a warp bends a plane
-          give_landmarks(warped, std::move(moved), values);
-        }
+        if (options.true_landmarks)
+          give_moved_landmarks(warped, original_setup, warp, p.name + " (the original CT's)", values);
         const Eigen::MatrixXd truth = warp.apply_rows(original.patient_hex.V);
         r = measure(standard, warped, truth, regions, options, progress);
         measure_input_shifts(original_setup, warped, warp, r);
