@@ -28,8 +28,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A CT warp's ramp (mm) from its flat end slices to the full warp (smooth_warp.h), and the smallest det J it may have
-// on the CT's box.
+// A CT warp's ramp (mm) from its flat end slices to the full warp (smooth_warp.h), and the smallest det J a warp may
+// have about the patient (the CT's head, a model's box).
 constexpr double kCtEndRamp = 30.0;
 constexpr double kMinWarpJacobian = 0.2;
 
@@ -124,7 +124,7 @@ void give_landmarks(PatientSetup& patient, FaceLandmarks landmarks, const std::m
 }
 
 // A warped patient (--true-landmarks) given its original's landmarks moved by the warp, on its own mid-sagittal plane
-// where it has one (a warp bends a plane). `whose` names the original's for the error when it has none.
+// where it has one (a warp bends a plane). `whose` names the original for the error when it has none.
 void give_moved_landmarks(PatientSetup& warped, const PatientSetup& original, const SmoothWarp& warp,
                           const std::string& whose, const std::map<std::string, double>& values) {
   if (!original.landmarks)
@@ -351,7 +351,8 @@ std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const Standar
         kept_model(p, mesh);
         PatientSetup patient = patient_from_mesh(std::move(mesh), p.kind + " " + p.name, &values);
         if (options.true_landmarks)
-          give_moved_landmarks(patient, original_setup, warp, p.name + " (the model's own)", values);
+          give_moved_landmarks(patient, original_setup, warp, fs::path(p.model).filename().string() + " as it is",
+                               values);
         const Eigen::MatrixXd truth = warp.apply_rows(original);
         r = measure(standard, patient, truth, regions, options, progress);
         if (!options.true_landmarks && original_setup.landmarks)
@@ -432,7 +433,8 @@ std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const Standar
         }
         if (!keep) fs::remove(file);
         if (options.true_landmarks)
-          give_moved_landmarks(warped, original_setup, warp, p.name + " (the original CT's)", values);
+          give_moved_landmarks(warped, original_setup, warp, fs::path(p.model).filename().string() + " as it is",
+                               values);
         const Eigen::MatrixXd truth = warp.apply_rows(original.patient_hex.V);
         r = measure(standard, warped, truth, regions, options, progress);
         measure_input_shifts(original_setup, warped, warp, r);
