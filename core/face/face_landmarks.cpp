@@ -292,6 +292,10 @@ constexpr double kMaxCutSlope = 0.27;
 constexpr double kMinCutGain = 5.0;
 // mm: a profile that comes this far forward again below a field-of-view cut's flat front shows the lips there
 constexpr double kLipRise = 1.0;
+// The share of the skin's height from its bottom where a face's nose tip never lies (a face's bottom cut below the
+// chin, its top above the brow or at the crown: the tip is at a third or more of the height): only the chin or the
+// lips can be the most anterior point there.
+constexpr double kBelowTheNose = 0.3;
 // mm from the subnasale's hollow down to the stomion's, at least (an adult's upper lip is 15-25 mm tall).
 constexpr double kMinUpperLipHeight = 10.0;
 // mm: an adult's nasion lies this far from the subnasale (check_plausible); the lower bound is about three standard
@@ -499,6 +503,17 @@ std::optional<Eigen::Vector3d> nasion_above(const Profile& profile, double lo, c
   return profile.middle_of_extreme(lo, brow ? *brow : prn.z() + kNasionHighestWithoutBrow, false, kFlatTie);
 }
 
+// The nose tip's first reading on a profile of skin from zmin to zmax: its most anterior point between a tenth of the
+// height from either end, or above the lowest kBelowTheNose of the height when that point lies lower (a chin as far
+// forward as a nose the scan's field of view clipped, or a head pitched chin-up).
+std::optional<Eigen::Vector3d> nose_front(const Profile& profile, double zmin, double zmax) {
+  const double height = zmax - zmin;
+  const std::optional<Eigen::Vector3d> front = profile.extreme(zmin + 0.1 * height, zmax - 0.1 * height, true);
+  if (front && front->z() < zmin + kBelowTheNose * height)
+    return profile.extreme(zmin + kBelowTheNose * height, zmax - 0.1 * height, true);
+  return front;
+}
+
 // find_face_landmarks on a model whose given plane, if any, is not turned.
 FaceLandmarks find_in_head_frame(const Eigen::MatrixXd& V, const Eigen::VectorXi& side_mask,
                                  const LandmarkOptions& options) {
@@ -521,8 +536,7 @@ FaceLandmarks find_in_head_frame(const Eigen::MatrixXd& V, const Eigen::VectorXi
     l.plane_source = "model";
   } else {
     // The nose tip near the middle of the skin's x range, then the skin's mirror plane searched near it.
-    const auto first = skin_profile(V, skin, {0.5 * (xmin + xmax), 0, 0}, 20.0)
-                           .extreme(zmin + 0.1 * height, zmax - 0.1 * height, true);
+    const auto first = nose_front(skin_profile(V, skin, {0.5 * (xmin + xmax), 0, 0}, 20.0), zmin, zmax);
     l.plane.x = mirror_plane(V, skin, require(first, "nose tip").x(), zmin + 0.1 * height, zmax - 0.1 * height,
                              kFaceMirrorReach, kFaceMirrorSearch);
     l.plane_source = "skin";
@@ -531,7 +545,7 @@ FaceLandmarks find_in_head_frame(const Eigen::MatrixXd& V, const Eigen::VectorXi
   const std::vector<std::pair<double, double>> under_objects =
       options.ct_landmarks ? read_under(options.ct_landmarks->skin_objects, profile)
                            : std::vector<std::pair<double, double>>{};
-  const Eigen::Vector3d front = require(profile.extreme(zmin + 0.1 * height, zmax - 0.1 * height, true), "nose tip");
+  const Eigen::Vector3d front = require(nose_front(profile, zmin, zmax), "nose tip");
   Profile::FrontLine cut_front{front.z(), front.y(), 0.0};
   std::optional<std::pair<double, double>> cut =
       profile.run_behind(cut_front, options.clipped_depth, options.clipped_length);

@@ -513,6 +513,26 @@ TEST(FaceLandmarks, ACutLeaningInTheHeadFrameIsFollowedDownToTheNose) {
   }
 }
 
+// The same clipped nose above a chin that stands 4.7 mm in front of the cut (z -54, y 94: a prominent chin of a head
+// pitched chin-up under a field of view that clips the nose): the chin is the profile's most anterior point and the
+// cut lies deeper behind it than a plateau's depth, but the chin lies in the face's lowest third, where no nose tip
+// does; the nose and the lips are read above it as without it.
+TEST(FaceLandmarks, AChinInFrontOfAClippedNoseIsNotTakenForTheNose) {
+  std::vector<Eigen::Vector2d> corners = kClippedToTheLips;
+  for (auto& corner : corners)
+    if (corner.x() == -54) corner.y() = 94;
+  for (unsigned seed : {1u, 2u, 3u}) {
+    const FaceLandmarks l = profile_landmarks(corners, 0.2, seed);
+    EXPECT_NEAR(l.clipped_from, -4, 1.5) << seed;
+    EXPECT_NEAR(l.clipped_to, 24, 1.5) << seed;
+    EXPECT_EQ(l.estimated, std::vector<std::string>{"pronasale"}) << seed;
+    const std::map<std::string, double> expected_z = {
+        {"subnasale", -5}, {"labrale superius", -23.5}, {"stomion", -30}, {"labrale inferius", -36}, {"nasion", 30}};
+    for (const auto& [name, z] : expected_z) EXPECT_NEAR(l.points.at(name).z(), z, 2.0) << name << ", seed " << seed;
+    EXPECT_NEAR(l.points.at("pogonion").z(), -54, 2.0) << seed;
+  }
+}
+
 TEST(FaceLandmarks, ACutThatTookTheLipsIsNamedInTheError) {
   // The same cut carried down to z -40: the lips lie inside it, and the error says where the cut is.
   std::vector<Eigen::Vector2d> corners(kClippedToTheLips.begin(), kClippedToTheLips.begin() + 4);
