@@ -6,10 +6,12 @@
 //  - mid-sagittal plane x = plane.x_at(y, z): the model's own when it carries one (a segmented CT's, LandmarkOptions,
 //    leaning with a head tilted towards a shoulder), else the skin's vertical mirror plane (the median over 2 mm rows
 //    of z of the plane that best mirrors the row's front, core/util/mirror_symmetry.h), searched near the most
-//    anterior point within 20 mm of the middle of the skin's x range;
+//    anterior point within 20 mm of the middle of the skin's x range (looked for as the nose tip is, below);
 //  - the profile: for 1 mm bins of z, the most anterior skin point within `profile_band` of the plane, moved onto it
 //    (a band wider than the philtrum's groove would catch its ridges);
-//  - pronasale (nose tip): the most anterior profile point in the middle 80 % of the z range;
+//  - pronasale (nose tip): the most anterior profile point in the middle 80 % of the z range, or above its lowest 30 %
+//    when that point lies lower (a chin in front of a nose the field of view clipped, a head pitched chin-up: no
+//    face's nose tip lies so low);
 //    the lips below it, from the profile's turns within 50 mm below the nose: the points its Douglas-Peucker
 //    simplification keeps (at 1.5 mm, else at 1 or 0.5 mm if that shows fewer than the four), each a hollow if it lies
 //    behind the chord of its kept neighbours, else a prominence (runs of one kind reduced to the deepest or most
