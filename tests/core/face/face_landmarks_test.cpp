@@ -483,16 +483,19 @@ const std::vector<Eigen::Vector2d> kClippedToTheLips = {{60, 84},   {42, 85},   
                                                         {-5, 86.5}, {-20, 86.5}, {-22, 88.3}, {-25, 88.3}, {-30, 84},
                                                         {-36, 87},  {-44, 80},   {-54, 86},   {-62, 76},   {-70, 70}};
 
+// What a profile of kClippedToTheLips (its chin aside) reads: the cut at its flat front, the nose tip estimated there,
+// the lips, the subnasale and the nasion where the profile has them.
+void expect_clipped_to_the_lips(const FaceLandmarks& l, unsigned seed) {
+  EXPECT_NEAR(l.clipped_from, -4, 1.5) << seed;
+  EXPECT_NEAR(l.clipped_to, 24, 1.5) << seed;
+  EXPECT_EQ(l.estimated, std::vector<std::string>{"pronasale"}) << seed;
+  const std::map<std::string, double> expected_z = {
+      {"subnasale", -5}, {"labrale superius", -23.5}, {"stomion", -30}, {"labrale inferius", -36}, {"nasion", 30}};
+  for (const auto& [name, z] : expected_z) EXPECT_NEAR(l.points.at(name).z(), z, 2.0) << name << ", seed " << seed;
+}
+
 TEST(FaceLandmarks, ACutLevelWithTheLipsEndsAtTheFlatFront) {
-  for (unsigned seed : {1u, 2u, 3u}) {
-    const FaceLandmarks l = profile_landmarks(kClippedToTheLips, 0.2, seed);
-    EXPECT_NEAR(l.clipped_from, -4, 1.5) << seed;
-    EXPECT_NEAR(l.clipped_to, 24, 1.5) << seed;
-    EXPECT_EQ(l.estimated, std::vector<std::string>{"pronasale"}) << seed;
-    const std::map<std::string, double> expected_z = {
-        {"subnasale", -5}, {"labrale superius", -23.5}, {"stomion", -30}, {"labrale inferius", -36}, {"nasion", 30}};
-    for (const auto& [name, z] : expected_z) EXPECT_NEAR(l.points.at(name).z(), z, 2.0) << name << ", seed " << seed;
-  }
+  for (unsigned seed : {1u, 2u, 3u}) expect_clipped_to_the_lips(profile_landmarks(kClippedToTheLips, 0.2, seed), seed);
 }
 
 // A nose clipped by a field of view that leans back 6 degrees in the head frame (a head pitched in the scanner):
@@ -523,12 +526,7 @@ TEST(FaceLandmarks, AChinInFrontOfAClippedNoseIsNotTakenForTheNose) {
     if (corner.x() == -54) corner.y() = 94;
   for (unsigned seed : {1u, 2u, 3u}) {
     const FaceLandmarks l = profile_landmarks(corners, 0.2, seed);
-    EXPECT_NEAR(l.clipped_from, -4, 1.5) << seed;
-    EXPECT_NEAR(l.clipped_to, 24, 1.5) << seed;
-    EXPECT_EQ(l.estimated, std::vector<std::string>{"pronasale"}) << seed;
-    const std::map<std::string, double> expected_z = {
-        {"subnasale", -5}, {"labrale superius", -23.5}, {"stomion", -30}, {"labrale inferius", -36}, {"nasion", 30}};
-    for (const auto& [name, z] : expected_z) EXPECT_NEAR(l.points.at(name).z(), z, 2.0) << name << ", seed " << seed;
+    expect_clipped_to_the_lips(l, seed);
     EXPECT_NEAR(l.points.at("pogonion").z(), -54, 2.0) << seed;
   }
 }
