@@ -420,10 +420,7 @@ std::vector<CorrespondenceCaseResult> run_correspondence_benchmark(const Standar
                        (fs::path(p.model).stem().string() + "-warp-" + std::to_string(p.ct_seed) + ".mha")
                  : fs::temp_directory_path() /
                        ("facehex-correspondence-" + std::to_string(::getpid()) + "-" + std::to_string(i) + ".mha");
-        CtVolume warped_ct;
-        warped_ct.intensity = warp_volume(ct.intensity, warp);
-        warped_ct.source = ct.source + " (warped)";
-        write_ct_volume(file.string(), warped_ct);
+        write_ct_volume(file.string(), CtVolume{warp_volume(ct.intensity, warp), ct.source + " (warped)"});
         PatientSetup warped;
         try {
           warped = load_patient(file.string(), options.segment, "", &values, progress);

@@ -16,7 +16,7 @@ struct CtVolume {
   // 0 otherwise.
   double gantry_tilt_degrees = 0;
   // Where the grid's physical coordinates (mm) lie in the scan's LPS patient frame (core/mesh/scan_frame.h).
-  ScanFrame scan_frame;
+  ScanFrame scan_frame = {};
 };
 
 // Which axis of the file's voxel grid points anterior and which superior: "+x", "-x", "+y", "-y", "+z" or "-z".
