@@ -72,6 +72,9 @@ void add_segment_options(Args& args) {
       .option("bone-gap", "mm: gaps in the bone narrower than twice this (teeth) still hide the tissue behind", "5")
       .option("cavity-closing", "mm: openings (nostrils, lips, eyelids) narrower than twice this are closed", "4")
       .option("smoothing", "mm, Gaussian blur of the model mask before its surface is taken", "1.5")
+      .option("denoise",
+              "mm, Gaussian blur of the CT before it is segmented (0: none; default: the blur that brings a noisy "
+              "CT's measured voxel noise down to a diagnostic CT's, none for a CT that quiet)")
       .option("skin-objects",
               "on: objects lying on the skin's front above the nose tip (a head strap, thick tape) are found by their "
               "edges in the CT and the landmarks there read on the skin under them; off: the landmarks are read on "
@@ -182,6 +185,7 @@ SegmentOptions segment_options(const Args& args) {
   o.bone_gap_radius = not_negative("bone-gap");
   o.cavity_closing_radius = not_negative("cavity-closing");
   o.smoothing_sigma = not_negative("smoothing");
+  if (args.has("denoise")) o.denoising_blur = not_negative("denoise");
   o.find_skin_objects = on_or_off(args, "skin-objects");
   return o;
 }

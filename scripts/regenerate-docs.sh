@@ -5,10 +5,10 @@
 # with the date, the commit, the core count and the CPU model. Everything outside the markers is left as it is.
 #
 # Usage, from anywhere in the repository, after a Release build of facehex:
-#   scripts/regenerate-docs.sh [--only benchmarks|results|correspondence|registered|landmarks|landing|pull|patients|objects|voxels]
+#   scripts/regenerate-docs.sh [--only benchmarks|results|correspondence|registered|landmarks|landing|pull|patients|objects|voxels|noise]
 #                              [--keep DIR]
 #                              [--from DIR]
-#     --only benchmarks|results|correspondence|registered|landmarks|landing|pull|patients|objects|voxels  run and write one part only (correspondence:
+#     --only benchmarks|results|correspondence|registered|landmarks|landing|pull|patients|objects|voxels|noise  run and write one part only (correspondence:
 #                                the correspondence section of docs/results.md, the paper's feature lines: `facehex
 #                                bench --correspondence --skin-correspondence features`; registered: its tables of the
 #                                registered skin, --skin-correspondence registered; landmarks: the automatic landmarks against
@@ -21,7 +21,9 @@
 #                                the Visible Human with straps and tape on its face (scripts/strap_ct.py), its landmarks
 #                                against the bare CT's and the hand-placed ones, in docs/benchmarks.md; voxels: the
 #                                Visible Human resampled to finer and coarser voxels (scripts/resample_ct.py), `facehex
-#                                run` and its landmarks against the hand-placed ones, in docs/benchmarks.md)
+#                                run` and its landmarks against the hand-placed ones, in docs/benchmarks.md; noise:
+#                                the bundled CT and the Visible Human with noise added (scripts/noisy_ct.py), segmented
+#                                by default and with --denoise 0, against the CT without it, in docs/benchmarks.md)
 #     --keep DIR                 keep the raw JSON, logs and plots in DIR (default: a temporary folder, removed)
 #     --from DIR                 run nothing: write the pages from the JSON a previous --keep DIR left
 #   FACEHEX=path/to/facehex overrides build/bin/facehex.
@@ -48,8 +50,8 @@ while [ $# -gt 0 ]; do
     *) echo "regenerate-docs.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
-case "$only" in ""|benchmarks|results|correspondence|registered|landmarks|landing|pull|patients|objects|voxels) ;;
-  *) echo "regenerate-docs.sh: --only benchmarks|results|correspondence|registered|landmarks|landing|pull|patients|objects|voxels" >&2; exit 2 ;;
+case "$only" in ""|benchmarks|results|correspondence|registered|landmarks|landing|pull|patients|objects|voxels|noise) ;;
+  *) echo "regenerate-docs.sh: --only benchmarks|results|correspondence|registered|landmarks|landing|pull|patients|objects|voxels|noise" >&2; exit 2 ;;
 esac
 want() { [ -z "$only" ] || [ "$only" = "$1" ]; }
 
@@ -305,6 +307,33 @@ EOF
         --write-landmarks "$out/voxels-landmarks-$key.json"
       rm -f "$out/resampled.mha" "$out/voxels-$key.vtu" "$out/voxels-run-$key"/*.vtu
     done
+  fi
+  if want noise && /usr/bin/python3 -c 'import vtk, numpy' 2>/dev/null; then
+    # Noise of a low-dose or cone-beam CT added to the bundled CT and the Visible Human: each segmented as it comes
+    # (its noise measured and blurred down, ct_noise.h) and with --denoise 0, against the CT without the noise.
+    cts=(bundled-ct:resources/ct/headsq/headsq.mhd)
+    [ -f ../shared/data/ct/vhfemale-head.mha ] && cts+=(vhf:../shared/data/ct/vhfemale-head.mha)
+    for entry in "${cts[@]}"; do
+      key=${entry%%:*} ct=${entry#*:}
+      step "noise-$key-none" "$facehex" segment "$ct" -o "$out/noisy.vtu" --write-landmarks "$out/noise-$key-none.lm.json"
+      # SIGMA,SEED,PASSES: white noise at three levels and two seeds, and noise correlated within the slices.
+      for variant in 30,1,0 80,7,0 80,8,0 120,9,0 80,10,1; do
+        /usr/bin/python3 scripts/noisy_ct.py "$ct" ${variant//,/ } "$out/noisy.mha"
+        timer=()
+        [ -x /usr/bin/time ] && timer=(/usr/bin/time -f "%e %M" -o "$out/noise-$key-$variant.time")
+        step "noise-$key-$variant" "${timer[@]}" "$facehex" segment "$out/noisy.mha" -o "$out/noisy.vtu" \
+          --write-landmarks "$out/noise-$key-$variant.lm.json"
+        # Without the blur the segmentation may stop (tunnels through the thin bone): its message is the result.
+        "$facehex" segment "$out/noisy.mha" -o "$out/noisy.vtu" --denoise 0 >/dev/null \
+          2>"$out/noise-$key-$variant-raw.log" || true
+      done
+      if [ "$key" = bundled-ct ]; then
+        /usr/bin/python3 scripts/noisy_ct.py "$ct" 80 7 0 "$out/noisy.mha"
+        step noise-run-bundled-ct "$facehex" run "$out/noisy.mha" -o "$out/noise-run"
+        rm -f "$out/noise-run"/*.vtu
+      fi
+    done
+    rm -f "$out/noisy.mha" "$out/noisy.vtu"
   fi
   if want benchmarks; then
     step bench-sizes "$facehex" bench --sizes 10000,50000,200000 --json
@@ -674,6 +703,57 @@ if only in ("", "voxels") and os.path.exists(os.path.join(out, "voxels-landmarks
         "bench-voxels": machine_line() + "\n\n" +
         table(["scan", "run (s)", "peak memory (GB)", "model tets", "inverted cells", "shape / standard's",
                "dihedral change (°)", "landmarks from the hand-placed: mean (mm)", "farthest", "estimated"], rows)})
+
+# ---- docs/benchmarks.md: noisy CTs ----
+if only in ("", "noise") and os.path.exists(os.path.join(out, "noise-bundled-ct-none.lm.json")):
+    def marks(name):
+        return {l["name"]: l["position"] for l in load(name)["landmarks"]}
+
+    def said(log, pattern, default="–"):
+        found = re.search(pattern, log)
+        return found.group(1) if found else default
+
+    rows = []
+    for key, label in (("bundled-ct", "bundled CT (3.2 mm slices)"), ("vhf", "Visible Human (1 mm)")):
+        if not os.path.exists(os.path.join(out, f"noise-{key}-none.lm.json")):
+            continue
+        quiet = marks(f"noise-{key}-none.lm.json")
+        quiet_log = open(os.path.join(out, f"noise-{key}-none.log")).read()
+        quiet_bone = said(quiet_log, r"bone threshold ([-\d.]+)")
+        for variant in ("30,1,0", "80,7,0", "80,8,0", "120,9,0", "80,10,1"):
+            sigma, seed, passes = variant.split(",")
+            log = open(os.path.join(out, f"noise-{key}-{variant}.log")).read()
+            raw = open(os.path.join(out, f"noise-{key}-{variant}-raw.log")).read()
+            found = marks(f"noise-{key}-{variant}.lm.json")
+            apart = {n: math.dist(found[n], quiet[n]) for n in quiet if n in found}
+            worst = max(apart, key=apart.get)
+            lost = [n for n in quiet if n not in found]
+            measured = re.search(r"the CT's noise ([\d.]+) \(file units, ([\d.]+) %[^:]*: blurred by ([\d.]+) mm", log)
+            raw_result = ("stopped: " + ("tunnels" if "tunnels" in raw else said(raw, r"error: ([^\n]{0,80})"))
+                          if "error:" in raw else "bone threshold " + said(raw, r"bone threshold ([-\d.]+)"))
+            seconds = "–"
+            timing = os.path.join(out, f"noise-{key}-{variant}.time")
+            if os.path.exists(timing):
+                seconds = f"{float(open(timing).read().split()[-2]):.1f}"
+            rows.append([label, f"{sigma}, seed {seed}" + (", correlated in-plane" if passes != "0" else ""),
+                         f"{measured.group(1)} ({measured.group(2)} %)" if measured else "below the bound",
+                         measured.group(3) if measured else "0",
+                         quiet_bone + " -> " + said(log, r"bone threshold ([-\d.]+)"), raw_result,
+                         f"{sum(apart.values()) / len(apart):.2f}", f"{apart[worst]:.1f} ({worst})",
+                         ", ".join(lost) or "none", seconds])
+    run = load("noise-run/report.json") if os.path.exists(os.path.join(out, "noise-run/report.json")) else None
+    run_line = ""
+    if run:
+        quality, standard = run["patient_hex"]["quality"], run["standard"]["quality"]
+        run_line = ("\n\n`facehex run` on the bundled CT with white noise of 80 (seed 7): "
+                    f"{quality['inverted']} inverted cells, shape {quality['shape_mean'] / standard['shape_mean']:.3f} "
+                    f"of the standard's, dihedral change {quality['dihedral_distortion']['mean_deg']:.1f} degrees.")
+    write_blocks("docs/benchmarks.md", {
+        "bench-noise": machine_line() + "\n\n" +
+        table(["CT", "noise added (file units)", "noise measured (of the contrast)", "blur (mm)",
+               "bone threshold: without the noise -> with it", "with `--denoise 0`",
+               "landmarks from the quiet CT's: mean (mm)", "farthest", "not found", "segment (s)"],
+              rows, ["---", "---", "---:", "---:", "---", "---", "---:", "---", "---", "---:"]) + run_line})
 
 # ---- docs/results.md: where the standard's landmarks land ----
 if only in ("", "landing"):

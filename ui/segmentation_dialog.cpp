@@ -124,6 +124,9 @@ SegmentationDialog::SegmentationDialog(QWidget* parent) : QDialog(parent) {
             tr("Body above this intensity; automatic: from the histogram. ") + units);
   addNumber(Bone, tr("Bone threshold"), -1e5, 1e5, QString(), "segmentBone", "--bone",
             tr("Bone above this intensity; automatic: from the histogram. ") + units);
+  addNumber(DenoisingBlur, tr("Denoising blur"), 0, kMostDenoisingBlur * 4, tr(" mm"), "segmentDenoise", "--denoise",
+            tr("Gaussian blur of the CT before it is segmented; automatic: the blur that brings a noisy CT's voxel "
+               "noise (a low-dose or cone-beam CT's) down to a diagnostic CT's, none for a CT that quiet; 0: none."));
   addNumber(HeadTurnAngle, tr("Head turn"), -45, 45, tr(" deg"), "segmentHeadTurn", "--head-turn",
             tr("Degrees the head is turned about the vertical axis in the scanner, towards +x from +y; the cuts are "
                "placed in the head frame turned back by it, and the model stays in the CT's frame. Automatic: from "
@@ -252,6 +255,7 @@ void SegmentationDialog::setOptions(const SegmentOptions& o) {
   numbers_[BottomCut].set(o.cuts.bottom_z);
   numbers_[PosteriorCut].set(o.cuts.posterior_y);
   numbers_[MidPlane].set(o.cuts.centre_x);
+  numbers_[DenoisingBlur].set(o.denoising_blur < 0 ? std::nullopt : std::optional<double>(o.denoising_blur));
   browClearance_->setValue(o.cuts.brow_clearance);
   chinClearance_->setValue(o.cuts.chin_clearance);
   earClearance_->setValue(o.cuts.ear_clearance);
@@ -281,6 +285,7 @@ SegmentOptions SegmentationDialog::options() const {
   o.cuts.bottom_z = numbers_[BottomCut].get();
   o.cuts.posterior_y = numbers_[PosteriorCut].get();
   o.cuts.centre_x = numbers_[MidPlane].get();
+  o.denoising_blur = numbers_[DenoisingBlur].get().value_or(-1);
   o.cuts.brow_clearance = browClearance_->value();
   o.cuts.chin_clearance = chinClearance_->value();
   o.cuts.ear_clearance = earClearance_->value();
@@ -296,8 +301,9 @@ SegmentOptions SegmentationDialog::options() const {
 void SegmentationDialog::showFound(const CtSegmentation& segmentation) {
   const TissueThresholds& thresholds = segmentation.thresholds;
   const FaceCuts& cuts = segmentation.cuts;
-  const std::array<double, kNumbers> found = {thresholds.skin, thresholds.bone, cuts.turn.degrees, cuts.turn.pitch,
-                                              cuts.top_z,      cuts.bottom_z,   cuts.posterior_y,  cuts.centre_x};
+  const std::array<double, kNumbers> found = {thresholds.skin,  thresholds.bone, cuts.turn.degrees,
+                                              cuts.turn.pitch,  cuts.top_z,      cuts.bottom_z,
+                                              cuts.posterior_y, cuts.centre_x,   segmentation.noise.blur};
   for (int n = 0; n < kNumbers; ++n)
     if (numbers_[n].automatic->isChecked()) numbers_[n].value->setValue(found[n]);
   madeAt_->setText(segmentation.edge_length_rule.empty()

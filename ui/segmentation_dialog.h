@@ -48,7 +48,18 @@ class SegmentationDialog : public QDialog {
     void set(const std::optional<double>& given);
     std::optional<double> get() const;
   };
-  enum Number { Skin, Bone, HeadTurnAngle, HeadPitchAngle, TopCut, BottomCut, PosteriorCut, MidPlane, kNumbers };
+  enum Number {
+    Skin,
+    Bone,
+    HeadTurnAngle,
+    HeadPitchAngle,
+    TopCut,
+    BottomCut,
+    PosteriorCut,
+    MidPlane,
+    DenoisingBlur,
+    kNumbers
+  };
 
   QLabel *heading_, *failure_, *madeAt_;
   QDoubleSpinBox *edgeLength_, *browClearance_, *chinClearance_, *earClearance_;

@@ -89,7 +89,8 @@ PatientTetModel load_patient_model(const std::string& path, const SegmentOptions
                                           segmented.repair,
                                           segmented.edge_length,
                                           segmented.edge_length_rule,
-                                          segmented.gantry_tilt_degrees};
+                                          segmented.gantry_tilt_degrees,
+                                          segmented.noise};
     } else {
       MeshReadOptions read;
       read.target_edge_length = options.tets.target_edge_length;
@@ -107,6 +108,11 @@ std::string segmentation_summary(const CtSegmentation& segmentation) {
   text << std::fixed << std::setprecision(1);
   if (segmentation.gantry_tilt_degrees != 0)
     text << "slices resampled upright from a gantry tilt of " << segmentation.gantry_tilt_degrees << " deg; ";
+  const CtNoise& noise = segmentation.noise;
+  if (noise.blur > 0)
+    text << "the CT's noise " << noise.sigma << " (file units, " << 100 * noise.sigma / noise.contrast
+         << " % of its air to soft-tissue contrast): blurred by " << noise.blur << " mm first, to about "
+         << noise.sigma_after << " (--denoise sets the blur, 0 for none); ";
   text << "skin threshold " << thresholds.skin << ", bone threshold " << thresholds.bone << " (file units); ";
   if (cuts.turn.degrees != 0)
     text << "head turned " << cuts.turn.degrees << " deg about the vertical axis through x " << cuts.turn.axis.x()

@@ -24,6 +24,7 @@ struct CtSegmentation {
   double edge_length = 0;          // mm, PatientModel::edge_length
   std::string edge_length_rule;    // PatientModel::edge_length_rule
   double gantry_tilt_degrees = 0;  // PatientModel::gantry_tilt_degrees
+  CtNoise noise;                   // PatientModel::noise
 };
 
 struct PatientTetModel {

@@ -99,9 +99,13 @@ std::string degrees(double v) {
   return s.str();
 }
 
-TissueThresholds choose_thresholds(const CtVolume& ct, const SegmentOptions& options) {
+// `ct` as segmented: blurred by noise.blur when that is above 0 (ct_noise.h), whose bone threshold then follows the
+// soft-tissue peak's width (thresholds.h).
+TissueThresholds choose_thresholds(const CtVolume& ct, const SegmentOptions& options, const CtNoise& noise) {
   TissueThresholds t;
-  if (!options.skin_threshold || !options.bone_threshold) t = estimate_thresholds(ct.intensity);
+  if (!options.skin_threshold || !options.bone_threshold)
+    t = estimate_thresholds(ct.intensity,
+                            noise.blur > 0 ? BoneThresholdRule::peak_width : BoneThresholdRule::histogram_tail);
   if (options.skin_threshold) t.skin = *options.skin_threshold;
   if (options.bone_threshold) t.bone = *options.bone_threshold;
   if (!(t.skin < t.bone))
@@ -318,8 +322,9 @@ double scan_edge_length(const Eigen::Vector3d& spacing, double target_edge_lengt
 
 namespace {
 
-// The segmentation with the cuts placed as `options` say (build_patient_model).
-PatientModel build_once(const CtVolume& ct, const SegmentOptions& options, const ProgressCallback& progress) {
+// The segmentation with the cuts placed as `options` say (build_patient_model), of `ct` as denoised (`noise`).
+PatientModel build_once(const CtVolume& ct, const SegmentOptions& options, const CtNoise& noise,
+                        const ProgressCallback& progress) {
   if (!(options.working_spacing > 0) || !(options.tets.target_edge_length > 0) || !(options.max_depth > 0))
     throw Error("segment", "working_spacing, target_edge_length and max_depth must be positive");
   // Fractions of the whole from the stages' share of the time on the bundled CT.
@@ -329,7 +334,8 @@ PatientModel build_once(const CtVolume& ct, const SegmentOptions& options, const
   PatientModel model;
   model.gantry_tilt_degrees = ct.gantry_tilt_degrees;
   step("thresholds", 0.0);
-  model.thresholds = choose_thresholds(ct, options);
+  model.noise = noise;
+  model.thresholds = choose_thresholds(ct, options, noise);
 
   // Trilinear interpolation of a coarse CT has creases along its voxel planes, which the thresholded surface would
   // show as terraces: blur by a fraction of the CT's coarsest spacing first.
@@ -586,17 +592,36 @@ std::optional<Eigen::Vector3d> glabella_under_object(const PatientModel& model, 
   return glabella;
 }
 
+// The CT blurred as SegmentOptions::denoising_blur says, when it says to; `noise` gets what was measured and done.
+std::optional<CtVolume> denoised(const CtVolume& ct, const SegmentOptions& options, CtNoise& noise,
+                                 const ProgressCallback& progress) {
+  if (options.denoising_blur == 0) return std::nullopt;
+  report_progress(progress, "segmentation: the CT's noise", 0);
+  noise = measure_ct_noise(ct.intensity);
+  if (options.denoising_blur > 0) {
+    noise.blur = options.denoising_blur;
+    noise.sigma_after = noise.sigma * white_noise_after_blur(ct.intensity.geometry.spacing, noise.blur);
+  }
+  if (noise.blur <= 0) return std::nullopt;
+  report_progress(progress, "segmentation: blurring the noisy CT", 0);
+  return CtVolume{gaussian_smooth(ct.intensity, noise.blur), ct.source, ct.gantry_tilt_degrees, ct.scan_frame};
+}
+
 }  // namespace
 
-PatientModel build_patient_model(const CtVolume& ct, const SegmentOptions& options, const ProgressCallback& progress) {
-  PatientModel model = build_once(ct, options, progress);
+PatientModel build_patient_model(const CtVolume& raw_ct, const SegmentOptions& options,
+                                 const ProgressCallback& progress) {
+  CtNoise noise;
+  const std::optional<CtVolume> quieter = denoised(raw_ct, options, noise, progress);
+  const CtVolume& ct = quieter ? *quieter : raw_ct;
+  PatientModel model = build_once(ct, options, noise, progress);
   // A strap over the brow is the profile's most anterior point there: the cut above "the glabella" would lie above
   // the strap. The model is made again with the top cut above the glabella read on the skin under it.
   if (const std::optional<Eigen::Vector3d> glabella = glabella_under_object(model, options)) {
     SegmentOptions again = options;
     again.cuts.glabella = *glabella;
     report_progress(progress, "segmentation: again, the top cut above the glabella under the object on the skin", 0);
-    return build_once(ct, again, progress);
+    return build_once(ct, again, noise, progress);
   }
   return model;
 }

@@ -2,8 +2,8 @@
 // From a CT to the labelled patient tet model of the facial soft tissue: the "bent thin cuboid" between the skin and
 // the bone, from below the chin to above the brows, wrapping around the cheeks to just in front of the ears.
 //
-// Steps (all on an isotropic working grid resampled from the CT and blurred by 0.4 of its coarsest spacing;
-// docs/segmentation.md has the reasoning):
+// Steps (all on an isotropic working grid resampled from the CT and blurred by 0.4 of its coarsest spacing, a noisy
+// CT first blurred down to a diagnostic CT's noise, ct_noise.h; docs/segmentation.md has the reasoning):
 //  1. thresholds: skin/bone from the histogram (thresholds.h) unless given;
 //  2. body  = largest connected region with intensity >= skin, opened with a ball of opening_radius (drops thin
 //             things stuck to the skin: tubes, straps, the head rest's padding);
@@ -31,6 +31,7 @@
 #include <string>
 
 #include "core/mesh/mesh.h"
+#include "core/segment/ct_noise.h"
 #include "core/segment/ct_volume.h"
 #include "core/segment/face_cuts.h"
 #include "core/segment/thresholds.h"
@@ -67,6 +68,9 @@ struct SegmentOptions {
   double min_thickness = 3.0;          // mm below the skin always in the model (bone this close is partial volume)
   double bone_gap_radius = 5.0;        // mm: gaps in the bone narrower than twice this (teeth) still hide tissue
   double smoothing_sigma = 1.5;        // mm, Gaussian blur of the model mask before its surface is extracted
+  // mm, Gaussian blur of the CT before everything else; negative: the blur that brings the CT's measured noise down to
+  // a diagnostic CT's (ct_noise.h: none for a CT that quiet); 0: none.
+  double denoising_blur = -1;
   FaceCutOptions cuts;
   TetrahedralizeOptions tets = patient_tet_options();  // target_edge_length also sets the surface's edge length
   // The tets' edge length grows above tets.target_edge_length until the model's predicted tet count
@@ -97,6 +101,7 @@ struct PatientModel {
   SegmentOptions options;          // as used: min_thickness and smoothing_sigma raised by a tunnel repair
   std::string repair;              // the tunnel repair made, the head pitched back, or empty
   double gantry_tilt_degrees = 0;  // CtVolume's: the CT's slices were resampled upright from this tilt
+  CtNoise noise;                   // as measured (sigma 0 when SegmentOptions::denoising_blur is 0), blur as used
 };
 
 // The face's anatomy was not found (find_face_cuts): the error, and the hard palate's slope in the CT's frame when one

@@ -55,10 +55,10 @@ std::vector<double> smoothed(const std::vector<double>& h) {
   return out;
 }
 
-// The thresholds from the histogram of the voxels above `floor` (all of them when floor is -infinity); nothing when
-// that histogram has no separate air and soft-tissue peaks.
+// The thresholds from the histogram of the voxels above `floor` (all of them when floor is -infinity), and the modes
+// they lie between in `modes`; nothing when that histogram has no separate air and soft-tissue peaks.
 std::optional<TissueThresholds> thresholds_above(const std::vector<float>& data, double floor, double lo, double hi,
-                                                 std::string* problem) {
+                                                 BoneThresholdRule rule, IntensityModes* modes, std::string* problem) {
   const double width = (hi - lo) / kBins;
   std::vector<double> h(kBins, 0);
   for (float v : data)
@@ -75,12 +75,21 @@ std::optional<TissueThresholds> thresholds_above(const std::vector<float>& data,
         "explicitly";
     return std::nullopt;
   }
+  *modes = {centre(air), centre(tissue)};
   TissueThresholds t;
   t.skin = 0.5 * (centre(air) + centre(tissue));
 
   int tail = tissue;
   while (tail < kBins - 1 && s[tail] >= kBoneTailFraction * s[tissue]) ++tail;
   t.bone = centre(tail);
+  if (rule == BoneThresholdRule::peak_width && tail < kBins - 1) {
+    // The upper half-width at half maximum, interpolated between the bins about it.
+    int half = tissue + 1;
+    while (s[half] >= 0.5 * s[tissue]) ++half;  // within the tail, which is below half the peak
+    const double over = (s[half - 1] - 0.5 * s[tissue]) / (s[half - 1] - s[half]);
+    const double half_width = (half - 1 + over - tissue) * width;
+    t.bone = centre(tissue) + half_width * std::sqrt(std::log(1 / kBoneTailFraction) / std::log(2.0));
+  }
   if (tail >= kBins - 1) {
     *problem =
         "the soft-tissue peak does not fall off before the maximum intensity (no bone?); give the bone threshold "
@@ -92,7 +101,10 @@ std::optional<TissueThresholds> thresholds_above(const std::vector<float>& data,
 
 }  // namespace
 
-TissueThresholds estimate_thresholds(const Field& intensity) {
+namespace {
+
+// estimate_thresholds, with the histogram's modes.
+TissueThresholds thresholds_and_modes(const Field& intensity, BoneThresholdRule rule, IntensityModes* modes) {
   if (intensity.data.empty()) throw Error("thresholds", "the CT volume is empty");
   const auto [lo_it, hi_it] = std::minmax_element(intensity.data.begin(), intensity.data.end());
   const double lo = *lo_it, hi = *hi_it;
@@ -100,10 +112,24 @@ TissueThresholds estimate_thresholds(const Field& intensity) {
   // A scanner fills what lies outside its field of view with one value below air: without those voxels the air peak
   // is the air's; a volume whose air is that one value (a clean phantom) keeps them.
   std::string problem;
-  if (const auto t = thresholds_above(intensity.data, lo, lo, hi, &problem)) return *t;
-  if (const auto t = thresholds_above(intensity.data, -std::numeric_limits<double>::infinity(), lo, hi, &problem))
+  if (const auto t = thresholds_above(intensity.data, lo, lo, hi, rule, modes, &problem)) return *t;
+  if (const auto t =
+          thresholds_above(intensity.data, -std::numeric_limits<double>::infinity(), lo, hi, rule, modes, &problem))
     return *t;
   throw Error("thresholds", problem);
+}
+
+}  // namespace
+
+TissueThresholds estimate_thresholds(const Field& intensity, BoneThresholdRule rule) {
+  IntensityModes modes;
+  return thresholds_and_modes(intensity, rule, &modes);
+}
+
+IntensityModes intensity_modes(const Field& intensity) {
+  IntensityModes modes;
+  thresholds_and_modes(intensity, BoneThresholdRule::histogram_tail, &modes);
+  return modes;
 }
 
 }  // namespace facehex

@@ -9,7 +9,11 @@
 //             where the edge is whatever the blur (the valley between the modes is broad and flat on a coarse CT, and
 //             its deepest point wanders with noise and resampling);
 //   - bone  = the first intensity above the soft-tissue mode where the (smoothed) histogram has fallen below
-//             kBoneTailFraction of the mode's height, i.e. where soft tissue (plus its noise) ends.
+//             kBoneTailFraction of the mode's height, i.e. where soft tissue (plus its noise) ends. On a CT blurred
+//             to remove its noise (ct_noise.h) the blur spreads the bone's edges into the valley above the soft
+//             tissue, and the histogram no longer falls that low where the soft tissue ends: there the bone threshold
+//             is where a Gaussian peak of the soft-tissue mode's upper half-width falls to kBoneTailFraction, which
+//             the bone's edges, below half the peak's height, do not move (BoneThresholdRule::peak_width).
 // On calibrated CTs this gives about -500 HU / +150 HU (bone this low still stops the soft tissue at the bone
 // surface; pass thresholds explicitly to be stricter).
 #include "core/segment/voxel_grid.h"
@@ -23,8 +27,18 @@ struct TissueThresholds {
 
 constexpr double kBoneTailFraction = 0.05;
 
+enum class BoneThresholdRule { histogram_tail, peak_width };
+
 // Throws facehex::Error("thresholds", ...) when the histogram has no air/soft-tissue structure (e.g. a constant
 // volume).
-TissueThresholds estimate_thresholds(const Field& intensity);
+TissueThresholds estimate_thresholds(const Field& intensity,
+                                     BoneThresholdRule rule = BoneThresholdRule::histogram_tail);
+
+// The histogram's air and soft-tissue modes that estimate_thresholds finds (the skin threshold is their midpoint),
+// file units; throws as it does.
+struct IntensityModes {
+  double air = 0, tissue = 0;
+};
+IntensityModes intensity_modes(const Field& intensity);
 
 }  // namespace facehex

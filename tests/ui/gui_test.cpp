@@ -660,6 +660,8 @@ void GuiTest::segmentationDialogRoundTripsItsOptions() {
   QCOMPARE(o.bone_gap_radius, defaults.bone_gap_radius);
   QCOMPARE(o.cavity_closing_radius, defaults.cavity_closing_radius);
   QCOMPARE(o.smoothing_sigma, defaults.smoothing_sigma);
+  QVERIFY(o.denoising_blur < 0 && defaults.denoising_blur < 0);  // from the CT's noise
+  QVERIFY(dialog.findChild<QCheckBox*>("segmentDenoiseAutomatic")->isChecked());
 
   SegmentOptions given;
   given.tets.target_edge_length = 3.5;
@@ -679,8 +681,13 @@ void GuiTest::segmentationDialogRoundTripsItsOptions() {
   given.cavity_closing_radius = 6;
   given.smoothing_sigma = 2.2;
   given.find_skin_objects = false;
+  given.denoising_blur = 0;  // none, whatever the noise
   dialog.setOptions(given);
   o = dialog.options();
+  QCOMPARE(o.denoising_blur, 0.0);
+  QVERIFY(!dialog.findChild<QCheckBox*>("segmentDenoiseAutomatic")->isChecked());
+  dialog.findChild<QDoubleSpinBox*>("segmentDenoise")->setValue(1.5);
+  QCOMPARE(dialog.options().denoising_blur, 1.5);
   QCOMPARE(o.min_thickness, 5.0);
   QCOMPARE(o.max_depth, 20.0);
   QCOMPARE(o.bone_gap_radius, 3.5);

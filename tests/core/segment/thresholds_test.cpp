@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <random>
+#include <vector>
 
 #include "core/util/error.h"
 #include "tests/core/segment/phantom.h"
@@ -53,6 +55,33 @@ TEST(Thresholds, SkinIsHalfWayBetweenTheModesWhateverLiesBetweenThemAndWithAFiel
   // A fill at -3000 with more voxels than the air: without leaving it out, it would be the air's peak.
   const TissueThresholds filled = estimate_thresholds(two_modes(400, -3000.0f, 80000));
   EXPECT_NEAR(filled.skin, 500, 3 * (5000.0 / 512)) << "the fill outside the field of view";
+}
+
+TEST(Thresholds, OnABlurredCtTheBoneThresholdFollowsTheSoftTissuePeaksWidthNotTheBoneEdgesPlateau) {
+  // Air and soft tissue as Gaussian peaks (sigma 30), bone at 2000, and between soft tissue and bone the plateau a blur
+  // spreads a bone's edges into: a tenth of the peak's height, from 1000 to 2000. The histogram never falls to the
+  // tail fraction before the bone, so the tail rule ends at the bone; the peak-width rule puts the threshold where a
+  // Gaussian of the peak's width falls to it, 2.45 sigma above the mode, as on the CT before the blur.
+  std::vector<float> values;
+  std::mt19937 random(4);
+  std::normal_distribution<float> spread(0.0f, 30.0f);
+  for (int i = 0; i < 200000; ++i) values.push_back(spread(random));
+  for (int i = 0; i < 200000; ++i) values.push_back(1000.0f + spread(random));
+  // A tenth of the peak's height (200000 / (30 sqrt(2 pi)) per unit) over 1000 units.
+  for (int i = 0; i < 266000; ++i) values.push_back(1000.0f + 1000.0f * static_cast<float>(i) / 266000);
+  for (int i = 0; i < 20000; ++i) values.push_back(2000.0f + spread(random));
+  Field f(GridGeometry{{static_cast<int>(values.size()), 1, 1}, Eigen::Vector3d::Ones(), Eigen::Vector3d::Zero()},
+          0.0f);
+  f.data = values;
+  const double bin = 2300.0 / 512;  // about the values' range over the histogram's bins
+  const TissueThresholds tail = estimate_thresholds(f);
+  EXPECT_GT(tail.bone, 1800);  // lost in the plateau
+  const TissueThresholds width = estimate_thresholds(f, BoneThresholdRule::peak_width);
+  EXPECT_NEAR(width.bone, 1000 + 2.45 * 30, 2 * bin);
+  EXPECT_EQ(width.skin, tail.skin);
+  const IntensityModes modes = intensity_modes(f);
+  EXPECT_NEAR(modes.air, 0, 2 * bin);
+  EXPECT_NEAR(modes.tissue, 1000, 2 * bin);
 }
 
 TEST(Thresholds, ConstantVolumeIsAnError) {
