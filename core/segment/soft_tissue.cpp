@@ -92,8 +92,8 @@ std::string cut_planes_text(const FaceCuts& cuts) {
   return s.str();
 }
 
-// Degrees as the summary prints them.
-std::string degrees(double v) {
+// To the tenth, as the summary prints angles and percentages.
+std::string tenths(double v) {
   std::ostringstream s;
   s << std::fixed << std::setprecision(1) << v;
   return s.str();
@@ -246,14 +246,24 @@ void check_topology(const PatientModel& model) {
                                " separate solids; raise --cavity-closing or --smoothing, or move the cuts");
   const int chi = euler_characteristic(model.boundary_faces);
   // A cut that grazes thin tissue can open a tunnel that a cut a few millimetres away does not: the cuts are named
-  // with the values the surface was made with.
+  // with the values the surface was made with. So is the bone threshold, since thin bone below it (a noisy CT's
+  // threshold lies high) lets the tissue through.
+  const CtNoise& noise = model.noise;
+  const std::string noise_text = noise.sigma > 0 ? "; the CT's noise " + tenths(100 * noise.sigma / noise.contrast) +
+                                                       " % of its contrast, blurred by " + tenths(noise.blur) +
+                                                       " mm: --denoise sets the blur"
+                                                 : std::string();
   if (chi != 2)
-    throw Error("segment", "the model's boundary has Euler characteristic " + std::to_string(chi) +
-                               " instead of 2 (it has tunnels or voids" +
-                               (model.repair.empty() ? std::string() : "; " + model.repair) +
-                               "); raise --min-thickness, --bone-gap, --cavity-closing or --smoothing, lower "
-                               "--max-depth, or move the cuts it was made with (" +
-                               cut_planes_text(model.cuts) + ") with --top-cut, --bottom-cut or --posterior-cut");
+    throw Error("segment",
+                "the model's boundary has Euler characteristic " + std::to_string(chi) +
+                    " instead of 2 (it has tunnels or voids" +
+                    (model.repair.empty() ? std::string() : "; " + model.repair) +
+                    "); raise --min-thickness, --bone-gap, --cavity-closing or --smoothing, lower "
+                    "--max-depth, or move the cuts it was made with (" +
+                    cut_planes_text(model.cuts) +
+                    ") with --top-cut, --bottom-cut or --posterior-cut; or lower --bone (thin bone below the "
+                    "bone threshold " +
+                    number(model.thresholds.bone) + " lets the tissue through" + noise_text + ")");
   for (int s = 0; s < kNumSides; ++s) {
     const int n = count_patches(model.boundary_faces, model.boundary_sides, s);
     if (n != 1)
@@ -419,9 +429,9 @@ PatientModel build_once(const CtVolume& ct, const SegmentOptions& options, const
     const Error stated =
         !turn.turned()
             ? e
-            : Error(e.subject(), e.problem() + " (the head was looked for turned " + degrees(turn.degrees) +
+            : Error(e.subject(), e.problem() + " (the head was looked for turned " + tenths(turn.degrees) +
                                      " degrees about the vertical axis" +
-                                     (turn.pitch != 0 ? " and pitched " + degrees(turn.pitch) + " degrees" : "") +
+                                     (turn.pitch != 0 ? " and pitched " + tenths(turn.pitch) + " degrees" : "") +
                                      "; --head-turn sets the turn" +
                                      (turn.pitch != 0 ? ", --head-pitch the pitch" : "") + ", 0 for none)");
     throw FaceNotFound(stated, palate);
