@@ -99,10 +99,6 @@ std::optional<TissueThresholds> thresholds_above(const std::vector<float>& data,
   return t;
 }
 
-}  // namespace
-
-namespace {
-
 // estimate_thresholds, with the histogram's modes.
 TissueThresholds thresholds_and_modes(const Field& intensity, BoneThresholdRule rule, IntensityModes* modes) {
   if (intensity.data.empty()) throw Error("thresholds", "the CT volume is empty");
