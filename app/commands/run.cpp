@@ -70,6 +70,7 @@ int cmd_run(const Argv& argv) {
   nlohmann::json report = run_report(r.run, r.standard_quality, r.plain_mapping_quality, r.patient_quality, r.distance);
   report["inputs"] = {
       {"patient", input}, {"patient_constraints", t.patient.constraints_path}, {"standard", t.standard.name}};
+  report["segmentation"] = segmentation_json(t.patient.segmentation);
   report["landmarks"] = landmarks_json(t.patient.landmarks);
   report["skin_correspondence"] = skin_correspondence_json(r);
   report["feature_landing"] = feature_landing_json(r.landing);

@@ -201,6 +201,31 @@ json landmarks_json(const std::optional<FaceLandmarks>& landmarks) {
             {"source", landmarks->plane_source}}}};
 }
 
+json segmentation_json(const std::optional<CtSegmentation>& segmentation) {
+  if (!segmentation) return nullptr;
+  const CtSegmentation& s = *segmentation;
+  const FaceCuts& c = s.cuts;
+  return {{"skin_threshold", s.thresholds.skin},
+          {"bone_threshold", s.thresholds.bone},
+          {"noise",
+           {{"sigma", s.noise.sigma},
+            {"contrast", s.noise.contrast},
+            {"blur_mm", s.noise.blur},
+            {"sigma_after", s.noise.sigma_after}}},
+          {"cuts",
+           {{"top_z", c.top_z},
+            {"bottom_z", c.bottom_z},
+            {"posterior_y", c.posterior_y},
+            {"centre_x", c.centre_x},
+            {"head_turn_deg", c.turn.degrees},
+            {"head_pitch_deg", c.turn.pitch}}},
+          {"edge_length_mm", s.edge_length},
+          {"edge_length_rule", s.edge_length_rule},
+          {"repair", s.repair},
+          {"gantry_tilt_deg", s.gantry_tilt_degrees},
+          {"summary", segmentation_summary(s)}};
+}
+
 json run_report(const TransferRun& run, const MeshQualityReport& standard_quality,
                 const MeshQualityReport& plain_mapping_quality, const MeshQualityReport& patient_quality,
                 const DistanceSummary& distance) {

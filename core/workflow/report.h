@@ -11,6 +11,7 @@
 #include "core/mesh/mesh.h"
 #include "core/quality/hex_quality.h"
 #include "core/quality/surface_distance.h"
+#include "core/segment/patient_input.h"
 
 namespace facehex {
 
@@ -36,7 +37,7 @@ DistanceSummary side_vertex_distances(const TransferRun& run, const VolumeMesh& 
 // The schema of report.json, {"format": "facehex-report", "version": kRunReportVersion, ...}: a reader (the cohort
 // report, scripts) checks both. Any change of the keys or of what a value means raises it, so that a reader of one
 // version finds every key it documents (docs/cohorts.md).
-constexpr int kRunReportVersion = 4;
+constexpr int kRunReportVersion = 5;
 
 // report.json as written by `facehex run` (or `map`): throws facehex::Error(path, ...) when the file cannot be read
 // or parsed, or is not a facehex-report of version kRunReportVersion.
@@ -45,6 +46,13 @@ nlohmann::json read_run_report(const std::string& path);
 // The landmarks the feature constraints were placed at: {"source": "found" or "given", "found": n, "estimated": n,
 // "estimated_names": [...]}; null when there are none (a constraint file was given).
 nlohmann::json landmarks_json(const std::optional<FaceLandmarks>& landmarks);
+
+// How a CT was segmented, so that the run can be repeated: {"skin_threshold",
+// "bone_threshold" (file units), "noise": {"sigma", "contrast" (file units), "blur_mm", "sigma_after"} (ct_noise.h;
+// sigma 0 when not measured), "cuts": {"top_z", "bottom_z", "posterior_y", "centre_x" (mm, head frame),
+// "head_turn_deg", "head_pitch_deg"}, "edge_length_mm", "edge_length_rule", "repair", "gantry_tilt_deg", "summary"
+// (segmentation_summary's line)}; null for a patient given as a mesh file.
+nlohmann::json segmentation_json(const std::optional<CtSegmentation>& segmentation);
 
 // plain_mapping_quality: of run.mapped_hex (the mapping before relaxation and repair) against the standard.
 nlohmann::json run_report(const TransferRun& run, const MeshQualityReport& standard_quality,

@@ -180,6 +180,14 @@ TEST_F(Cli, DemoRunsTheWholeChainFromTheBundledCt) {
   EXPECT_EQ(report["format"], "facehex-report");
   EXPECT_EQ(report["version"], facehex::kRunReportVersion);
   EXPECT_EQ(report["threads"], 2);  // --threads, as the process ran
+  // How the CT was segmented: its thresholds and cuts as the terminal said, its noise measured and left as it is.
+  const auto& segmentation = report["segmentation"];
+  EXPECT_NEAR(segmentation["bone_threshold"].get<double>(), 1169.4, 0.1);
+  EXPECT_GT(segmentation["noise"]["sigma"].get<double>(), 0);
+  EXPECT_EQ(segmentation["noise"]["blur_mm"].get<double>(), 0);
+  EXPECT_NEAR(segmentation["cuts"]["top_z"].get<double>(), 135.0, 0.05);
+  EXPECT_NEAR(segmentation["edge_length_mm"].get<double>(), 3.2, 1e-6);
+  EXPECT_NE(r.output.find(segmentation["summary"].get<std::string>()), std::string::npos) << r.output;
   // The bundled CT's landmarks are found, those in its field-of-view cut estimated (docs/benchmarks.md).
   EXPECT_EQ(report["landmarks"]["source"], "found");
   EXPECT_GT(report["landmarks"]["found"].get<int>(), 0);
