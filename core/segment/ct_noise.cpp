@@ -4,9 +4,6 @@
 #include <cmath>
 #include <vector>
 
-#include "core/segment/thresholds.h"
-#include "core/util/error.h"
-
 namespace facehex {
 namespace {
 
@@ -48,14 +45,8 @@ double white_noise_after_blur(const Eigen::Vector3d& spacing, double sigma_mm) {
   return std::sqrt(variance);
 }
 
-CtNoise measure_ct_noise(const Field& intensity) {
+CtNoise measure_ct_noise(const Field& intensity, const IntensityModes& modes) {
   CtNoise n;
-  IntensityModes modes;
-  try {
-    modes = intensity_modes(intensity);
-  } catch (const Error&) {
-    return n;  // no air and soft tissue to measure between: the thresholds' own error says so
-  }
   n.contrast = modes.tissue - modes.air;
   if (!(n.contrast > 0)) return n;
   // A band narrow against the noise cuts its differences short: it is widened to 3 sigma of a first reading, within

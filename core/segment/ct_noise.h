@@ -4,6 +4,7 @@
 // widens that peak, the threshold rises above thin bone (the orbits' floors, the maxilla's walls), and the model then
 // reaches through them into the sinuses with tunnels. Blurring first keeps the threshold and the masks a diagnostic CT
 // would give; a CT already that quiet is left as it is.
+#include "core/segment/thresholds.h"
 #include "core/segment/voxel_grid.h"
 
 namespace facehex {
@@ -25,8 +26,8 @@ struct CtNoise {
 // reconstruction rarely interpolates) that both lie in the soft tissue's band of the histogram: a robust standard
 // deviation (1.4826 times the median absolute difference, over sqrt 2), the lower of the two axes. Up to 64 slices,
 // evenly spaced, are read. Correlated noise reads lower than it is, and a blur lowers it less than white noise: the
-// blur found errs towards too little. sigma is 0 when the histogram has no air and soft-tissue modes.
-CtNoise measure_ct_noise(const Field& intensity);
+// blur found errs towards too little. `modes`: the histogram's (estimate_thresholds).
+CtNoise measure_ct_noise(const Field& intensity, const IntensityModes& modes);
 
 // The noise that remains of white noise of unit sigma after gaussian_smooth(sigma_mm) on a grid of this spacing.
 double white_noise_after_blur(const Eigen::Vector3d& spacing, double sigma_mm);

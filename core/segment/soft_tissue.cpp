@@ -100,12 +100,14 @@ std::string tenths(double v) {
 }
 
 // `ct` as segmented: blurred by noise.blur when that is above 0 (ct_noise.h), whose bone threshold then follows the
-// soft-tissue peak's width (thresholds.h).
-TissueThresholds choose_thresholds(const CtVolume& ct, const SegmentOptions& options, const CtNoise& noise) {
+// soft-tissue peak's width (thresholds.h). `estimated`: the thresholds already found on this very CT, if any.
+TissueThresholds choose_thresholds(const CtVolume& ct, const SegmentOptions& options, const CtNoise& noise,
+                                   const std::optional<TissueThresholds>& estimated) {
   TissueThresholds t;
   if (!options.skin_threshold || !options.bone_threshold)
-    t = estimate_thresholds(ct.intensity,
-                            noise.blur > 0 ? BoneThresholdRule::peak_width : BoneThresholdRule::histogram_tail);
+    t = estimated ? *estimated
+                  : estimate_thresholds(ct.intensity, noise.blur > 0 ? BoneThresholdRule::peak_width
+                                                                     : BoneThresholdRule::histogram_tail);
   if (options.skin_threshold) t.skin = *options.skin_threshold;
   if (options.bone_threshold) t.bone = *options.bone_threshold;
   if (!(t.skin < t.bone))
@@ -248,12 +250,12 @@ void check_topology(const PatientModel& model) {
   // A cut that grazes thin tissue can open a tunnel that a cut a few millimetres away does not: the cuts are named
   // with the values the surface was made with. So is the bone threshold, since thin bone below it (a noisy CT's
   // threshold lies high) lets the tissue through.
-  const CtNoise& noise = model.noise;
-  const std::string noise_text = noise.sigma > 0 ? "; the CT's noise " + tenths(100 * noise.sigma / noise.contrast) +
-                                                       " % of its contrast, blurred by " + tenths(noise.blur) +
-                                                       " mm: --denoise sets the blur"
-                                                 : std::string();
-  if (chi != 2)
+  if (chi != 2) {
+    const CtNoise& noise = model.noise;
+    const std::string noise_text = noise.sigma > 0 ? "; the CT's noise " + tenths(100 * noise.sigma / noise.contrast) +
+                                                         " % of its contrast, blurred by " + tenths(noise.blur) +
+                                                         " mm: --denoise sets the blur"
+                                                   : std::string();
     throw Error("segment",
                 "the model's boundary has Euler characteristic " + std::to_string(chi) +
                     " instead of 2 (it has tunnels or voids" +
@@ -264,6 +266,7 @@ void check_topology(const PatientModel& model) {
                     ") with --top-cut, --bottom-cut or --posterior-cut; or lower --bone (thin bone below the "
                     "bone threshold " +
                     number(model.thresholds.bone) + " lets the tissue through" + noise_text + ")");
+  }
   for (int s = 0; s < kNumSides; ++s) {
     const int n = count_patches(model.boundary_faces, model.boundary_sides, s);
     if (n != 1)
@@ -332,9 +335,10 @@ double scan_edge_length(const Eigen::Vector3d& spacing, double target_edge_lengt
 
 namespace {
 
-// The segmentation with the cuts placed as `options` say (build_patient_model), of `ct` as denoised (`noise`).
+// The segmentation with the cuts placed as `options` say (build_patient_model), of `ct` as denoised (`noise`), with
+// its thresholds when they were `estimated` already.
 PatientModel build_once(const CtVolume& ct, const SegmentOptions& options, const CtNoise& noise,
-                        const ProgressCallback& progress) {
+                        const std::optional<TissueThresholds>& estimated, const ProgressCallback& progress) {
   if (!(options.working_spacing > 0) || !(options.tets.target_edge_length > 0) || !(options.max_depth > 0))
     throw Error("segment", "working_spacing, target_edge_length and max_depth must be positive");
   // Fractions of the whole from the stages' share of the time on the bundled CT.
@@ -345,7 +349,7 @@ PatientModel build_once(const CtVolume& ct, const SegmentOptions& options, const
   model.gantry_tilt_degrees = ct.gantry_tilt_degrees;
   step("thresholds", 0.0);
   model.noise = noise;
-  model.thresholds = choose_thresholds(ct, options, noise);
+  model.thresholds = choose_thresholds(ct, options, noise, estimated);
 
   // Trilinear interpolation of a coarse CT has creases along its voxel planes, which the thresholded surface would
   // show as terraces: blur by a fraction of the CT's coarsest spacing first.
@@ -602,17 +606,26 @@ std::optional<Eigen::Vector3d> glabella_under_object(const PatientModel& model, 
   return glabella;
 }
 
-// The CT blurred as SegmentOptions::denoising_blur says, when it says to; `noise` gets what was measured and done.
+// The CT blurred as SegmentOptions::denoising_blur says, when it says to; `noise` gets what was measured and done, and
+// `estimated` the thresholds of the CT as given when it is segmented so (the noise is measured between the same
+// histogram's modes).
 std::optional<CtVolume> denoised(const CtVolume& ct, const SegmentOptions& options, CtNoise& noise,
-                                 const ProgressCallback& progress) {
+                                 std::optional<TissueThresholds>& estimated, const ProgressCallback& progress) {
   if (options.denoising_blur == 0) return std::nullopt;
   report_progress(progress, "segmentation: the CT's noise", 0);
-  noise = measure_ct_noise(ct.intensity);
+  try {
+    IntensityModes modes;
+    estimated = estimate_thresholds(ct.intensity, BoneThresholdRule::histogram_tail, &modes);
+    noise = measure_ct_noise(ct.intensity, modes);
+  } catch (const Error&) {
+    // No air and soft tissue to measure the noise between: it stays unmeasured, and the thresholds' step says why.
+  }
   if (options.denoising_blur > 0) {
     noise.blur = options.denoising_blur;
     noise.sigma_after = noise.sigma * white_noise_after_blur(ct.intensity.geometry.spacing, noise.blur);
   }
   if (noise.blur <= 0) return std::nullopt;
+  estimated.reset();  // the blurred CT's are its own
   report_progress(progress, "segmentation: blurring the noisy CT", 0);
   return CtVolume{gaussian_smooth(ct.intensity, noise.blur), ct.source, ct.gantry_tilt_degrees, ct.scan_frame};
 }
@@ -622,16 +635,17 @@ std::optional<CtVolume> denoised(const CtVolume& ct, const SegmentOptions& optio
 PatientModel build_patient_model(const CtVolume& raw_ct, const SegmentOptions& options,
                                  const ProgressCallback& progress) {
   CtNoise noise;
-  const std::optional<CtVolume> quieter = denoised(raw_ct, options, noise, progress);
+  std::optional<TissueThresholds> estimated;
+  const std::optional<CtVolume> quieter = denoised(raw_ct, options, noise, estimated, progress);
   const CtVolume& ct = quieter ? *quieter : raw_ct;
-  PatientModel model = build_once(ct, options, noise, progress);
+  PatientModel model = build_once(ct, options, noise, estimated, progress);
   // A strap over the brow is the profile's most anterior point there: the cut above "the glabella" would lie above
   // the strap. The model is made again with the top cut above the glabella read on the skin under it.
   if (const std::optional<Eigen::Vector3d> glabella = glabella_under_object(model, options)) {
     SegmentOptions again = options;
     again.cuts.glabella = *glabella;
     report_progress(progress, "segmentation: again, the top cut above the glabella under the object on the skin", 0);
-    return build_once(ct, again, noise, progress);
+    return build_once(ct, again, noise, estimated, progress);
   }
   return model;
 }

@@ -99,8 +99,11 @@ std::optional<TissueThresholds> thresholds_above(const std::vector<float>& data,
   return t;
 }
 
-// estimate_thresholds, with the histogram's modes.
-TissueThresholds thresholds_and_modes(const Field& intensity, BoneThresholdRule rule, IntensityModes* modes) {
+}  // namespace
+
+TissueThresholds estimate_thresholds(const Field& intensity, BoneThresholdRule rule, IntensityModes* modes) {
+  IntensityModes found;
+  if (!modes) modes = &found;
   if (intensity.data.empty()) throw Error("thresholds", "the CT volume is empty");
   const auto [lo_it, hi_it] = std::minmax_element(intensity.data.begin(), intensity.data.end());
   const double lo = *lo_it, hi = *hi_it;
@@ -113,19 +116,6 @@ TissueThresholds thresholds_and_modes(const Field& intensity, BoneThresholdRule 
           thresholds_above(intensity.data, -std::numeric_limits<double>::infinity(), lo, hi, rule, modes, &problem))
     return *t;
   throw Error("thresholds", problem);
-}
-
-}  // namespace
-
-TissueThresholds estimate_thresholds(const Field& intensity, BoneThresholdRule rule) {
-  IntensityModes modes;
-  return thresholds_and_modes(intensity, rule, &modes);
-}
-
-IntensityModes intensity_modes(const Field& intensity) {
-  IntensityModes modes;
-  thresholds_and_modes(intensity, BoneThresholdRule::histogram_tail, &modes);
-  return modes;
 }
 
 }  // namespace facehex

@@ -29,16 +29,14 @@ constexpr double kBoneTailFraction = 0.05;
 
 enum class BoneThresholdRule { histogram_tail, peak_width };
 
-// Throws facehex::Error("thresholds", ...) when the histogram has no air/soft-tissue structure (e.g. a constant
-// volume).
-TissueThresholds estimate_thresholds(const Field& intensity,
-                                     BoneThresholdRule rule = BoneThresholdRule::histogram_tail);
-
-// The histogram's air and soft-tissue modes that estimate_thresholds finds (the skin threshold is their midpoint),
-// file units; throws as it does.
+// The histogram's air and soft-tissue modes, file units (the skin threshold is their midpoint).
 struct IntensityModes {
   double air = 0, tissue = 0;
 };
-IntensityModes intensity_modes(const Field& intensity);
+
+// Throws facehex::Error("thresholds", ...) when the histogram has no air/soft-tissue structure (e.g. a constant
+// volume). `modes`, when given, gets the modes the thresholds lie between.
+TissueThresholds estimate_thresholds(const Field& intensity, BoneThresholdRule rule = BoneThresholdRule::histogram_tail,
+                                     IntensityModes* modes = nullptr);
 
 }  // namespace facehex

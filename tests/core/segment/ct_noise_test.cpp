@@ -21,30 +21,37 @@ Field slabs(double sigma, unsigned seed, const Eigen::Vector3d& spacing = Eigen:
   return f;
 }
 
+// The noise of `f` between its histogram's modes, as the segmentation measures it.
+CtNoise noise_of(const Field& f) {
+  IntensityModes modes;
+  estimate_thresholds(f, BoneThresholdRule::histogram_tail, &modes);
+  return measure_ct_noise(f, modes);
+}
+
 TEST(CtNoise, MeasuresWhiteNoiseOfAKnownSigma) {
   for (const unsigned seed : {1u, 2u, 3u})
     for (const double sigma : {15.0, 50.0, 100.0}) {
-      const CtNoise n = measure_ct_noise(slabs(sigma, seed));
+      const CtNoise n = noise_of(slabs(sigma, seed));
       EXPECT_NEAR(n.contrast, 1000, 40) << sigma;
       EXPECT_NEAR(n.sigma, sigma, 0.1 * sigma) << "sigma " << sigma << ", seed " << seed;
     }
 }
 
 TEST(CtNoise, AQuietCtIsLeftAsItIsAndANoisyOneBlurredToADiagnosticCtsNoise) {
-  const CtNoise clean = measure_ct_noise(slabs(0, 1));
+  const CtNoise clean = noise_of(slabs(0, 1));
   EXPECT_EQ(clean.sigma, 0);
   EXPECT_EQ(clean.blur, 0);
-  const CtNoise quiet = measure_ct_noise(slabs(15, 1));  // 1.5 % of the contrast
+  const CtNoise quiet = noise_of(slabs(15, 1));  // 1.5 % of the contrast
   EXPECT_EQ(quiet.blur, 0);
   EXPECT_EQ(quiet.sigma_after, quiet.sigma);
   for (const double sigma : {50.0, 100.0}) {
-    const CtNoise noisy = measure_ct_noise(slabs(sigma, 2));
+    const CtNoise noisy = noise_of(slabs(sigma, 2));
     EXPECT_GT(noisy.blur, 0) << sigma;
     EXPECT_LT(noisy.blur, kMostDenoisingBlur) << sigma;
     EXPECT_NEAR(noisy.sigma_after, kDiagnosticNoise * noisy.contrast, 0.01 * noisy.contrast) << sigma;
   }
   // On coarse voxels, noisier than the largest blur brings down: that blur, and what it leaves said.
-  const CtNoise worst = measure_ct_noise(slabs(200, 3, Eigen::Vector3d(2, 2, 3)));
+  const CtNoise worst = noise_of(slabs(200, 3, Eigen::Vector3d(2, 2, 3)));
   EXPECT_EQ(worst.blur, kMostDenoisingBlur);
   EXPECT_GT(worst.sigma_after, kDiagnosticNoise * worst.contrast);
 }

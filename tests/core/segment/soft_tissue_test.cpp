@@ -205,11 +205,16 @@ TEST(SoftTissue, ANoisyCtIsBlurredToADiagnosticCtsNoiseAndSegmentedAsTheQuietOne
   EXPECT_EQ(reference.noise.blur, 0);  // a diagnostic CT: left as it is
   EXPECT_GT(reference.noise.sigma, 0);
   EXPECT_LT(reference.noise.sigma, kDiagnosticNoise * reference.noise.contrast);
-  for (const unsigned seed : {7u, 8u}) {
+  // The quiet CT with white noise of 80 from `seed`.
+  const auto noisy_ct = [&quiet](unsigned seed) {
     CtVolume noisy = quiet;
     std::mt19937 random(seed);
     std::normal_distribution<float> noise(0.0f, 80.0f);
     for (float& v : noisy.intensity.data) v += noise(random);
+    return noisy;
+  };
+  for (const unsigned seed : {7u, 8u}) {
+    const CtVolume noisy = noisy_ct(seed);
     EXPECT_GT(estimate_thresholds(noisy.intensity).bone, reference.thresholds.bone + 300);  // what the blur is for
     const PatientModel m = build_patient_model(noisy, options);
     expect_valid_patient(m);
@@ -231,12 +236,8 @@ TEST(SoftTissue, ANoisyCtIsBlurredToADiagnosticCtsNoiseAndSegmentedAsTheQuietOne
   }
   // Told not to blur, the segmentation takes the CT as it is (the bone threshold the noise raised).
   options.denoising_blur = 0;
-  CtVolume noisy = quiet;
-  std::mt19937 random(7);
-  std::normal_distribution<float> noise(0.0f, 80.0f);
-  for (float& v : noisy.intensity.data) v += noise(random);
   try {
-    const PatientModel m = build_patient_model(noisy, options);
+    const PatientModel m = build_patient_model(noisy_ct(7), options);
     EXPECT_EQ(m.noise.sigma, 0);  // not measured
     EXPECT_GT(m.thresholds.bone, reference.thresholds.bone + 300);
   } catch (const Error& e) {
