@@ -7,21 +7,17 @@
 import sys
 
 import numpy as np
-import vtk
-from vtk.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+
+import ct_image
 
 if len(sys.argv) != 5:
     sys.exit(__doc__ or "usage: strap_ct.py CT Z0,Z1,THICKNESS,VALUE THRESHOLD OUT.mha")
 src, spec, threshold, dst = sys.argv[1], sys.argv[2], float(sys.argv[3]), sys.argv[4]
 z0, z1, thickness, value = (float(v) for v in spec.split(","))
-reader = vtk.vtkMetaImageReader()
-reader.SetFileName(src)
-reader.Update()
-image = reader.GetOutput()
-nx, ny, nz = image.GetDimensions()
+image, stored = ct_image.read(src)
+nz, ny, nx = stored.shape
 spacing, origin = image.GetSpacing(), image.GetOrigin()
-scalars = image.GetPointData().GetScalars()
-values = vtk_to_numpy(scalars).reshape(nz, ny, nx).copy()
+values = stored.copy()
 layer = int(round(thickness / spacing[1]))
 first = max(0, int(round((z0 - origin[2]) / spacing[2])))
 last = min(nz - 1, int(round((z1 - origin[2]) / spacing[2])))
@@ -30,13 +26,4 @@ for k in range(first, last + 1):
     for i in np.flatnonzero(tissue.any(axis=0)):
         front = np.flatnonzero(tissue[:, i]).max()
         values[k, front + 1:min(ny, front + 1 + layer), i] = value
-out = vtk.vtkImageData()
-out.CopyStructure(image)
-array = numpy_to_vtk(values.ravel(), deep=1, array_type=scalars.GetDataType())
-array.SetName(scalars.GetName() or "scalars")
-out.GetPointData().SetScalars(array)
-writer = vtk.vtkMetaImageWriter()
-writer.SetFileName(dst)
-writer.SetInputData(out)
-writer.SetCompression(True)
-writer.Write()
+ct_image.write_like(image, values, dst, compress=True)

@@ -6,6 +6,7 @@
 #include <limits>
 #include <set>
 #include <sstream>
+#include <vector>
 
 #include "core/face/face_landmarks.h"
 #include "core/fields/constraint_set.h"
@@ -304,8 +305,10 @@ SurfaceMesh level_surface_with_cuts(const Mask& tissue, FaceCuts& cuts, const Se
 // The landmarks read in the CT by the ones found on the model's skin (its mid-sagittal plane, nasion, pronasale and
 // labralia) into `found`: the eye corners (eye_corners.h), the stomion (stomion.h), the mouth corners from it
 // (mouth_slit.h) and, with `objects`, the objects on
-// the skin above the nose tip (skin_objects.h). False, and none read, when those are not found: the transfer says why.
-bool read_slit_landmarks(const CtVolume& ct, const PatientModel& model, bool objects, CtLandmarks& found) {
+// the skin above the nose tip (skin_objects.h), and how far apart the lips are into `parted_lips` (stomion.h). False,
+// and none read, when those are not found: the transfer says why.
+bool read_slit_landmarks(const CtVolume& ct, const PatientModel& model, bool objects, CtLandmarks& found,
+                         double& parted_lips) {
   FaceLandmarks landmarks;
   try {
     landmarks = find_face_landmarks(model.mesh.V, side_mask_of(model.mesh), landmark_options_for(model.mesh, "model"));
@@ -319,15 +322,34 @@ bool read_slit_landmarks(const CtVolume& ct, const PatientModel& model, bool obj
                                          landmarks.points.at("pronasale"));
   if (objects && has("pronasale"))
     found.skin_objects = find_skin_objects(ct.intensity, skin, landmarks.plane, landmarks.points.at("pronasale"));
-  if (has("labrale superius") && has("labrale inferius"))
-    found.stomion = find_stomion(ct.intensity, skin, landmarks.plane, landmarks.points.at("labrale superius"),
-                                 landmarks.points.at("labrale inferius"));
+  if (has("labrale superius") && has("labrale inferius")) {
+    const Eigen::Vector3d &upper = landmarks.points.at("labrale superius"),
+                          &lower = landmarks.points.at("labrale inferius");
+    found.stomion = find_stomion(ct.intensity, skin, landmarks.plane, upper, lower);
+    if (!found.stomion) parted_lips = parted_lips_gap(ct.intensity, skin, landmarks.plane, upper, lower);
+  }
   if (found.stomion)
     found.mouth_corners = find_mouth_corners(ct.intensity, skin, landmarks.plane, found.stomion->point);
   return true;
 }
 
 }  // namespace
+
+double open_mouth_closing(double parted_lips, double cavity_closing_radius) {
+  if (parted_lips < 2 * cavity_closing_radius) return 0;
+  const double needed = std::ceil(parted_lips + 2) / 2;  // half the gap and a millimetre, in halves
+  if (needed > kMostMouthClosing)
+    throw Error("segment",
+                "the lips are " + number(parted_lips) +
+                    " mm apart at the midline (an open mouth), wider than the closing raised for an open "
+                    "mouth closes (--cavity-closing " +
+                    number(kMostMouthClosing) +
+                    "): the standard's closed mouth cannot follow the pocket it leaves in the skin; close "
+                    "it with --cavity-closing " +
+                    number(needed) +
+                    " (which also fills the face's deeper folds), or segment a CT taken with the mouth closed");
+  return needed;
+}
 
 double scan_edge_length(const Eigen::Vector3d& spacing, double target_edge_length) {
   return std::max(target_edge_length, std::min(spacing.maxCoeff(), kMostScanEdgeLength));
@@ -575,7 +597,7 @@ PatientModel build_once(const CtVolume& ct, const SegmentOptions& options, const
     found.bony_menton = CtLandmark{turn.to_model(model.cuts.anatomy->menton), false};
   }
   step("the eye corners, the stomion and the mouth corners", 0.93);
-  if (read_slit_landmarks(ct, model, options.find_skin_objects, found) || model.cuts.anatomy)
+  if (read_slit_landmarks(ct, model, options.find_skin_objects, found, model.parted_lips) || model.cuts.anatomy)
     set_ct_landmarks(model.mesh, found);
   model.boundary_faces = std::move(tets.boundary_faces);
   model.boundary_sides = tets.boundary_labels.array() - 1;
@@ -639,15 +661,31 @@ PatientModel build_patient_model(const CtVolume& raw_ct, const SegmentOptions& o
   const std::optional<CtVolume> quieter = denoised(raw_ct, options, noise, estimated, progress);
   const CtVolume& ct = quieter ? *quieter : raw_ct;
   PatientModel model = build_once(ct, options, noise, estimated, progress);
+  SegmentOptions again = options;
+  std::vector<std::string> why;
   // A strap over the brow is the profile's most anterior point there: the cut above "the glabella" would lie above
   // the strap. The model is made again with the top cut above the glabella read on the skin under it.
   if (const std::optional<Eigen::Vector3d> glabella = glabella_under_object(model, options)) {
-    SegmentOptions again = options;
     again.cuts.glabella = *glabella;
-    report_progress(progress, "segmentation: again, the top cut above the glabella under the object on the skin", 0);
-    return build_once(ct, again, noise, estimated, progress);
+    why.push_back("the top cut above the glabella under the object on the skin");
   }
-  return model;
+  std::string mouth;
+  if (const double radius = open_mouth_closing(model.parted_lips, options.cavity_closing_radius)) {
+    again.cavity_closing_radius = radius;
+    mouth = "the lips are " + number(model.parted_lips) + " mm apart at the midline (an open mouth): segmented again " +
+            "with --cavity-closing " + number(radius) + ", which closes it across the lips";
+    why.push_back("the open mouth closed");
+  }
+  if (why.empty()) return model;
+  std::string stages = why.front();
+  for (size_t i = 1; i < why.size(); ++i) stages += " and " + why[i];
+  report_progress(progress, "segmentation: again, " + stages, 0);
+  PatientModel second = build_once(ct, again, noise, estimated, progress);
+  if (!mouth.empty()) {
+    second.repair = second.repair.empty() ? mouth : mouth + "; " + second.repair;
+    second.parted_lips = model.parted_lips;  // the gap the closing was chosen by
+  }
+  return second;
 }
 
 }  // namespace facehex

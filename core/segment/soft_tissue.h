@@ -27,6 +27,10 @@
 //     stomion.h, mouth_slit.h, by the landmarks found on the model), and the objects lying on the skin's front above
 //     the nose tip (skin_objects.h);
 //  9. checks: one solid, boundary of Euler characteristic 2 (a ball), each of the six sides one connected patch.
+// Lips parted wider than cavity_closing_radius closes (an open mouth: a bite block, a tube, a trauma patient) leave a
+// pocket in the skin that the standard's closed mouth cannot follow: steps 2-9 run again with the closing radius raised
+// to close it, and PatientModel::repair says so; a gap wider than kMostMouthClosing closes is an error naming the
+// radius that would.
 #include <optional>
 #include <string>
 
@@ -51,6 +55,10 @@ inline TetrahedralizeOptions patient_tet_options() {
 // The longest edge the scan's spacing sets (SegmentOptions::follow_scan_spacing): a face's thin parts (the lips, the
 // nose's tip) keep a few tets across.
 constexpr double kMostScanEdgeLength = 4.0;
+
+// mm: the largest cavity_closing_radius an open mouth is closed with (lips up to twice this apart, less 2 mm);
+// a wider closing would also fill the folds beside the nose and the eyes' sockets.
+constexpr double kMostMouthClosing = 10.0;
 
 // The tets' edge length of a model segmented from a scan whose voxels are `spacing` (mm) apart, for the given target
 // edge length, as SegmentOptions::follow_scan_spacing sets it.
@@ -90,6 +98,11 @@ struct SegmentOptions {
   std::string dicom_series;   // only used when reading a DICOM folder: read_dicom_series' `series`
 };
 
+// The cavity_closing_radius that closes lips `parted_lips` mm apart (PatientModel::parted_lips) when the given radius
+// leaves them open: half the gap and a millimetre, rounded up to half a millimetre; 0 when the given radius closes
+// them. Throws facehex::Error("segment", ...) naming the radius needed when that is above kMostMouthClosing.
+double open_mouth_closing(double parted_lips, double cavity_closing_radius);
+
 struct PatientModel {
   VolumeMesh mesh;                 // positive tets; point data "side_mask" (core/sides.h)
   Eigen::MatrixXi boundary_faces;  // #B x 3 outward boundary triangles of `mesh`
@@ -99,7 +112,11 @@ struct PatientModel {
   double edge_length = 0;          // mm, the tets' target edge length as used
   std::string edge_length_rule;    // why longer than SegmentOptions::tets asked (the scan, the face's size), or empty
   SegmentOptions options;          // as used: min_thickness and smoothing_sigma raised by a tunnel repair
-  std::string repair;              // the tunnel repair made, the head pitched back, or empty
+  std::string repair;              // the tunnel repair made, the open mouth closed, the head pitched back, or empty
+  // mm: how far apart the lips are at the midline in the CT (stomion.h: parted_lips_gap, between the labralia of the
+  // first segmentation's model, which an open mouth's closing is chosen by), 0 where they meet or the lips were not
+  // found
+  double parted_lips = 0;
   double gantry_tilt_degrees = 0;  // CtVolume's: the CT's slices were resampled upright from this tilt
   CtNoise noise;                   // as measured (sigma 0 when SegmentOptions::denoising_blur is 0), blur as used
 };

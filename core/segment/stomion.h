@@ -7,6 +7,9 @@
 // inferius up to the labrale superius; the stomion is its rearmost point, on the plane. None where that is the
 // profile's first or last point (no slit between the lips), lies more than kMaxSlitDepth behind the less anterior
 // lip (lips apart: the rays meet the teeth or enter the mouth), or where the profile has no front.
+//
+// Parted lips (an open mouth): the same profile's points that lie more than kMaxSlitDepth behind the less anterior lip,
+// or whose rays meet nothing within 40 mm behind it (into the mouth), span the gap between the lips.
 #include <Eigen/Core>
 #include <optional>
 
@@ -21,5 +24,10 @@ namespace facehex {
 std::optional<CtLandmark> find_stomion(const Field& ct, double skin_threshold, const MidSagittalPlane& plane,
                                        const Eigen::Vector3d& labrale_superius,
                                        const Eigen::Vector3d& labrale_inferius);
+
+// mm: how far apart the lips are at the midline, from the lowest to the highest of the profile's points that lie
+// deeper than a closed slit (the header); 0 where the lips meet. Arguments as find_stomion's.
+double parted_lips_gap(const Field& ct, double skin_threshold, const MidSagittalPlane& plane,
+                       const Eigen::Vector3d& labrale_superius, const Eigen::Vector3d& labrale_inferius);
 
 }  // namespace facehex

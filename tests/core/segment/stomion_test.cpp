@@ -17,22 +17,39 @@ namespace facehex {
 namespace {
 
 // Lips in their head frame (plane x = 0, +y anterior) whose front recedes sideways, meeting at z = 0 in a V-shaped
-// slit kSlitDepth deep and 3 mm tall; parted lips instead leave a gap kGap tall with the teeth kTeeth behind it.
+// slit kSlitDepth deep and 3 mm tall; parted lips instead leave a gap `gap` tall with the teeth kTeeth behind it.
 struct LipsPhantom {
-  static constexpr double kFront = 20, kSlitDepth = 3, kGap = 8, kTeeth = 15;
+  static constexpr double kFront = 20, kSlitDepth = 3, kTeeth = 15;
   bool parted = false, slit = true;
+  double gap = 8;
   double front(double x, double z) const {
     const double lips = kFront - 0.01 * x * x - 0.02 * z * z;
-    if (parted) return std::abs(z) < kGap / 2 ? kFront - kTeeth : lips;
+    if (parted) return std::abs(z) < gap / 2 ? kFront - kTeeth : lips;
     return lips - (slit ? std::max(0.0, kSlitDepth * (1 - std::abs(z) / 1.5)) : 0.0);
   }
 };
 
-std::optional<CtLandmark> stomion_of(const LipsPhantom& lips, const MidSagittalPlane& plane) {
+// The phantom's CT and its labralia (the lips' fronts `reach` mm above and below the middle), in the model's frame.
+struct LipsCt {
+  Field ct;
+  Eigen::Vector3d upper, lower;
+};
+
+LipsCt lips_ct(const LipsPhantom& lips, const MidSagittalPlane& plane, double reach) {
   const HeadTurn frame = head_turn_of(plane);
-  const Field ct = testing::face_front_phantom([&lips](double x, double z) { return lips.front(x, z); }, frame);
   const auto on_front = [&](double z) { return frame.to_model(Eigen::Vector3d(0, lips.front(0, z), z)); };
-  return find_stomion(ct, 0, plane, on_front(6), on_front(-6));
+  return {testing::face_front_phantom([&lips](double x, double z) { return lips.front(x, z); }, frame), on_front(reach),
+          on_front(-reach)};
+}
+
+std::optional<CtLandmark> stomion_of(const LipsPhantom& lips, const MidSagittalPlane& plane) {
+  const LipsCt c = lips_ct(lips, plane, 6);
+  return find_stomion(c.ct, 0, plane, c.upper, c.lower);
+}
+
+double gap_of(const LipsPhantom& lips, const MidSagittalPlane& plane) {
+  const LipsCt c = lips_ct(lips, plane, 8);  // beyond the widest gap tried
+  return parted_lips_gap(c.ct, 0, plane, c.upper, c.lower);
 }
 
 TEST(Stomion, TheBottomOfTheClosedLipsSlitUprightAndTurned) {
@@ -58,6 +75,24 @@ TEST(Stomion, NoneWhereTheLipsArePartedOverTheTeethOrShowNoSlit) {
   LipsPhantom smooth;  // the profile's rearmost points are its ends, the labralia
   smooth.slit = false;
   EXPECT_FALSE(stomion_of(smooth, MidSagittalPlane{}));
+}
+
+TEST(Stomion, PartedLipsGapIsHowFarApartTheLipsAreAndNoneWhereTheyMeet) {
+  for (const double turn_degrees : {0.0, 15.0})
+    for (const double gap : {6.0, 12.0}) {
+      MidSagittalPlane plane;
+      plane.turn = std::tan(turn_degrees * M_PI / 180);
+      LipsPhantom parted;
+      parted.parted = true;
+      parted.gap = gap;
+      // The gap's sharp edges ramp over a voxel of the phantom's 0.5 mm and of the front's 0.5 mm grid, where the rays
+      // end at depths between the lips' and the teeth's.
+      EXPECT_NEAR(gap_of(parted, plane), gap, 1.0) << "gap " << gap << ", turned " << turn_degrees;
+      EXPECT_EQ(gap_of(LipsPhantom{}, plane), 0) << "closed lips, turned " << turn_degrees;
+    }
+  LipsPhantom smooth;
+  smooth.slit = false;
+  EXPECT_EQ(gap_of(smooth, MidSagittalPlane{}), 0);
 }
 
 // The real CTs: against the hand-placed stomion (tests/data/landmarks), read between the hand-placed labralia by the
