@@ -70,7 +70,10 @@ void add_segment_options(Args& args) {
       .option("min-thickness", "mm below the skin always in the model", "3")
       .option("max-depth", "mm below the skin beyond which nothing is in the model", "25")
       .option("bone-gap", "mm: gaps in the bone narrower than twice this (teeth) still hide the tissue behind", "5")
-      .option("cavity-closing", "mm: openings (nostrils, lips, eyelids) narrower than twice this are closed", "4")
+      .option("cavity-closing",
+              "mm: openings (nostrils, lips, eyelids) narrower than twice this are closed; lips further apart (an open "
+              "mouth) are closed by raising it to half their gap and 1 mm, which the summary says",
+              "4")
       .option("smoothing", "mm, Gaussian blur of the model mask before its surface is taken", "1.5")
       .option("denoise",
               "mm, Gaussian blur of the CT before it is segmented (0: none; default: the blur that brings a noisy "

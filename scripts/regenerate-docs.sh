@@ -5,10 +5,10 @@
 # with the date, the commit, the core count and the CPU model. Everything outside the markers is left as it is.
 #
 # Usage, from anywhere in the repository, after a Release build of facehex:
-#   scripts/regenerate-docs.sh [--only benchmarks|results|correspondence|registered|landmarks|landing|pull|patients|objects|voxels|noise]
+#   scripts/regenerate-docs.sh [--only benchmarks|results|correspondence|registered|landmarks|landing|pull|patients|objects|voxels|noise|mouth]
 #                              [--keep DIR]
 #                              [--from DIR]
-#     --only benchmarks|results|correspondence|registered|landmarks|landing|pull|patients|objects|voxels|noise  run and write one part only (correspondence:
+#     --only benchmarks|results|correspondence|registered|landmarks|landing|pull|patients|objects|voxels|noise|mouth  run and write one part only (correspondence:
 #                                the correspondence section of docs/results.md, the paper's feature lines: `facehex
 #                                bench --correspondence --skin-correspondence features`; registered: its tables of the
 #                                registered skin, --skin-correspondence registered; landmarks: the automatic landmarks against
@@ -23,7 +23,10 @@
 #                                Visible Human resampled to finer and coarser voxels (scripts/resample_ct.py), `facehex
 #                                run` and its landmarks against the hand-placed ones, in docs/benchmarks.md; noise:
 #                                the bundled CT and the Visible Human with noise added (scripts/noisy_ct.py), segmented
-#                                by default and with --denoise 0, against the CT without it, in docs/benchmarks.md)
+#                                by default and with --denoise 0, against the CT without it, in docs/benchmarks.md;
+#                                mouth: the bundled CT and the Visible Human with the mouth opened
+#                                (scripts/open_mouth_ct.py), `facehex run`, against the closed CT's landmarks, in
+#                                docs/benchmarks.md)
 #     --keep DIR                 keep the raw JSON, logs and plots in DIR (default: a temporary folder, removed)
 #     --from DIR                 run nothing: write the pages from the JSON a previous --keep DIR left
 #   FACEHEX=path/to/facehex overrides build/bin/facehex.
@@ -50,8 +53,8 @@ while [ $# -gt 0 ]; do
     *) echo "regenerate-docs.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
-case "$only" in ""|benchmarks|results|correspondence|registered|landmarks|landing|pull|patients|objects|voxels|noise) ;;
-  *) echo "regenerate-docs.sh: --only benchmarks|results|correspondence|registered|landmarks|landing|pull|patients|objects|voxels|noise" >&2; exit 2 ;;
+case "$only" in ""|benchmarks|results|correspondence|registered|landmarks|landing|pull|patients|objects|voxels|noise|mouth) ;;
+  *) echo "regenerate-docs.sh: --only benchmarks|results|correspondence|registered|landmarks|landing|pull|patients|objects|voxels|noise|mouth" >&2; exit 2 ;;
 esac
 want() { [ -z "$only" ] || [ "$only" = "$1" ]; }
 
@@ -334,6 +337,25 @@ EOF
       fi
     done
     rm -f "$out/noisy.mha" "$out/noisy.vtu"
+  fi
+  if want mouth && /usr/bin/python3 -c 'import vtk, numpy' 2>/dev/null; then
+    # The mouth opened by a few gaps (scripts/open_mouth_ct.py, from the landmarks found on the CT as it is): each run
+    # as it comes (the open mouth measured and closed, soft_tissue.h), against the CT as it is.
+    cts=(bundled-ct:resources/ct/headsq/headsq.mhd:10)
+    [ -f ../shared/data/ct/vhfemale-head.mha ] && cts+=(vhf:../shared/data/ct/vhfemale-head.mha:8,12,16)
+    for entry in "${cts[@]}"; do
+      IFS=: read -r key ct gaps <<<"$entry"
+      step "mouth-$key-closed" "$facehex" segment "$ct" -o "$out/mouth.vtu" --write-landmarks "$out/mouth-$key-closed.lm.json"
+      bone=$(grep -o 'bone threshold [-0-9.]*' "$out/mouth-$key-closed.log" | head -1 | cut -d' ' -f3)
+      for gap in ${gaps//,/ }; do
+        /usr/bin/python3 scripts/open_mouth_ct.py "$ct" "$out/mouth-$key-closed.lm.json" "$bone" "$gap" "$out/mouth.mha"
+        timer=()
+        [ -x /usr/bin/time ] && timer=(/usr/bin/time -f "%e %M" -o "$out/mouth-$key-$gap.time")
+        step "mouth-$key-$gap" "${timer[@]}" "$facehex" run "$out/mouth.mha" -o "$out/mouth-run-$key-$gap"
+        rm -f "$out/mouth-run-$key-$gap"/*.vtu
+      done
+    done
+    rm -f "$out/mouth.mha" "$out/mouth.vtu"
   fi
   if want benchmarks; then
     step bench-sizes "$facehex" bench --sizes 10000,50000,200000 --json
@@ -754,6 +776,50 @@ if only in ("", "noise") and os.path.exists(os.path.join(out, "noise-bundled-ct-
                "bone threshold: without the noise -> with it", "with `--denoise 0`",
                "landmarks from the quiet CT's: mean (mm)", "farthest", "not found", "segment (s)"],
               rows, ["---", "---", "---:", "---:", "---", "---", "---:", "---", "---", "---:"]) + run_line})
+
+# ---- docs/benchmarks.md: an open mouth ----
+if only in ("", "mouth") and os.path.exists(os.path.join(out, "mouth-bundled-ct-closed.lm.json")):
+    rows = []
+    for key, label, gaps in (("bundled-ct", "bundled CT (3.2 mm)", ("10",)), ("vhf", "Visible Human (1 mm)",
+                                                                         ("8", "12", "16"))):
+        if not os.path.exists(os.path.join(out, f"mouth-{key}-closed.lm.json")):
+            continue
+        closed = {l["name"]: l["position"] for l in load(f"mouth-{key}-closed.lm.json")["landmarks"]}
+        for gap in gaps:
+            run = f"mouth-run-{key}-{gap}"
+            report = load(f"{run}/report.json")
+            found = {l["name"]: l["position"] for l in load(f"{run}/landmarks.json")["landmarks"]}
+            summary = report["segmentation"]["summary"]
+            closing = re.search(r"the lips are ([\d.]+) mm apart[^:]*: segmented again with --cavity-closing ([\d.]+)",
+                                summary)
+            # Across the face (x and z), as the landing is measured: the closed CT's corners are read in its lips' slit,
+            # the opened one's on the skin closed across the lips, a few millimetres in front of the slit's end.
+            corners = [math.dist(found[n][::2], closed[n][::2]) for n in ("cheilion right", "cheilion left")
+                       if n in found]
+            # The landmarks the opening does not move: above the mouth line.
+            above = [math.dist(found[n], closed[n]) for n in closed
+                     if n in found and closed[n][2] > closed["stomion"][2] + 3]
+            quality, standard = report["patient_hex"]["quality"], report["standard"]["quality"]
+            landing = report["feature_landing"]["landmarks"]
+            seconds = "–"
+            timing = os.path.join(out, f"mouth-{key}-{gap}.time")
+            if os.path.exists(timing):
+                seconds = f"{float(open(timing).read().split()[-2]):.1f}"
+            rows.append([label, gap, closing.group(1) if closing else "not closed (under the default closing's)",
+                         closing.group(2) if closing else "4",
+                         f(closed["stomion"][1] - found["stomion"][1], 1) if "stomion" in found else "not found",
+                         (" / ".join(f"{c:.1f}" for c in corners) if len(corners) == 2 else "not found"),
+                         f(sum(above) / len(above)), quality["inverted"],
+                         f(quality["shape_mean"] / standard["shape_mean"], 3),
+                         f(quality["dihedral_distortion"]["mean_deg"], 1),
+                         f(sum(l["mm"] for l in landing) / len(landing), 1), seconds])
+    write_blocks("docs/benchmarks.md", {
+        "bench-mouth": machine_line() + "\n\n" +
+        table(["CT", "lips opened (mm)", "gap measured (mm)", "cavity closing (mm)",
+               "stomion behind the closed CT's (mm)", "mouth corners from the closed CT's across the face: right / left (mm)",
+               "landmarks above the mouth from the closed CT's: mean (mm)", "inverted cells", "shape / standard's",
+               "dihedral change (°)", "standard's landmarks from the patient's: mean (mm)", "run (s)"],
+              rows, ["---", "---:", "---", "---:", "---:", "---", "---:", "---:", "---:", "---:", "---:", "---:"])})
 
 # ---- docs/results.md: where the standard's landmarks land ----
 if only in ("", "landing"):
