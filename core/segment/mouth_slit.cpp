@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "core/mesh/head_turn.h"
@@ -37,6 +38,30 @@ constexpr double kEndFraction = 0.5;
 constexpr double kHeightBand = 3;  // mm
 // The coarsest voxel the slit's end is read on.
 constexpr double kMostSpacing = 1.5;  // mm
+// An open mouth's corners.
+constexpr double kOpenMargin = 5;    // mm above and below the labralia: the mouth line rises or falls to the corners
+constexpr double kOpenEndDepth = 3;  // mm: more than closed lips' slit is deep
+
+// The depth of an open mouth's gap in the column `x` of the front: over the heights z0 + k * kLevelStep up to z1, how
+// far the front lies behind the lower of the lips' fronts above and below it, the deepest, and its height; a ray that
+// meets nothing reaches `stop`.
+std::pair<double, double> gap_depth(const FaceFront& front, double x, double z0, double z1, double stop) {
+  std::vector<double> y;
+  for (double z = z0; z <= z1 + 1e-9; z += kLevelStep) {
+    const double at = front.mean_across(x, kColumnMean, z);
+    y.push_back(std::isnan(at) ? stop : at);
+  }
+  const int n = static_cast<int>(y.size());
+  std::vector<double> below(n), above(n);  // the most anterior front at or below, at or above each height
+  for (int k = 0; k < n; ++k) below[k] = k == 0 ? y[0] : std::max(below[k - 1], y[k]);
+  for (int k = n - 1; k >= 0; --k) above[k] = k == n - 1 ? y[k] : std::max(above[k + 1], y[k]);
+  double deepest = 0, height = 0.5 * (z0 + z1);
+  for (int k = 1; k + 1 < n; ++k) {
+    const double d = std::min(below[k - 1], above[k + 1]) - y[k];
+    if (d > deepest) deepest = d, height = z0 + k * kLevelStep;
+  }
+  return {deepest, height};
+}
 
 // One side's slit in the head frame: side -1 the right corner (-x), +1 the left.
 class MouthSlit {
@@ -148,6 +173,56 @@ MouthCorners find_mouth_corners(const Field& ct, double skin_threshold, const Mi
   for (const int side : {-1, 1}) {
     const std::optional<CtLandmark> corner = MouthSlit(front, centre, s.z(), head_plane.slope, side).corner();
     if (corner) corners[side < 0 ? 0 : 1] = CtLandmark{frame.to_model(corner->point), false};
+  }
+  return corners;
+}
+
+MouthCorners find_open_mouth_corners(const Field& ct, double skin_threshold, const MidSagittalPlane& plane,
+                                     const Eigen::Vector3d& labrale_superius, const Eigen::Vector3d& labrale_inferius) {
+  if (ct.geometry.spacing.maxCoeff() > kMostSpacing) return {};
+  const HeadTurn frame = head_turn_of(plane);
+  const Eigen::Vector3d top = frame.to_head(labrale_superius), bottom = frame.to_head(labrale_inferius);
+  if (!(top.z() > bottom.z())) return {};
+  const MidSagittalPlane head_plane = frame.to_head(plane);
+  const double centre = head_plane.x_at(top.y(), 0.5 * (top.z() + bottom.z()));
+  const double z0 = bottom.z() - kOpenMargin, z1 = top.z() + kOpenMargin;
+  const double start = std::max(top.y(), bottom.y()) + kRayFront, stop = std::min(top.y(), bottom.y()) - kRayBack;
+  const FaceFront front(ct, skin_threshold, frame, centre - kHalfWidth, centre + kHalfWidth, z0 - 1, z1 + 1, start,
+                        stop);
+  MouthCorners corners;
+  for (const int side : {-1, 1}) {
+    std::vector<double> offsets, depths, heights;
+    for (double offset = 0; offset <= kHalfWidth - kColumnMean + 1e-9; offset += kStep) {
+      const auto [depth, height] = gap_depth(front, centre + side * offset, z0, z1, stop);
+      offsets.push_back(offset);
+      depths.push_back(depth);
+      heights.push_back(height);
+    }
+    const int n = static_cast<int>(offsets.size());
+    const auto mean_at = [&](int i) {
+      double sum = 0;
+      int count = 0;
+      for (int k = std::max(0, i - kMeanReach); k <= std::min(n - 1, i + kMeanReach); ++k) sum += depths[k], ++count;
+      return sum / count;
+    };
+    // No gap between the plane and kCornerNear: the lips meet there, and no end of a gap is a corner.
+    bool gap = false;
+    for (int i = 0; i < n && offsets[i] < kCornerNear; ++i) gap = gap || mean_at(i) >= kOpenEndDepth;
+    for (int i = 1; gap && i < n - kMeanReach; ++i) {
+      if (offsets[i] < kCornerNear) continue;
+      if (offsets[i] > kCornerFar) break;
+      const double here = mean_at(i);
+      if (here >= kOpenEndDepth) continue;
+      const double before = mean_at(i - 1);
+      const double t = before > here ? std::clamp((before - kOpenEndDepth) / (before - here), 0.0, 1.0) : 1.0;
+      const double offset = offsets[i - 1] + t * (offsets[i] - offsets[i - 1]);
+      const double x = centre + side * offset, z = heights[i - 1];
+      // The lips' front across the gap: the more anterior of the fronts just above and below the deepest point.
+      const double above = front(x, z + kOpenEndDepth), below = front(x, z - kOpenEndDepth);
+      const double y = std::isnan(above) ? below : std::isnan(below) ? above : std::max(above, below);
+      if (!std::isnan(y)) corners[side < 0 ? 0 : 1] = CtLandmark{frame.to_model(Eigen::Vector3d(x, y, z)), false};
+      break;
+    }
   }
   return corners;
 }

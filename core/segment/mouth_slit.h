@@ -25,6 +25,14 @@
 //     (the largest dy/dz: the upper lip turning in over the slit); its y the front's there.
 // None on a CT with voxels coarser than kMostSpacing in any axis: a slit a millimetre or two tall is then a voxel's
 // partial volume, and its end not readable to a millimetre.
+//
+// Lips apart (an open mouth, stomion.h: parted_lips_gap) have no slit: their corners are where the gap between them
+// ends. On the same front, over the labralia's heights and kOpenMargin beyond: in each column (the columns within 1 mm
+// averaged), the gap's depth, how far the front lies behind the lower of the lips' fronts above and below it (a ray
+// that meets nothing counts as reaching kRayBack); going out from the plane, the corner is the first point beyond
+// kCornerNear where that depth, in the running mean of rule 5, falls below kOpenEndDepth (linear between the two
+// columns), at the height of its column's deepest point, on the lips' front there. None where the depth is below
+// kOpenEndDepth all the way out to kCornerNear (lips that meet), or as in rule 5.
 #include <Eigen/Core>
 #include <array>
 #include <optional>
@@ -40,5 +48,9 @@ namespace facehex {
 // order (right, left), each found or none.
 MouthCorners find_mouth_corners(const Field& ct, double skin_threshold, const MidSagittalPlane& plane,
                                 const Eigen::Vector3d& stomion);
+
+// An open mouth's corners (the header's last paragraph), by the labralia found on the model's skin.
+MouthCorners find_open_mouth_corners(const Field& ct, double skin_threshold, const MidSagittalPlane& plane,
+                                     const Eigen::Vector3d& labrale_superius, const Eigen::Vector3d& labrale_inferius);
 
 }  // namespace facehex

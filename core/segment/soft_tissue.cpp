@@ -303,8 +303,8 @@ SurfaceMesh level_surface_with_cuts(const Mask& tissue, FaceCuts& cuts, const Se
 }
 
 // The landmarks read in the CT by the ones found on the model's skin (its mid-sagittal plane, nasion, pronasale and
-// labralia) into `found`: the eye corners (eye_corners.h), the stomion (stomion.h), the mouth corners from it
-// (mouth_slit.h) and, with `objects`, the objects on
+// labralia) into `found`: the eye corners (eye_corners.h), the stomion (stomion.h), the mouth corners from it or, lips
+// apart, from the ends of their gap (mouth_slit.h) and, with `objects`, the objects on
 // the skin above the nose tip (skin_objects.h), and how far apart the lips are into `parted_lips` (stomion.h). False,
 // and none read, when those are not found: the transfer says why.
 bool read_slit_landmarks(const CtVolume& ct, const PatientModel& model, bool objects, CtLandmarks& found,
@@ -327,6 +327,8 @@ bool read_slit_landmarks(const CtVolume& ct, const PatientModel& model, bool obj
                           &lower = landmarks.points.at("labrale inferius");
     found.stomion = find_stomion(ct.intensity, skin, landmarks.plane, upper, lower);
     if (!found.stomion) parted_lips = parted_lips_gap(ct.intensity, skin, landmarks.plane, upper, lower);
+    if (parted_lips > 0)
+      found.mouth_corners = find_open_mouth_corners(ct.intensity, skin, landmarks.plane, upper, lower);
   }
   if (found.stomion)
     found.mouth_corners = find_mouth_corners(ct.intensity, skin, landmarks.plane, found.stomion->point);

@@ -26,11 +26,19 @@ struct MouthPhantom {
   double depth = 2;
   double scale = 1;  // the front's depth scaled about y = 0: a deeper (> 1) or shallower (< 1) face
   bool slit = true;
+  // Lips apart instead of the slit: a gap `gap` tall at the plane around the mouth line, closing as an ellipse to the
+  // corners, kGapDepth behind the lips.
+  double gap = 0;
+  static constexpr double kGapDepth = 12;
 
   static double line_z(double offset) { return -kLineDrop * offset * offset; }
   double front(double x, double z) const {
     const double offset = std::abs(x);
     double y = 20 - 0.012 * offset * offset - 0.02 * z * z;
+    if (gap > 0) {
+      const double half = offset < kCorner ? gap / 2 * std::sqrt(1 - offset * offset / (kCorner * kCorner)) : 0;
+      return scale * (y - (std::abs(z - line_z(offset)) < half ? kGapDepth : 0));
+    }
     if (slit && offset <= kCorner) {
       const double dz = z - line_z(offset);
       y -= std::max(0.0, depth * (1 - (dz > 0 ? dz / kUpperWall : -dz / kLowerWall)));
@@ -38,9 +46,9 @@ struct MouthPhantom {
     return scale * y;
   }
   // The corner in the head frame, side -1 right, +1 left: the middle of the upper wall, where the front recedes
-  // fastest going down.
+  // fastest going down; where the lips are apart, the end of their gap.
   Eigen::Vector3d corner(int side) const {
-    const double z = line_z(kCorner) + kUpperWall / 2;
+    const double z = line_z(kCorner) + (gap > 0 ? 0 : kUpperWall / 2);
     return Eigen::Vector3d(side * kCorner, front(side * kCorner, z), z);
   }
   Eigen::Vector3d stomion() const { return Eigen::Vector3d(0, front(0, 0), 0); }
@@ -93,8 +101,8 @@ TEST(MouthSlit, TheEndsOfTheClosedLipsSlitUprightAndTurned) {
 }
 
 TEST(MouthSlit, TheEndsOfAShallowerSlitOnAShallowerFace) {
-  // The end is read against the slit's own depth: a slit about half as deep on a face 8 % shallower (a notch under 1 mm,
-  // shallower throughout than half the default slit's) ends where it ends.
+  // The end is read against the slit's own depth: a slit about half as deep on a face 8 % shallower (a notch under 1
+  // mm, shallower throughout than half the default slit's) ends where it ends.
   MouthPhantom face;
   face.depth = 1.1;
   face.scale = 0.92;
@@ -122,6 +130,34 @@ TEST(MouthSlit, NoneWithoutASlitOrOnCoarseVoxels) {
   const MouthCorners on_coarse = find_mouth_corners(resample(fine.ct, coarse), 0, fine.plane, fine.stomion);
   EXPECT_FALSE(on_coarse[0]);
   EXPECT_FALSE(on_coarse[1]);
+}
+
+TEST(MouthSlit, AnOpenMouthsCornersAreWhereTheGapBetweenTheLipsEnds) {
+  for (const double gap : {6.0, 12.0})
+    for (const double turn : {0.0, 12.0}) {
+      MouthPhantom face;
+      face.gap = gap;
+      const PlacedPhantom p = place(face, turn);
+      // The lips' fronts above and below the gap, as the profile finds them.
+      const HeadTurn frame = head_turn_of(p.plane);
+      const auto lip = [&](double z) { return frame.to_model(Eigen::Vector3d(0, face.front(0, z), z)); };
+      const MouthCorners found = find_open_mouth_corners(p.ct, 0, p.plane, lip(gap / 2 + 2), lip(-gap / 2 - 2));
+      const std::string context = " (gap " + std::to_string(gap) + ", turned " + std::to_string(turn) + ")";
+      for (int c = 0; c < 2; ++c) {
+        ASSERT_TRUE(found[c]) << kMouthCornerNames[c] << context;
+        // Across the face (x and z of the head frame): the running mean's 2 mm and the gap's last half millimetre.
+        const Eigen::Vector3d at = frame.to_head(found[c]->point), truth = frame.to_head(p.corners[c]);
+        EXPECT_LT(std::hypot(at.x() - truth.x(), at.z() - truth.z()), 1.5)
+            << kMouthCornerNames[c] << context << ": found at " << at.transpose() << ", the corner at "
+            << truth.transpose();
+      }
+      // Closed lips have no gap whose end is a corner.
+      const PlacedPhantom closed = place(MouthPhantom{}, turn);
+      const MouthCorners none =
+          find_open_mouth_corners(closed.ct, 0, closed.plane, lip(gap / 2 + 2), lip(-gap / 2 - 2));
+      EXPECT_FALSE(none[0]) << context;
+      EXPECT_FALSE(none[1]) << context;
+    }
 }
 
 // The real CT: the corners against the hand-placed ones (tests/data/landmarks), read by the plane the segmentation
