@@ -3,8 +3,8 @@
 # --write-landmarks` found on it (stomion, mouth corners, tragi): below the mouth line (a parabola in x through the
 # stomion and the corners' height) everything moves down by GAP times how far forward of the tragi it lies (1 at the
 # stomion's depth and in front of it); the band this stretches repeats the mouth line's slice, and between the corners
-# (an ellipse as tall as the gap there) it is air to 14 mm behind the stomion, but for voxels at or above BONE (the
-# teeth). For measuring how the segmentation handles an open mouth (docs/benchmarks.md, "An open mouth"). The CT must
+# (an ellipse as tall as the gap there) it is air to 12 mm behind the lips' front in each column, but for voxels at or
+# above BONE (the teeth). For measuring how the segmentation handles an open mouth (docs/benchmarks.md, "An open mouth"). The CT must
 # be upright in its voxel axes (+y anterior, +z superior). Needs python3-vtk9 and numpy. Usage:
 #   python3 scripts/open_mouth_ct.py CT.mha|.mhd LANDMARKS.json BONE GAP OUT.mha
 import json
@@ -41,6 +41,10 @@ j = np.arange(ny)[None, :, None]
 i = np.arange(nx)[None, None, :]
 opened = volume[k0, j, i] * (1 - f) + volume[k0 + 1, j, i] * f
 w = (Z - (cut - drop / 2)) / np.maximum(drop / 2, 1e-6)
-mouth = (u * u + w * w < 1) & (drop > 0.5) & (y[None, :, None] > stomion[1] - 14) & (opened < bone)
+# The lips' front in each column at the mouth line: the most anterior voxel above half way from air to bone.
+line = np.clip(np.round((cut[0, 0] - origin[2]) / spacing[2]).astype(int), 0, nz - 1)
+tissue = volume[line, :, np.arange(nx)] > 0.5 * (air + bone)  # [x, y]
+lips = np.where(tissue.any(axis=1), y[ny - 1 - np.argmax(tissue[:, ::-1], axis=1)], -np.inf)
+mouth = (u * u + w * w < 1) & (drop > 0.5) & (y[None, :, None] > lips[None, None, :] - 12) & (opened < bone)
 opened[mouth] = air
 ct_image.write_like(image, opened, dst)

@@ -792,10 +792,15 @@ if only in ("", "mouth") and os.path.exists(os.path.join(out, "mouth-bundled-ct-
             summary = report["segmentation"]["summary"]
             closing = re.search(r"the lips are ([\d.]+) mm apart[^:]*: segmented again with --cavity-closing ([\d.]+)",
                                 summary)
-            # Across the face (x and z), as the landing is measured: the closed CT's corners are read in its lips' slit,
-            # the opened one's on the skin closed across the lips, a few millimetres in front of the slit's end.
-            corners = [math.dist(found[n][::2], closed[n][::2]) for n in ("cheilion right", "cheilion left")
-                       if n in found]
+            # The opened mouth's corners: the closed CT's, moved down by half the gap there (open_mouth_ct.py opens the
+            # lips by the gap times how far forward of the tragi they lie), the middle of where the lips meet. Across
+            # the face (x and z), as the landing is measured.
+            tragus_y = (closed["tragus right"][1] + closed["tragus left"][1]) / 2
+            def opened(p):
+                drop = float(gap) * min(1, max(0, (p[1] - tragus_y) / (closed["stomion"][1] - tragus_y)))
+                return [p[0], p[2] - drop / 2]
+            corners = [math.dist(found[c][::2], opened(closed[c])) for c in ("cheilion right", "cheilion left")
+                       if c in found]
             # The landmarks the opening does not move: above the mouth line.
             above = [math.dist(found[n], closed[n]) for n in closed
                      if n in found and closed[n][2] > closed["stomion"][2] + 3]
@@ -816,7 +821,7 @@ if only in ("", "mouth") and os.path.exists(os.path.join(out, "mouth-bundled-ct-
     write_blocks("docs/benchmarks.md", {
         "bench-mouth": machine_line() + "\n\n" +
         table(["CT", "lips opened (mm)", "gap measured (mm)", "cavity closing (mm)",
-               "stomion behind the closed CT's (mm)", "mouth corners from the closed CT's across the face: right / left (mm)",
+               "stomion behind the closed CT's (mm)", "mouth corners from the opening's, across the face: right / left (mm)",
                "landmarks above the mouth from the closed CT's: mean (mm)", "inverted cells", "shape / standard's",
                "dihedral change (°)", "standard's landmarks from the patient's: mean (mm)", "run (s)"],
               rows, ["---", "---:", "---", "---:", "---:", "---", "---:", "---:", "---:", "---:", "---:", "---:"])})
