@@ -810,7 +810,7 @@ if only in ("", "mouth") and os.path.exists(os.path.join(out, "mouth-bundled-ct-
             timing = os.path.join(out, f"mouth-{key}-{gap}.time")
             if os.path.exists(timing):
                 seconds = f"{float(open(timing).read().split()[-2]):.1f}"
-            rows.append([label, gap, closing.group(1) if closing else "not closed (under the default closing's)",
+            rows.append([label, gap, closing.group(1) if closing else "under twice the default closing",
                          closing.group(2) if closing else "4",
                          f(closed["stomion"][1] - found["stomion"][1], 1) if "stomion" in found else "not found",
                          (" / ".join(f"{c:.1f}" for c in corners) if len(corners) == 2 else "not found"),
