@@ -63,6 +63,31 @@ std::pair<double, double> gap_depth(const FaceFront& front, double x, double z0,
   return {deepest, height};
 }
 
+// The mean of depths[i] over the kMeanReach columns either side (fewer at the ends).
+double running_mean(const std::vector<double>& depths, int i) {
+  const int n = static_cast<int>(depths.size());
+  double sum = 0;
+  int count = 0;
+  for (int k = std::max(0, i - kMeanReach); k <= std::min(n - 1, i + kMeanReach); ++k) sum += depths[k], ++count;
+  return sum / count;
+}
+
+// Rule 5's end of a line: the first column i beyond kCornerNear (up to kCornerFar) whose running mean depth is below
+// `end`, and how far (0-1) from column i - 1 towards i the mean crosses it; none where it does not.
+std::optional<std::pair<int, double>> line_end(const std::vector<double>& offsets, const std::vector<double>& depths,
+                                               double end) {
+  const int n = static_cast<int>(offsets.size());
+  for (int i = 1; i < n - kMeanReach; ++i) {
+    if (offsets[i] < kCornerNear) continue;
+    if (offsets[i] > kCornerFar) break;
+    const double here = running_mean(depths, i);
+    if (here >= end) continue;
+    const double before = running_mean(depths, i - 1);
+    return std::pair{i, before > here ? std::clamp((before - end) / (before - here), 0.0, 1.0) : 1.0};
+  }
+  return std::nullopt;
+}
+
 // One side's slit in the head frame: side -1 the right corner (-x), +1 the left.
 class MouthSlit {
  public:
@@ -93,26 +118,12 @@ class MouthSlit {
     const double depth = middle[middle.size() / 2];
     if (depth < kMinDepth) return std::nullopt;
     // Rule 5.
-    const int n = static_cast<int>(offsets.size());
-    const auto mean_at = [&](int i) {
-      double sum = 0;
-      int count = 0;
-      for (int k = std::max(0, i - kMeanReach); k <= std::min(n - 1, i + kMeanReach); ++k) sum += depths[k], ++count;
-      return sum / count;
-    };
-    const double end = kEndFraction * depth;
-    for (int i = 1; i < n - kMeanReach; ++i) {
-      if (offsets[i] < kCornerNear) continue;
-      if (offsets[i] > kCornerFar) break;
-      const double here = mean_at(i);
-      if (here >= end) continue;
-      const double before = mean_at(i - 1);
-      const double t = before > here ? std::clamp((before - end) / (before - here), 0.0, 1.0) : 1.0;
-      const double offset = offsets[i - 1] + t * (offsets[i] - offsets[i - 1]);
-      const double line_level = levels[i - 1] + t * (levels[i] - levels[i - 1]);
-      return at_height(offset, steepest_level(offset, line_level));
-    }
-    return std::nullopt;
+    const auto crossing = line_end(offsets, depths, kEndFraction * depth);
+    if (!crossing) return std::nullopt;
+    const auto [i, t] = *crossing;
+    const double offset = offsets[i - 1] + t * (offsets[i] - offsets[i - 1]);
+    const double line_level = levels[i - 1] + t * (levels[i] - levels[i - 1]);
+    return at_height(offset, steepest_level(offset, line_level));
   }
 
  private:
@@ -198,31 +209,18 @@ MouthCorners find_open_mouth_corners(const Field& ct, double skin_threshold, con
       depths.push_back(depth);
       heights.push_back(height);
     }
-    const int n = static_cast<int>(offsets.size());
-    const auto mean_at = [&](int i) {
-      double sum = 0;
-      int count = 0;
-      for (int k = std::max(0, i - kMeanReach); k <= std::min(n - 1, i + kMeanReach); ++k) sum += depths[k], ++count;
-      return sum / count;
-    };
     // No gap between the plane and kCornerNear: the lips meet there, and no end of a gap is a corner.
     bool gap = false;
-    for (int i = 0; i < n && offsets[i] < kCornerNear; ++i) gap = gap || mean_at(i) >= kOpenEndDepth;
-    for (int i = 1; gap && i < n - kMeanReach; ++i) {
-      if (offsets[i] < kCornerNear) continue;
-      if (offsets[i] > kCornerFar) break;
-      const double here = mean_at(i);
-      if (here >= kOpenEndDepth) continue;
-      const double before = mean_at(i - 1);
-      const double t = before > here ? std::clamp((before - kOpenEndDepth) / (before - here), 0.0, 1.0) : 1.0;
-      const double offset = offsets[i - 1] + t * (offsets[i] - offsets[i - 1]);
-      const double x = centre + side * offset, z = heights[i - 1];
-      // The lips' front across the gap: the more anterior of the fronts just above and below the deepest point.
-      const double above = front(x, z + kOpenEndDepth), below = front(x, z - kOpenEndDepth);
-      const double y = std::isnan(above) ? below : std::isnan(below) ? above : std::max(above, below);
-      if (!std::isnan(y)) corners[side < 0 ? 0 : 1] = CtLandmark{frame.to_model(Eigen::Vector3d(x, y, z)), false};
-      break;
-    }
+    for (size_t i = 0; i < offsets.size() && offsets[i] < kCornerNear; ++i)
+      gap = gap || running_mean(depths, static_cast<int>(i)) >= kOpenEndDepth;
+    const auto crossing = gap ? line_end(offsets, depths, kOpenEndDepth) : std::nullopt;
+    if (!crossing) continue;
+    const auto [i, t] = *crossing;
+    const double x = centre + side * (offsets[i - 1] + t * (offsets[i] - offsets[i - 1])), z = heights[i - 1];
+    // The lips' front across the gap: the more anterior of the fronts just above and below the deepest point.
+    const double above = front(x, z + kOpenEndDepth), below = front(x, z - kOpenEndDepth);
+    const double y = std::isnan(above) ? below : std::isnan(below) ? above : std::max(above, below);
+    if (!std::isnan(y)) corners[side < 0 ? 0 : 1] = CtLandmark{frame.to_model(Eigen::Vector3d(x, y, z)), false};
   }
   return corners;
 }
