@@ -4,8 +4,8 @@
 # stomion and the corners' height) everything moves down by GAP times how far forward of the tragi it lies (1 at the
 # stomion's depth and in front of it); the band this stretches repeats the mouth line's slice, and between the corners
 # (an ellipse as tall as the gap there) it is air to 12 mm behind the lips' front in each column, but for voxels at or
-# above BONE (the teeth). For measuring how the segmentation handles an open mouth (docs/benchmarks.md, "An open mouth"). The CT must
-# be upright in its voxel axes (+y anterior, +z superior). Needs python3-vtk9 and numpy. Usage:
+# above BONE (the teeth). For measuring how the segmentation handles an open mouth (docs/benchmarks.md, "An open
+# mouth"). The CT must be upright in its voxel axes (+y anterior, +z superior). Needs python3-vtk9 and numpy. Usage:
 #   python3 scripts/open_mouth_ct.py CT.mha|.mhd LANDMARKS.json BONE GAP OUT.mha
 import json
 import sys
